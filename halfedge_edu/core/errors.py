@@ -1,0 +1,56 @@
+"""The three error types of halfedge_edu, and the warning for dropped vertices.
+
+Every error names the element it is about, so that a student can go and look at it:
+``MeshInputError`` for input that cannot become a halfedge mesh (a file line, a face,
+an edge or a vertex), ``MeshInvariantError`` for a built mesh that breaks one of the
+structure's rules, and ``TopologyError`` for a local operation that is not allowed.
+"""
+
+from __future__ import annotations
+
+
+class MeshInputError(ValueError):
+    """Input that cannot be turned into a halfedge mesh.
+
+    Attributes:
+        element: ``(kind, index)`` of the offending element, for example
+            ``("face", 12)``, ``("edge", (3, 7))`` or ``("vertex", 5)``; None when the
+            problem is not about one element (an unreadable file, say).
+        line: the 1-based line of the source file where the problem is, or None.
+    """
+
+    def __init__(self, message: str, *, element: tuple | None = None, line: int | None = None):
+        super().__init__(message)
+        self.element = element
+        self.line = line
+
+
+class MeshInvariantError(Exception):
+    """A built mesh breaks one of the halfedge structure's rules.
+
+    Attributes:
+        rule: a short name such as ``"twin-involution"`` or ``"next-cycle"``.
+        element: ``(kind, index)`` of the first element found breaking it,
+            for example ``("halfedge", 17)``.
+    """
+
+    def __init__(self, rule: str, element: tuple, message: str):
+        super().__init__(f"[{rule}] {message}")
+        self.rule = rule
+        self.element = element
+
+
+class TopologyError(ValueError):
+    """A local operation (flip, split, collapse) that is not allowed on this element.
+
+    The mesh is left exactly as it was. ``reason`` is the same sentence that
+    ``mesh.can_flip(e).reason`` (or ``can_split`` / ``can_collapse``) gives.
+    """
+
+    def __init__(self, reason: str):
+        super().__init__(reason)
+        self.reason = reason
+
+
+class MeshWarning(UserWarning):
+    """Something about the input was changed on the way in (e.g. unreferenced vertices dropped)."""
