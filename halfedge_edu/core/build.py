@@ -1,0 +1,477 @@
+"""Building the halfedge structure from a list of triangles.
+
+Two versions of the same construction live here:
+
+* :func:`build_reference` is the loop from the course notes, one face and one corner
+  at a time, written to be read.
+* :func:`build_arrays` does exactly the same work with whole-array numpy operations,
+  so that a 1.3-million-face mesh builds in about a second.
+
+The tests check that both give *identical* arrays, index for index. The numbering they
+share is the one the course teaches:
+
+* Faces keep their row order. Face ``f = [i, j, k]`` makes the halfedges
+  ``(i, j)``, ``(j, k)``, ``(k, i)``, in that order.
+* Edges are numbered in the order they are first seen. Edge ``e`` owns halfedges
+  ``2e`` and ``2e + 1``, so the twin of ``h`` is ``h ^ 1`` and its edge is ``h >> 1``.
+  The first time an edge is seen, as ``(a, b)``, that halfedge becomes ``2e``; the
+  second time, as ``(b, a)``, it becomes the twin ``2e + 1``.
+* An edge seen only once lies on the boundary: its halfedge ``2e + 1`` runs the other
+  way with no face (``face == -1``), and the boundary halfedges are linked into loops.
+* Each vertex's ``halfedge`` is its outgoing boundary halfedge if it has one (so a
+  vertex knows it is on the boundary in O(1)), otherwise its outgoing halfedge with the
+  smallest index.
+
+Positions are not needed for any of this: topology comes from the faces alone.
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import MeshInputError, MeshWarning
+from .rings import walk_rings
+
+#: Integer type of every topology array. 32 bits hold 2 billion elements and halve the
+#: memory of 64-bit indices, which matters at millions of faces.
+INDEX = np.int32
+
+
+@dataclass
+class HalfedgeArrays:
+    """The raw arrays of a halfedge mesh, as construction produces them.
+
+    Shapes: ``positions`` (V, 3) float64; ``vertex_halfedge`` (V,);
+    ``halfedge_next``, ``halfedge_prev``, ``halfedge_vertex``, ``halfedge_face`` (2E,);
+    ``face_halfedge`` (F,). All index arrays are :data:`INDEX`; -1 means "none".
+    """
+
+    positions: np.ndarray
+    vertex_halfedge: np.ndarray
+    halfedge_next: np.ndarray
+    halfedge_prev: np.ndarray
+    halfedge_vertex: np.ndarray
+    halfedge_face: np.ndarray
+    face_halfedge: np.ndarray
+
+
+# --------------------------------------------------------------------------------------
+# Input checks shared by both builders
+# --------------------------------------------------------------------------------------
+
+def _where(face: int, face_lines: np.ndarray | None, source: str | None) -> str:
+    """' (line 40 of bunny.obj)' for messages, when we know where a face came from."""
+    if face_lines is None:
+        return ""
+    place = f"line {int(face_lines[face])}"
+    return f" ({place} of {source})" if source else f" ({place})"
+
+
+def _line(face: int, face_lines: np.ndarray | None) -> int | None:
+    return None if face_lines is None else int(face_lines[face])
+
+
+def check_input(
+    vertices, faces, face_lines=None, source: str | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """Check shapes, types, finiteness, index range and degenerate faces.
+
+    Returns ``(positions (n, 3) float64, faces (m, 3) int64)`` as fresh arrays.
+    Raises :class:`MeshInputError` naming the first offending vertex or face.
+    """
+    try:
+        positions = np.array(vertices, dtype=np.float64)
+    except (TypeError, ValueError) as error:
+        raise MeshInputError(f"vertex positions are not numbers: {error}") from None
+    if positions.ndim != 2 or positions.shape[1] != 3:
+        raise MeshInputError(
+            f"vertices must be an (n, 3) array of positions, got shape {positions.shape}"
+        )
+    finite = np.isfinite(positions).all(axis=1)
+    if not finite.all():
+        bad = int(np.flatnonzero(~finite)[0])
+        raise MeshInputError(
+            f"vertex {bad} has a coordinate that is not a finite number: {positions[bad].tolist()}",
+            element=("vertex", bad),
+        )
+
+    face_array = np.asarray(faces)
+    if face_array.ndim != 2 or face_array.shape[1] != 3:
+        if face_array.ndim == 2 and face_array.shape[1] < 3:
+            raise MeshInputError(
+                f"faces need at least 3 vertices each, got rows of {face_array.shape[1]}"
+            )
+        raise MeshInputError(
+            f"faces must be an (m, 3) array of vertex indices (triangles), got shape {face_array.shape}"
+        )
+    if len(face_array) == 0:
+        raise MeshInputError("the mesh has no faces")
+    if not np.issubdtype(face_array.dtype, np.integer):
+        rounded = np.asarray(face_array, dtype=np.float64)
+        if not np.all(np.isfinite(rounded)) or not np.all(rounded == np.round(rounded)):
+            raise MeshInputError("face indices must be whole numbers")
+    face_array = face_array.astype(np.int64)
+
+    n_vertices = len(positions)
+    out_of_range = (face_array < 0) | (face_array >= n_vertices)
+    if out_of_range.any():
+        face, corner = (int(x) for x in np.argwhere(out_of_range)[0])
+        raise MeshInputError(
+            f"face {face}{_where(face, face_lines, source)} uses vertex index "
+            f"{int(face_array[face, corner])}, but vertices are numbered 0 to {n_vertices - 1}",
+            element=("face", face),
+            line=_line(face, face_lines),
+        )
+    a, b, c = face_array.T
+    repeated = (a == b) | (b == c) | (c == a)
+    if repeated.any():
+        face = int(np.flatnonzero(repeated)[0])
+        raise MeshInputError(
+            f"face {face}{_where(face, face_lines, source)} is degenerate: it repeats a vertex "
+            f"{face_array[face].tolist()}",
+            element=("face", face),
+            line=_line(face, face_lines),
+        )
+    return positions, face_array
+
+
+def drop_unreferenced(positions: np.ndarray, faces: np.ndarray, *, warn: bool = True):
+    """Remove vertices no face uses, renumbering the faces to match.
+
+    Returns ``(positions, faces, kept)`` where ``kept`` (n_kept,) lists the original
+    index of each vertex that stayed. Warns with :class:`MeshWarning` when it drops any.
+    """
+    used = np.zeros(len(positions), dtype=bool)
+    used[faces.ravel()] = True
+    if used.all():
+        return positions, faces, np.arange(len(positions))
+    kept = np.flatnonzero(used)
+    if warn:
+        dropped = np.flatnonzero(~used)
+        shown = ", ".join(str(v) for v in dropped[:8]) + (", ..." if len(dropped) > 8 else "")
+        warnings.warn(
+            f"dropped {len(dropped)} unreferenced vertices (no face uses them): {shown}",
+            MeshWarning,
+            stacklevel=3,
+        )
+    new_index = np.full(len(positions), -1, dtype=np.int64)
+    new_index[kept] = np.arange(len(kept))
+    return positions[kept], new_index[faces], kept
+
+
+# --------------------------------------------------------------------------------------
+# The reference construction (the course's loop)
+# --------------------------------------------------------------------------------------
+
+def build_reference(faces, n_vertices: int | None = None) -> HalfedgeArrays:
+    """Build the halfedge arrays one face at a time, the way the course notes do.
+
+    This is the readable version of :func:`build_arrays`; both produce identical arrays.
+    It checks for edges with more than two faces and for inconsistent orientation,
+    but leaves the rest of input checking to :func:`check_input`.
+
+    Args:
+        faces: (m, 3) vertex indices of triangles, counter-clockwise seen from outside.
+        n_vertices: how many vertices there are (default: largest index + 1).
+
+    Returns:
+        The arrays, with ``positions`` all zero (topology needs no positions).
+    """
+    faces = [tuple(int(v) for v in face) for face in faces]
+    if n_vertices is None:
+        n_vertices = 1 + max(max(face) for face in faces)
+
+    edge_of: dict[tuple[int, int], int] = {}     # (smaller, larger) vertex -> edge index
+    origin: dict[int, int] = {}                  # halfedge -> the vertex it leaves
+    face_of: dict[int, int] = {}                 # halfedge -> its face
+    next_of: dict[int, int] = {}
+    face_halfedge: list[int] = []
+
+    for face_index, (i, j, k) in enumerate(faces):
+        corner_halfedges = []
+        for a, b in ((i, j), (j, k), (k, i)):
+            key = (min(a, b), max(a, b))
+            if key not in edge_of:
+                edge_of[key] = len(edge_of)      # first time we see this edge
+                h = 2 * edge_of[key]
+            else:
+                h = 2 * edge_of[key] + 1         # second time: this is the twin
+                if h in origin:
+                    raise MeshInputError(
+                        f"edge {key} has more than two faces (face {face_index} is the third)",
+                        element=("edge", key),
+                    )
+                if origin[h ^ 1] == a:
+                    raise MeshInputError(
+                        f"directed edge ({a}, {b}) is used by two faces: the faces are "
+                        f"inconsistently oriented (face {face_index} is the second)",
+                        element=("edge", key),
+                    )
+            origin[h] = a
+            face_of[h] = face_index
+            corner_halfedges.append(h)
+        for position, h in enumerate(corner_halfedges):
+            next_of[h] = corner_halfedges[(position + 1) % 3]
+        face_halfedge.append(corner_halfedges[0])
+
+    n_halfedges = 2 * len(edge_of)
+    # Edges seen once: their second halfedge is a boundary halfedge running the other way.
+    boundary = [h for h in range(1, n_halfedges, 2) if h not in origin]
+    for h in boundary:
+        interior = h ^ 1                          # runs a -> b inside its face
+        origin[h] = origin[next_of[interior]]     # so the boundary twin starts at b
+        face_of[h] = -1
+    outgoing_boundary: dict[int, int] = {}
+    for h in boundary:
+        if origin[h] in outgoing_boundary:
+            raise MeshInputError(
+                f"vertex {origin[h]} is non-manifold: its faces form more than one fan "
+                f"(it lies on two separate pieces of boundary)",
+                element=("vertex", origin[h]),
+            )
+        outgoing_boundary[origin[h]] = h
+    for h in boundary:
+        tip = origin[h ^ 1]                       # the interior twin starts where h ends
+        next_of[h] = outgoing_boundary[tip]
+
+    vertex_halfedge = [-1] * n_vertices
+    for h in range(n_halfedges):
+        v = origin[h]
+        if vertex_halfedge[v] == -1 or (h < vertex_halfedge[v]):
+            vertex_halfedge[v] = h
+    for v, h in outgoing_boundary.items():
+        vertex_halfedge[v] = h
+
+    prev_of = {n: h for h, n in next_of.items()}
+
+    # Every vertex's faces must form one fan: walking counter-clockwise from its
+    # halfedge (h -> twin(prev(h))) must meet all of its outgoing halfedges.
+    outgoing_count = [0] * n_vertices
+    for h in range(n_halfedges):
+        outgoing_count[origin[h]] += 1
+    for v in range(n_vertices):
+        if vertex_halfedge[v] == -1:
+            continue
+        h, steps = vertex_halfedge[v], 0
+        while True:
+            steps += 1
+            h = prev_of[h] ^ 1
+            if h == vertex_halfedge[v] or steps > outgoing_count[v]:
+                break
+        if steps != outgoing_count[v]:
+            raise MeshInputError(
+                f"vertex {v} is non-manifold: its faces form more than one fan",
+                element=("vertex", v),
+            )
+    as_array = lambda values: np.array(values, dtype=INDEX)  # noqa: E731 (local shorthand)
+    return HalfedgeArrays(
+        positions=np.zeros((n_vertices, 3)),
+        vertex_halfedge=as_array(vertex_halfedge),
+        halfedge_next=as_array([next_of[h] for h in range(n_halfedges)]),
+        halfedge_prev=as_array([prev_of[h] for h in range(n_halfedges)]),
+        halfedge_vertex=as_array([origin[h] for h in range(n_halfedges)]),
+        halfedge_face=as_array([face_of[h] for h in range(n_halfedges)]),
+        face_halfedge=as_array(face_halfedge),
+    )
+
+
+# --------------------------------------------------------------------------------------
+# The vectorized construction
+# --------------------------------------------------------------------------------------
+
+def build_arrays(
+    positions: np.ndarray,
+    faces: np.ndarray,
+    face_lines: np.ndarray | None = None,
+    source: str | None = None,
+) -> HalfedgeArrays:
+    """Build the halfedge arrays with whole-array operations (no Python loop per face).
+
+    ``positions`` (n, 3) and ``faces`` (m, 3) must already have passed
+    :func:`check_input`, and every vertex must be used by a face. The numbering is the
+    one described in the module docstring, identical to :func:`build_reference`.
+
+    Raises:
+        MeshInputError: an edge with more than two faces, a directed edge used twice
+            (inconsistent orientation or a duplicated face), or a vertex whose faces form
+            more than one fan. The message names the edge or vertex, the faces, and
+            their file lines when ``face_lines`` is given.
+    """
+    n_vertices = len(positions)
+    n_faces = len(faces)
+    n_corners = 3 * n_faces
+
+    # Directed edge number p = 3 * face + corner runs from tail[p] to head[p].
+    corners = faces.astype(INDEX)                             # (m, 3)
+    tail = corners.reshape(-1)                                # (3m,)
+    head = corners[:, [1, 2, 0]].reshape(-1)                  # (3m,)
+    order, sorted_key = _sort_undirected(tail, head, n_vertices)
+
+    # Equal keys sit next to each other, in the order the faces used them. A run of
+    # two is an interior edge, a run of one a boundary edge, a longer run is an error.
+    same_as_next = sorted_key[1:] == sorted_key[:-1]          # (3m - 1,)
+    del sorted_key
+    if (same_as_next[1:] & same_as_next[:-1]).any():
+        _raise_crowded_edge(order, same_as_next, tail, head, face_lines, source)
+    pair = np.flatnonzero(same_as_next)                       # (P,) where each pair starts
+    first_p = order[pair]                                     # first use of each shared edge
+    second_p = order[pair + 1]                                # second use (first_p < second_p)
+    del order, same_as_next, pair
+
+    # Two faces on one edge must use it in opposite directions.
+    same_direction = tail[first_p] == tail[second_p]
+    if same_direction.any():
+        where = int(np.flatnonzero(same_direction)[0])
+        p, q = int(first_p[where]), int(second_p[where])
+        f, g = p // 3, q // 3
+        raise MeshInputError(
+            f"directed edge ({int(tail[p])}, {int(head[p])}) is used by two faces, "
+            f"face {f}{_where(f, face_lines, source)} and face {g}{_where(g, face_lines, source)}: "
+            f"neighbouring faces must run along a shared edge in opposite directions "
+            f"(the faces are inconsistently oriented, or one is a duplicate)",
+            element=("edge", (int(tail[p]), int(head[p]))),
+            line=_line(g, face_lines),
+        )
+
+    # Number the edges in order of first appearance: the directed edges that are not a
+    # second use, taken in order, are exactly the first sightings of each edge.
+    is_second = np.zeros(n_corners, dtype=bool)
+    is_second[second_p] = True
+    first_sighting = np.flatnonzero(~is_second)               # (E,) ascending
+    del is_second
+    n_edges = len(first_sighting)
+    n_halfedges = 2 * n_edges
+    halfedge = np.empty(n_corners, dtype=INDEX)               # (3m,) halfedge of each directed edge
+    halfedge[first_sighting] = np.arange(0, n_halfedges, 2, dtype=INDEX)
+    halfedge[second_p] = halfedge[first_p] + 1                # the twin of the first sighting
+
+    # Edges sighted once lie on the boundary; their halfedge 2e + 1 has no face.
+    shared = np.zeros(n_corners, dtype=bool)
+    shared[first_p] = True
+    boundary = halfedge[first_sighting[~shared[first_sighting]]] + 1    # (B,) ascending
+    del first_p, second_p, first_sighting, shared
+
+    halfedge_vertex = np.empty(n_halfedges, dtype=INDEX)
+    halfedge_face = np.empty(n_halfedges, dtype=INDEX)
+    halfedge_next = np.empty(n_halfedges, dtype=INDEX)
+    halfedge_prev = np.empty(n_halfedges, dtype=INDEX)
+
+    by_corner = halfedge.reshape(n_faces, 3)                  # (m, 3) halfedges of each face
+    halfedge_vertex[halfedge] = tail
+    del corners, tail, head
+    halfedge_face[by_corner] = np.arange(n_faces)[:, None]
+    halfedge_next[by_corner] = by_corner[:, [1, 2, 0]]
+    halfedge_prev[by_corner] = by_corner[:, [2, 0, 1]]
+    face_halfedge = by_corner[:, 0].astype(INDEX)
+
+    interior_twin = boundary ^ 1
+    halfedge_face[boundary] = -1
+    halfedge_vertex[boundary] = halfedge_vertex[halfedge_next[interior_twin]]
+
+    # Each boundary vertex must have exactly one outgoing boundary halfedge.
+    boundary_origin = halfedge_vertex[boundary]
+    count = np.bincount(boundary_origin, minlength=n_vertices)
+    if (count > 1).any():
+        vertex = int(np.flatnonzero(count > 1)[0])
+        raise MeshInputError(
+            f"vertex {vertex} is non-manifold: its faces form more than one fan "
+            f"(it lies on {int(count[vertex])} separate pieces of boundary)",
+            element=("vertex", vertex),
+        )
+    outgoing_boundary = np.full(n_vertices, -1, dtype=INDEX)
+    outgoing_boundary[boundary_origin] = boundary
+    # A boundary halfedge ends where its interior twin starts; the loop continues with
+    # the boundary halfedge that leaves that vertex.
+    boundary_next = outgoing_boundary[halfedge_vertex[interior_twin]]
+    halfedge_next[boundary] = boundary_next
+    halfedge_prev[boundary_next] = boundary
+
+    # Vertex halfedge: the smallest outgoing index, overridden by the boundary halfedge.
+    vertex_halfedge = np.full(n_vertices, np.iinfo(INDEX).max, dtype=INDEX)
+    np.minimum.at(vertex_halfedge, halfedge_vertex, np.arange(n_halfedges, dtype=INDEX))
+    vertex_halfedge[boundary_origin] = boundary
+
+    arrays = HalfedgeArrays(
+        positions=positions,
+        vertex_halfedge=vertex_halfedge,
+        halfedge_next=halfedge_next,
+        halfedge_prev=halfedge_prev,
+        halfedge_vertex=halfedge_vertex,
+        halfedge_face=halfedge_face,
+        face_halfedge=face_halfedge,
+    )
+    _check_single_fans(arrays)
+    return arrays
+
+
+def _sort_undirected(tail: np.ndarray, head: np.ndarray, n_vertices: int):
+    """Sort directed edges by their undirected key, keeping equal keys in input order.
+
+    The key of an edge is ``low * n_vertices + high`` with ``low < high`` its vertices.
+    Returns ``(order, sorted_key)``: ``order`` (3m,) lists directed-edge numbers so
+    that their keys ascend, ties in increasing directed-edge number (a stable order).
+
+    How: when it fits in 63 bits, the directed-edge number is packed into the low bits
+    of the key and the packed numbers are sorted with ``np.sort``, which is several
+    times faster than a stable ``argsort``; ties are then broken by the packed position,
+    which is exactly stability. Larger meshes fall back to ``argsort(kind="stable")``.
+    """
+    low = np.minimum(tail, head).astype(np.int64)
+    key = low * n_vertices
+    key += np.maximum(tail, head)
+    del low
+    n = len(key)
+    position_bits = max(1, int(n - 1).bit_length())
+    if (int(n_vertices) ** 2) < 2 ** (63 - position_bits):
+        packed = key << position_bits
+        del key
+        packed |= np.arange(n, dtype=np.int64)
+        packed.sort()
+        order = packed & ((1 << position_bits) - 1)
+        packed >>= position_bits
+        return order, packed
+    order = np.argsort(key, kind="stable")
+    return order, key[order]
+
+
+def _raise_crowded_edge(order, same_as_next, tail, head, face_lines, source):
+    """Raise the error for the first edge that has more than two faces."""
+    start = int(np.flatnonzero(same_as_next[1:] & same_as_next[:-1])[0])
+    end = start + 1
+    while end < len(same_as_next) and same_as_next[end]:
+        end += 1
+    members = order[start: end + 1]
+    a, b = int(tail[members[0]]), int(head[members[0]])
+    faces = [int(p) // 3 for p in members]
+    listed = ", ".join(f"{f}{_where(f, face_lines, source)}" for f in faces)
+    raise MeshInputError(
+        f"edge ({min(a, b)}, {max(a, b)}) has {len(faces)} faces ({listed}); "
+        f"in a manifold mesh every edge has one or two faces",
+        element=("edge", (min(a, b), max(a, b))),
+        line=_line(faces[-1], face_lines),
+    )
+
+
+def _check_single_fans(arrays: HalfedgeArrays) -> None:
+    """Raise if some vertex's faces form more than one fan (an 'hourglass' vertex).
+
+    Walking counter-clockwise from the vertex's halfedge must meet every one of its
+    outgoing halfedges before coming back; if it comes back early, the others belong to
+    another fan that the vertex's single ``halfedge`` pointer cannot reach.
+    """
+    n_vertices = len(arrays.vertex_halfedge)
+    degree = np.bincount(arrays.halfedge_vertex, minlength=n_vertices)
+    walk = walk_rings(
+        np.arange(n_vertices), arrays.vertex_halfedge, arrays.halfedge_prev, degree, record=False
+    )
+    if not walk.closed.all():
+        vertex = int(np.flatnonzero(~walk.closed)[0])
+        raise MeshInputError(
+            f"vertex {vertex} is non-manifold: its faces form more than one fan "
+            f"(like two cones touching at their tips), so one halfedge pointer cannot "
+            f"reach all of them",
+            element=("vertex", vertex),
+        )
