@@ -629,6 +629,45 @@ class HalfedgeMesh:
 
         validate(self)
 
+    # The local operations live in ops/, one readable file each; these methods are the
+    # doors the API promises (``mesh.flip(e)``), imported on first use so that core
+    # itself depends on nothing else in the package.
+
+    def can_flip(self, edge):
+        """Whether :meth:`flip` is allowed on ``edge``: truthy result with a ``.reason``."""
+        from ..ops import can_flip
+
+        return can_flip(self, edge)
+
+    def flip(self, edge) -> Edge:
+        """Turn ``edge`` inside its two triangles; returns the same edge. See ``ops/flip.py``."""
+        from ..ops import flip
+
+        return flip(self, edge)
+
+    def can_split(self, edge):
+        from ..ops import can_split
+
+        return can_split(self, edge)
+
+    def split(self, edge, position=None) -> Vertex:
+        """Split ``edge`` at ``position`` (midpoint by default); returns the new vertex."""
+        from ..ops import split
+
+        return split(self, edge, position)
+
+    def can_collapse(self, edge):
+        """Whether :meth:`collapse` is allowed (the link condition and boundary rules)."""
+        from ..ops import can_collapse
+
+        return can_collapse(self, edge)
+
+    def collapse(self, edge, position=None) -> Vertex:
+        """Merge the two ends of ``edge`` at ``position`` (midpoint by default); returns the survivor."""
+        from ..ops import collapse
+
+        return collapse(self, edge, position)
+
 
 def _old_to_new(deleted: np.ndarray) -> np.ndarray:
     """Map each old slot to its new index (live ones in order), or -1 if deleted."""
