@@ -15,8 +15,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
 
 from .errors import MeshInputError
 
@@ -142,6 +140,9 @@ def corner_fans(faces: np.ndarray, joins: np.ndarray | None = None) -> np.ndarra
     Returns:
         (3m,) int labels; corners with the same label are in one fan.
     """
+    from scipy.sparse import coo_matrix  # imported on use: `import halfedge_edu` loads numpy only
+    from scipy.sparse.csgraph import connected_components
+
     n_corners = faces.size
     tail, head = face_halfedges(faces)
     corner = np.arange(n_corners)  # halfedge 3f+k starts at corner 3f+k

@@ -24,8 +24,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import breadth_first_order, connected_components
 
 from .errors import MeshInputError
 from .manifold import check_faces_array, corner_fans, face_halfedges, manifold_report
@@ -193,6 +191,9 @@ def _orientation_flips(faces: np.ndarray) -> np.ndarray:
     Returns:
         (m,) bool, True for the faces to flip.
     """
+    from scipy.sparse import coo_matrix  # imported on use: `import halfedge_edu` loads numpy only
+    from scipy.sparse.csgraph import breadth_first_order, connected_components
+
     m = len(faces)
     if m == 0:
         return np.zeros(0, dtype=bool)
