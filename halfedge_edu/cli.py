@@ -48,9 +48,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         except (OSError, ValueError):
             pass
         return EXIT_OK
-    except Exception as error:  # a bug in halfedge_edu, not in the user's input
+    except Exception as error:
         if args.debug:
             raise
+        if _is_input_error(error):
+            return _fail(_with_path(args.file, error))
+        # Anything else is a bug in halfedge_edu, not a problem with the input.
         return _fail(
             f"internal error ({type(error).__name__}: {error}); "
             f"run again with --debug to see the traceback, and please report it"
@@ -228,6 +231,16 @@ def _read_raw(path: Path):
     return np.asarray(raw.vertices), np.asarray(raw.faces, dtype=np.int64)
 
 
+def _is_input_error(error: Exception) -> bool:
+    """Is this one of halfedge_edu's own errors about the input or the mesh?"""
+    try:
+        from halfedge_edu.core.errors import MeshInputError, MeshInvariantError, TopologyError
+    except ImportError:
+        return False
+
+    return isinstance(error, (MeshInputError, MeshInvariantError, TopologyError))
+
+
 def _check_readable(path: Path) -> None:
     if not path.exists():
         raise InputProblem(f"{path}: no such file")
@@ -236,12 +249,12 @@ def _check_readable(path: Path) -> None:
 
 
 def _with_path(path: Path, error: Exception) -> str:
-    """The error's message, prefixed with the file unless it already names it."""
+    """The error's message, starting with the file (unless it already does)."""
     if isinstance(error, OSError) and error.strerror:
         message = error.strerror
     else:
         message = str(error) or type(error).__name__
-    if path.name not in message:
+    if not message.startswith((str(path), path.name)):
         message = f"{path}: {message}"
     return _one_line(message)
 

@@ -73,12 +73,13 @@ def degree_histogram(out: str) -> dict[int, int]:
     return {int(d): int(c) for d, c in (line.split(":") for line in block.splitlines() if line.startswith(" "))}
 
 
-def assert_one_line_error(status: int, err: str) -> None:
+def assert_one_line_error(status: int, err: str, *, internal: bool = False) -> None:
     assert status == 2
     assert "Traceback" not in err
     lines = err.splitlines()
     assert len(lines) == 1, err
     assert lines[0].startswith("halfedge-edu: error: ")
+    assert ("internal error" in lines[0]) == internal, "input problems and bugs are told apart"
 
 
 # ---------------------------------------------------------------- info
@@ -194,7 +195,8 @@ def test_check_rejects_a_non_manifold_file_with_status_2(capsys, tmp_path):
     path = write_obj(tmp_path / "fin.obj", vertices, [(0, 1, 2), (1, 0, 3), (0, 1, 4)])
     status, _, err = run(capsys, "check", path)
     assert_one_line_error(status, err)
-    assert "fin.obj" in err
+    assert err.startswith(f"halfedge-edu: error: {path}: ")
+    assert "line 6" in err  # the library names the first face on the edge
 
 
 # ---------------------------------------------------------------- bad input
@@ -260,7 +262,7 @@ def test_internal_error_is_one_line_unless_debug(capsys, tetra, monkeypatch):
 
     monkeypatch.setattr(hx, "load", broken)
     status, _, err = run(capsys, "info", tetra)
-    assert_one_line_error(status, err)
+    assert_one_line_error(status, err, internal=True)
     assert "internal error (RuntimeError: boom)" in err and "--debug" in err
     with pytest.raises(RuntimeError, match="boom"):
         main(["--debug", "info", str(tetra)])
