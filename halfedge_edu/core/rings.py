@@ -47,8 +47,6 @@ def walk_rings(
     vertex_halfedge: np.ndarray,
     halfedge_prev: np.ndarray,
     degree: np.ndarray,
-    *,
-    record: bool = True,
 ) -> RingWalk:
     """Walk the one-ring of each vertex in ``vertices`` counter-clockwise, all at once.
 
@@ -60,18 +58,16 @@ def walk_rings(
             (counted independently, e.g. with ``np.bincount`` over halfedge origins).
             The walk of a vertex stops after ``degree`` steps at most, so broken
             pointers can never loop forever.
-        record: keep the visited halfedges (False when only ``closed`` is wanted).
 
     Returns:
-        A :class:`RingWalk`; slots of a ring that stopped early are filled with -1
-        (``halfedges`` is empty when ``record`` is False).
+        A :class:`RingWalk`; slots of a ring that stopped early are filled with -1.
     """
     vertices = np.asarray(vertices)
     degree = np.asarray(degree, dtype=np.int64)
     offsets = np.zeros(len(vertices) + 1, dtype=np.int64)
     np.cumsum(degree, out=offsets[1:])
     # One spare slot at the end absorbs the writes of walks that have already finished.
-    halfedges = np.full(int(offsets[-1]) + 1 if record else 0, -1, dtype=halfedge_prev.dtype)
+    halfedges = np.full(int(offsets[-1]) + 1, -1, dtype=halfedge_prev.dtype)
     spare_slot = len(halfedges) - 1
 
     # The walks still going, as parallel arrays. Finished walks are dropped from them
@@ -85,9 +81,8 @@ def walk_rings(
     closed = np.zeros(len(vertices), dtype=bool)
 
     while len(who):
-        if record:
-            halfedges[np.where(active, slot, spare_slot)] = current
-            slot += 1
+        halfedges[np.where(active, slot, spare_slot)] = current
+        slot += 1
         steps_left -= 1
         # Counter-clockwise rotation: the twin of the halfedge that comes in before us.
         current = halfedge_prev[current] ^ 1
@@ -107,6 +102,28 @@ def walk_rings(
     return RingWalk(
         vertices=vertices,
         offsets=offsets,
-        halfedges=halfedges[:-1] if record else halfedges,
+        halfedges=halfedges[:-1],
         closed=closed,
     )
+
+
+def ring_lengths(start: np.ndarray, halfedge_prev: np.ndarray) -> np.ndarray:
+    """(k,) how many steps the walk h -> twin(prev(h)) takes to come back to each ``start``.
+
+    Cheaper than :func:`walk_rings` when only the lengths are wanted (no recording, no
+    degrees). Attention: only call it when the rotation is known to be a permutation
+    that keeps each halfedge's origin (as after a successful build, or once validate's
+    earlier rules passed); otherwise a walk might never come back.
+    """
+    length = np.ones(len(start), dtype=np.int64)
+    current = halfedge_prev[start] ^ 1
+    walking = np.flatnonzero(current != start)
+    current, start = current[walking], start[walking]
+    while len(walking):
+        length[walking] += 1
+        current = halfedge_prev[current] ^ 1
+        going_on = current != start
+        # Drop finished walks only when there are some: a copy per step is not free.
+        if not going_on.all():
+            walking, current, start = walking[going_on], current[going_on], start[going_on]
+    return length

@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .errors import MeshInvariantError
+from .rings import ring_lengths
 
 if TYPE_CHECKING:
     from .mesh import HalfedgeMesh
@@ -218,7 +219,7 @@ def validate(mesh: "HalfedgeMesh") -> None:
     # are manifold exactly when those walks, together, meet every halfedge; only when
     # they do not do we count degrees to say which vertex is at fault.
     walked = np.arange(n_v) if vs is None else vs
-    ring_length = _ring_lengths(vertex_he[walked], prv)
+    ring_length = ring_lengths(vertex_he[walked], prv)
     if int(ring_length.sum()) != len(h_index):
         degree = np.bincount(h_origin, minlength=n_v)[walked]
         v = _first(ring_length != degree, walked)
@@ -247,25 +248,6 @@ def validate(mesh: "HalfedgeMesh") -> None:
             f"vertices {a} and {b} are joined by two different edges; a triangle mesh has "
             f"at most one edge between two vertices",
         )
-
-
-def _ring_lengths(start: np.ndarray, halfedge_prev: np.ndarray) -> np.ndarray:
-    """(k,) how many steps each walk h -> twin(prev(h)) takes to come back to ``start``.
-
-    Only call this when the rotation is known to be a permutation (every walk returns).
-    """
-    length = np.ones(len(start), dtype=np.int64)
-    current = halfedge_prev[start] ^ 1
-    walking = np.flatnonzero(current != start)
-    current = current[walking]
-    start = start[walking]
-    while len(walking):
-        length[walking] += 1
-        current = halfedge_prev[current] ^ 1
-        going_on = current != start
-        if not going_on.all():
-            walking, current, start = walking[going_on], current[going_on], start[going_on]
-    return length
 
 
 class _EdgeFlagsAsHalfedges:

@@ -1,0 +1,140 @@
+"""Build speed and memory: halfedge_edu beside openmesh and trimesh, in the same run.
+
+    python benchmarks/bench_build.py            # ~10k, ~100k, ~1.3M faces
+    python benchmarks/bench_build.py --quick    # the two smaller sizes only
+
+Every row builds the same faces three ways and prints the best of a few runs:
+* halfedge_edu: ``HalfedgeMesh.from_faces`` (checks included: manifold, orientation,
+  fans);
+* openmesh: ``openmesh.TriMesh(points, faces)`` (its C++ add_face loop);
+* trimesh: what it takes to answer the same adjacency questions
+  (``edges_unique`` + ``face_adjacency`` + ``vertex_neighbors``) on a fresh Trimesh.
+Ratios are halfedge_edu's time over the peer's: below 1.0 means we are faster. The
+machine is shared and noisy, so read the ratios, not the seconds.
+
+"random order" shuffles the faces and renumbers the vertices at random, which is what
+a mesh from a scanner or an exporter looks like to the cache.
+"""
+
+from __future__ import annotations
+
+import argparse
+import subprocess
+import sys
+import time
+import tracemalloc
+
+import numpy as np
+
+import halfedge_edu as hx
+
+
+def icosphere(level: int) -> tuple[np.ndarray, np.ndarray]:
+    """(V, F) of a unit icosphere with 20 * 4**level faces (trimesh's construction)."""
+    import trimesh
+
+    sphere = trimesh.creation.icosphere(subdivisions=level)
+    return np.asarray(sphere.vertices), np.asarray(sphere.faces)
+
+
+def shuffled(vertices: np.ndarray, faces: np.ndarray, seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
+    """The same mesh with faces in random order and vertices renumbered at random."""
+    rng = np.random.default_rng(seed)
+    relabel = rng.permutation(len(vertices))          # old vertex -> new vertex
+    new_vertices = np.empty_like(vertices)
+    new_vertices[relabel] = vertices
+    return new_vertices, relabel[faces][rng.permutation(len(faces))]
+
+
+def best_time(function, repeats: int) -> float:
+    """Smallest wall time of ``repeats`` calls (the least disturbed run)."""
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        function()
+        times.append(time.perf_counter() - start)
+    return min(times)
+
+
+def build_ours(vertices, faces):
+    return hx.HalfedgeMesh.from_faces(vertices, faces)
+
+
+def build_openmesh(vertices, faces):
+    import openmesh
+
+    return openmesh.TriMesh(vertices, faces)
+
+
+def build_trimesh_adjacency(vertices, faces):
+    import trimesh
+
+    mesh = trimesh.Trimesh(vertices=vertices, faces=faces, process=False)
+    mesh.edges_unique
+    mesh.face_adjacency
+    mesh.vertex_neighbors
+    return mesh
+
+
+def peak_build_memory_mib(vertices, faces) -> float:
+    """Peak memory numpy allocates while building (tracemalloc sees numpy's buffers)."""
+    tracemalloc.start()
+    mesh = build_ours(vertices, faces)
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    del mesh
+    return peak / 2**20
+
+
+def import_time_and_pyvista() -> tuple[float, bool]:
+    """Seconds for ``import halfedge_edu`` in a fresh interpreter, and whether it pulled pyvista in."""
+    code = (
+        "import time, sys; t = time.perf_counter(); import halfedge_edu; "
+        "print(time.perf_counter() - t, 'pyvista' in sys.modules)"
+    )
+    seconds, pyvista = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True
+    ).stdout.split()
+    return float(seconds), pyvista == "True"
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="skip the 1.3M-face mesh")
+    args = parser.parse_args(argv)
+
+    levels = [5, 6] if args.quick else [5, 6, 8]       # 20,480 / 81,920 / 1,310,720 faces
+    header = (
+        f"{'mesh':<28}{'faces':>10}{'ours s':>9}{'openmesh s':>12}{'trimesh s':>11}"
+        f"{'vs openmesh':>13}{'vs trimesh':>12}{'validate/build':>16}"
+    )
+    print("Build: HalfedgeMesh.from_faces vs openmesh.TriMesh vs trimesh adjacency")
+    print(header)
+    print("-" * len(header))
+    for level in levels:
+        ordered = icosphere(level)
+        for name, (vertices, faces) in (
+            (f"icosphere({level})", ordered),
+            (f"icosphere({level}), random order", shuffled(*ordered)),
+        ):
+            repeats = 2 if len(faces) > 500_000 else 5
+            ours = best_time(lambda: build_ours(vertices, faces), repeats)
+            peer_openmesh = best_time(lambda: build_openmesh(vertices, faces), repeats)
+            peer_trimesh = best_time(lambda: build_trimesh_adjacency(vertices, faces), 1 if len(faces) > 500_000 else 2)
+            mesh = build_ours(vertices, faces)
+            validate = best_time(mesh.validate, repeats)
+            print(
+                f"{name:<28}{len(faces):>10,}{ours:>9.3f}{peer_openmesh:>12.3f}{peer_trimesh:>11.3f}"
+                f"{ours / peer_openmesh:>12.2f}x{ours / peer_trimesh:>11.3f}x{validate / ours:>15.0%}"
+            )
+
+    vertices, faces = icosphere(levels[-1])
+    print()
+    print(f"peak memory while building {len(faces):,} faces: {peak_build_memory_mib(vertices, faces):.0f} MiB (tracemalloc)")
+    seconds, pyvista = import_time_and_pyvista()
+    print(f"import halfedge_edu: {seconds:.3f} s, pyvista imported: {pyvista}")
+    print("goals: vs openmesh <= 1.0x, vs trimesh <= 0.1x, peak < 300 MiB, validate < 5% of build, import < 0.3 s")
+
+
+if __name__ == "__main__":
+    main()
