@@ -23,9 +23,16 @@ from .core import (
     build_reference,
 )
 
+from .core.manifold import ManifoldReport, manifold_report
+from .core.repair import RepairReport, repair_faces
+from .data import RawMesh, sample, samples
+from .io import load, read_obj, save, write_obj
+
 __version__ = "0.1.0"
 
 __all__ = [
-    "Edge", "Face", "GarbageCollectMaps", "Halfedge", "HalfedgeMesh", "MeshInputError",
-    "MeshInvariantError", "MeshWarning", "TopologyError", "Vertex", "build_reference",
+    "Edge", "Face", "GarbageCollectMaps", "Halfedge", "HalfedgeMesh", "ManifoldReport",
+    "MeshInputError", "MeshInvariantError", "MeshWarning", "RawMesh", "RepairReport",
+    "TopologyError", "Vertex", "build_reference", "load", "manifold_report", "read_obj",
+    "repair_faces", "sample", "samples", "save", "write_obj",
 ]
