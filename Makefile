@@ -65,6 +65,7 @@ $(BENCH_STAMP): pyproject.toml | $(PY)
 	@touch $@ $(DEV_STAMP)
 
 lab: $(DEV_STAMP)
+	@mkdir -p notebooks
 	$(LAB_ENV) $(VENV)/bin/jupyter lab $(LAB_FLAGS) notebooks/
 
 # No pytest-xdist here: a notebook's cells must run in order in one kernel, and on two
