@@ -1,6 +1,6 @@
 """``repair_faces``: turn any triangle soup into faces a halfedge mesh can hold.
 
-The repair happens in four steps, each undoing one way a face list can fail to be a
+The repair happens in three steps, each undoing one way a face list can fail to be a
 manifold surface (see ``manifold_report``):
 
 1. drop degenerate faces (a repeated vertex) and duplicate faces (the same three
@@ -11,9 +11,14 @@ manifold surface (see ``manifold_report``):
 3. split: around each vertex, group the corners into fans joined through edges with
    exactly two consistently oriented faces; every fan after the first gets its own copy
    of the vertex. This cuts non-manifold edges and vertices apart, and cuts a piece
-   that cannot be oriented (a Moebius strip) along the edges where orientation fails;
-4. check with ``manifold_report``; in the rare case an edge is still shared badly (a cut
-   that ends inside the surface), detach one of its faces and split again.
+   that cannot be oriented (a Moebius strip) along the edges where orientation fails.
+
+Why one split is enough: after it, each vertex copy has one fan, a path or a cycle of
+faces joined through good edges. A bad edge (a, b) is never a joint, so at copy a' only
+the two end faces of a path can have it as a side, and if both also share the copy b'
+they close the fan into a cycle, around which consistent orientation makes them run
+along (a, b) in opposite directions: a good edge after all. ``repair_faces`` still
+checks the result with ``manifold_report``.
 
 Attention: the output may have more vertices than the input (the copies, appended at
 the end) and fewer faces; ``RepairReport.face_origin`` and ``vertex_origin`` map back.
@@ -39,8 +44,6 @@ class RepairReport:
         dropped_degenerate: (k,) faces dropped because they repeat a vertex.
         dropped_duplicate: (k,) faces dropped because an earlier face has the same vertices.
         flipped_faces: (k,) faces whose orientation was reversed.
-        detached_faces: (k,) faces cut loose from a neighbour they could not share an
-            edge with (their vertices got copies).
         vertex_copies: (k, 2) rows ``(original vertex, new vertex)``: each copy made
             when a vertex was split into fans.
         face_origin: (m_out,) the input face of each output face.
@@ -52,7 +55,6 @@ class RepairReport:
     dropped_degenerate: np.ndarray
     dropped_duplicate: np.ndarray
     flipped_faces: np.ndarray
-    detached_faces: np.ndarray
     vertex_copies: np.ndarray
     face_origin: np.ndarray
     vertex_origin: np.ndarray
@@ -62,7 +64,6 @@ class RepairReport:
             len(self.dropped_degenerate)
             or len(self.dropped_duplicate)
             or len(self.flipped_faces)
-            or len(self.detached_faces)
             or len(self.vertex_copies)
         )
 
@@ -88,7 +89,6 @@ class RepairReport:
             ("dropped degenerate faces", self.dropped_degenerate.tolist()),
             ("dropped duplicate faces", self.dropped_duplicate.tolist()),
             ("flipped faces", self.flipped_faces.tolist()),
-            ("detached faces", self.detached_faces.tolist()),
             ("split vertices (into copies)", splits),
         ]
         lines = ["repair_faces changed the mesh:"]
@@ -124,7 +124,7 @@ def repair_faces(vertices, faces) -> tuple[np.ndarray, np.ndarray, RepairReport]
     before = manifold_report(faces, n_vertices)
     if before:
         return vertices.copy(), faces.copy(), RepairReport(
-            empty, empty, empty, empty, np.zeros((0, 2), np.int64), np.arange(len(faces)), np.arange(n_vertices)
+            empty, empty, empty, np.zeros((0, 2), np.int64), np.arange(len(faces)), np.arange(n_vertices)
         )
 
     # 1. Drop degenerate faces, then duplicates of an earlier face.
@@ -138,23 +138,16 @@ def repair_faces(vertices, faces) -> tuple[np.ndarray, np.ndarray, RepairReport]
     flip = _orientation_flips(kept)  # (m',) bool
     kept[flip] = kept[flip][:, [0, 2, 1]]
 
-    # 3 and 4. Split vertices into fans; detach faces from edges that stay bad.
-    detached = np.zeros(len(kept), dtype=bool)
-    for _ in range(len(kept) + 1):  # each round that fails detaches at least one face
-        out_faces, copies = _split_fans(kept, n_vertices, _joining_halfedges(kept, detached))
-        after = manifold_report(out_faces, n_vertices + len(copies))
-        if after:
-            break
-        detached[_faces_to_detach(out_faces, after, detached)] = True
-    else:  # pragma: no cover - cannot happen: a fully detached soup is clean
-        raise AssertionError("repair_faces did not converge")
+    # 3. Split vertices into fans.
+    out_faces, copies = _split_fans(kept, n_vertices, _joining_halfedges(kept))
+    if not manifold_report(out_faces, n_vertices + len(copies)):  # pragma: no cover - see the module docstring
+        raise RuntimeError("repair_faces left a non-manifold mesh; this is a bug, please report it")
 
     out_vertices = np.concatenate([vertices, vertices[copies]])
     report = RepairReport(
         dropped_degenerate=before.degenerate_faces,
         dropped_duplicate=before.duplicate_faces,
         flipped_faces=face_origin[flip],
-        detached_faces=face_origin[detached],
         vertex_copies=np.stack([copies, n_vertices + np.arange(len(copies))], axis=1),
         face_origin=face_origin,
         vertex_origin=np.concatenate([np.arange(n_vertices), copies]),
@@ -228,14 +221,13 @@ def _orientation_flips(faces: np.ndarray) -> np.ndarray:
     return flip ^ (2 * flipped_per_piece > size_per_piece)[piece]
 
 
-def _joining_halfedges(faces: np.ndarray, detached: np.ndarray) -> np.ndarray:
-    """(3m,) bool: halfedges whose edge has exactly two consistently oriented faces,
-    neither of them detached. Only these join corners into fans."""
+def _joining_halfedges(faces: np.ndarray) -> np.ndarray:
+    """(3m,) bool: halfedges whose edge has exactly two consistently oriented faces.
+    Only these join corners into fans."""
     first, second, opposite = _edge_pairs(faces)
     joins = np.zeros(faces.size, dtype=bool)
-    good = opposite & ~detached[first // 3] & ~detached[second // 3]
-    joins[first[good]] = True
-    joins[second[good]] = True
+    joins[first[opposite]] = True
+    joins[second[opposite]] = True
     return joins
 
 
@@ -259,25 +251,3 @@ def _split_fans(faces: np.ndarray, n_vertices: int, joins: np.ndarray) -> tuple[
     new_vertex[order[is_primary]] = fan_vertex[order[is_primary]]
     new_vertex[order[~is_primary]] = n_vertices + np.arange((~is_primary).sum())
     return new_vertex[labels].reshape(-1, 3), fan_vertex[order[~is_primary]]
-
-
-def _faces_to_detach(faces: np.ndarray, report, detached: np.ndarray) -> np.ndarray:
-    """Faces to cut loose so that each still-bad edge keeps only its first face.
-
-    ``faces`` are the split faces and ``report`` their ``manifold_report``.
-    """
-    bad = [group[1:] for group in report.nonmanifold_edge_faces]
-    if len(report.inconsistent_edges):  # a directed edge used twice: all its faces but the first
-        tail, head = face_halfedges(faces)
-        base = int(faces.max()) + 1
-        key = tail * base + head  # (3m,)
-        on_bad_edge = np.flatnonzero(np.isin(key, report.inconsistent_edges @ [base, 1]))
-        on_bad_edge = on_bad_edge[np.argsort(key[on_bad_edge], kind="stable")]
-        later = np.ones(len(on_bad_edge), dtype=bool)
-        later[1:] = key[on_bad_edge][1:] != key[on_bad_edge][:-1]
-        bad.append(on_bad_edge[~later] // 3)
-    candidates = np.unique(np.concatenate(bad)).astype(np.int64)
-    candidates = candidates[~detached[candidates]]
-    if len(candidates) == 0:  # pragma: no cover - a bad edge always has a face not yet detached
-        raise AssertionError("repair_faces: no face left to detach")
-    return candidates
