@@ -204,7 +204,7 @@ def _load(path: Path):
 
     _check_readable(path)
     with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
+        warnings.simplefilter("always", UserWarning)  # MeshWarning among them
         try:
             mesh = hx.load(path)
         except MeshInputError:
