@@ -1,0 +1,230 @@
+"""Loop subdivision: every triangle becomes four, and the surface gets smoother.
+
+One level does two things, and the course keeps them apart:
+
+1. **Connectivity (the 4-to-1 split).** Every edge gets a new vertex (an *edge point*,
+   "odd" vertex); every triangle ``v0 v1 v2`` with edge points ``m0`` (on ``v0 v1``),
+   ``m1`` (on ``v1 v2``), ``m2`` (on ``v2 v0``) becomes the three corner triangles
+   ``v0 m0 m2``, ``v1 m1 m0``, ``v2 m2 m1`` and the centre triangle ``m0 m1 m2``, all
+   turning the same way as the parent. Counts: ``V' = V + E``, ``F' = 4 F``,
+   ``E' = 2 E + 3 F``, so ``V' - E' + F' = V - E + F``: the Euler characteristic (and
+   the genus) is kept.
+2. **Positions, all computed from the old mesh** before anything moves:
+
+   * an interior edge ``a b`` whose two triangles have the opposite corners ``c`` and
+     ``d`` gets the edge point ``3/8 (a + b) + 1/8 (c + d)``: mostly the midpoint,
+     pulled a little towards the two wings, which is what makes the limit smooth;
+   * a boundary edge gets its midpoint ``(a + b) / 2``, so the boundary is refined as
+     a curve of its own and never depends on the inside;
+   * an old interior vertex ``v`` of degree ``n`` moves to
+     ``(1 - n beta) v + beta * (sum of its n neighbours)``, with Warren's
+     ``beta = 3/16`` for ``n = 3`` and ``3 / (8 n)`` otherwise: a weighted average of
+     itself and its ring, the vertex keeping the largest share;
+   * an old boundary vertex moves to ``3/4 v + 1/8 (b0 + b1)`` with ``b0``, ``b1`` its
+     two neighbours along the boundary (the cubic B-spline rule for curves).
+
+   ``weights="loop"`` uses Loop's original
+   ``beta = (5/8 - (3/8 + 1/4 cos(2 pi / n))**2) / n`` instead (what trimesh uses); the
+   two agree for ``n = 3`` and ``n = 6``.
+
+Numbering (so results are predictable): the old vertices keep their indices ``0..V-1``
+and the edge point of edge ``e`` is vertex ``V + e``. Face ``f`` becomes faces
+``4 f + k`` (``k = 0, 1, 2``: the corner at the ``k``-th vertex of ``face_vertices()``,
+listed ``[v_k, m_k, m_(k-1)]``) and ``4 f + 3`` (the centre, ``[m0, m1, m2]``). Edge
+``e`` from ``a`` to ``b`` becomes edges ``2 e`` (``a - m``) and ``2 e + 1`` (``m - b``);
+the centre triangle of face ``f`` adds edges ``2 E + 3 f + k``.
+
+:func:`loop_subdivide` builds the new halfedge arrays directly from that numbering,
+with array operations (no sorting, no loop over faces). The course's way of doing the
+same thing with local operations (split every edge, flip the new edges that join an
+old and a new vertex, then move everything) is :func:`loop_subdivide_by_operations`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..core import HalfedgeMesh
+from ..core.build import INDEX, HalfedgeArrays
+from ._progress import progress_range
+
+VERTEX_WEIGHTS = ("warren", "loop")
+
+
+def loop_subdivide(
+    mesh: HalfedgeMesh,
+    levels: int = 1,
+    *,
+    weights: str = "warren",
+    progress: bool = False,
+) -> HalfedgeMesh:
+    """Loop subdivision, ``levels`` times; returns a new mesh (the input is not modified).
+
+    Args:
+        mesh: a triangle mesh, closed or with boundary.
+        levels: how many times to subdivide; each level multiplies the faces by 4.
+        weights: ``"warren"`` (default; ``beta = 3/16`` for degree 3, ``3 / (8 n)``
+            otherwise) or ``"loop"`` (Loop's original ``beta``, as trimesh uses).
+        progress: show a progress bar over the levels (needs tqdm).
+
+    Returns:
+        The refined :class:`HalfedgeMesh`, numbered as the module docstring says.
+
+    Attention: a mesh with deleted elements is compacted first (on a copy), so vertex
+    ``V + e`` refers to the compacted numbering (``mesh.garbage_collect()``'s maps).
+    """
+    if int(levels) != levels or levels < 0:
+        raise ValueError(f"levels must be a whole number >= 0, got {levels!r}")
+    if weights not in VERTEX_WEIGHTS:
+        raise ValueError(f"weights must be one of {VERTEX_WEIGHTS}, got {weights!r}")
+    current = mesh
+    if mesh.has_garbage or levels == 0:
+        current = mesh.copy()
+        current.garbage_collect()
+    for _ in progress_range(int(levels), progress, "loop subdivision"):
+        current = HalfedgeMesh(_refined_arrays(current, weights))
+    return current
+
+
+def loop_positions(mesh: HalfedgeMesh, weights: str = "warren") -> tuple[np.ndarray, np.ndarray]:
+    """The new positions of one Loop step, from the old mesh alone.
+
+    Args:
+        mesh: a mesh without deleted elements (``garbage_collect()`` first).
+        weights: ``"warren"`` or ``"loop"`` (see :func:`loop_subdivide`).
+
+    Returns:
+        ``(vertex_points (V, 3), edge_points (E, 3))``: where each old vertex moves and
+        where the new vertex on each edge goes.
+    """
+    positions = mesh.positions                                      # (V, 3)
+    n_vertices = len(positions)
+    origin = mesh.halfedge_vertex                                   # (H,)
+    face = mesh.halfedge_face                                       # (H,)
+    a, b = origin[0::2], origin[1::2]                               # (E,) edge ends
+    c = origin[mesh.halfedge_prev[0::2]]                            # (E,) corner opposite 2e
+    d = origin[mesh.halfedge_prev[1::2]]                            # (E,) corner opposite 2e+1
+
+    # Edge points: 3/8 of each end plus 1/8 of each opposite corner; midpoints on the boundary.
+    edge_points = 0.375 * (positions[a] + positions[b]) + 0.125 * (positions[c] + positions[d])
+    on_boundary_edge = (face[0::2] < 0) | (face[1::2] < 0)          # (E,)
+    ends = positions[a[on_boundary_edge]] + positions[b[on_boundary_edge]]
+    edge_points[on_boundary_edge] = 0.5 * ends
+
+    # Vertex points: the sum of the neighbours, by scattering each edge onto both ends.
+    degree = np.bincount(a, minlength=n_vertices) + np.bincount(b, minlength=n_vertices)   # (V,)
+    ring_sum = np.empty((n_vertices, 3))                            # (V, 3)
+    for axis in range(3):
+        ring_sum[:, axis] = np.bincount(a, weights=positions[b, axis], minlength=n_vertices)
+        ring_sum[:, axis] += np.bincount(b, weights=positions[a, axis], minlength=n_vertices)
+    n = np.maximum(degree, 1).astype(np.float64)
+    if weights == "warren":
+        beta = np.where(degree == 3, 3.0 / 16.0, 3.0 / (8.0 * n))
+    else:
+        beta = (5.0 / 8.0 - (3.0 / 8.0 + 0.25 * np.cos(2.0 * np.pi / n)) ** 2) / n
+    vertex_points = (1.0 - n * beta)[:, None] * positions + beta[:, None] * ring_sum
+
+    # Boundary vertices: 3/4 of themselves, 1/8 of each neighbour along the boundary.
+    rim = np.flatnonzero(mesh.vertex_is_boundary())                 # (B,)
+    out = mesh.vertex_halfedge[rim]                                 # (B,) outgoing boundary halfedge
+    after = origin[out ^ 1]                                         # (B,) next vertex on the loop
+    before = origin[mesh.halfedge_prev[out]]                        # (B,) previous vertex on the loop
+    vertex_points[rim] = 0.75 * positions[rim] + 0.125 * (positions[after] + positions[before])
+    return vertex_points, edge_points
+
+
+def _first_half(h: np.ndarray) -> np.ndarray:
+    """The new halfedge on the first half of old halfedge ``h`` (origin -> edge point).
+
+    Old edge ``e`` becomes new edges ``2e`` (halfedges ``4e``: a -> m, ``4e+1``: m -> a)
+    and ``2e+1`` (``4e+2``: m -> b, ``4e+3``: b -> m). So for ``h = 2e`` (a -> b) the
+    halves are ``4e, 4e+2``, and for ``h = 2e+1`` (b -> a) they are ``4e+3, 4e+1``.
+    """
+    return np.where(h & 1, 2 * h + 1, 2 * h)
+
+
+def _second_half(h: np.ndarray) -> np.ndarray:
+    """The new halfedge on the second half of old halfedge ``h`` (edge point -> tip)."""
+    return np.where(h & 1, 2 * h - 1, 2 * h + 2)
+
+
+def _refined_arrays(mesh: HalfedgeMesh, weights: str) -> HalfedgeArrays:
+    """The halfedge arrays of one Loop level of a compact ``mesh`` (see the module docstring)."""
+    n_vertices, n_edges, n_faces = mesh.n_vertex_slots, mesh.n_edge_slots, mesh.n_face_slots
+    n_halfedges = 2 * n_edges
+    vertex_points, edge_points = loop_positions(mesh, weights)
+
+    old_origin = mesh.halfedge_vertex.astype(np.int64)              # (H,)
+    old_next = mesh.halfedge_next.astype(np.int64)
+    old_face = mesh.halfedge_face
+    new_count = 4 * n_edges + 6 * n_faces                           # H' = 2 E'
+    origin = np.empty(new_count, dtype=INDEX)
+    next_ = np.empty(new_count, dtype=INDEX)
+    prev = np.empty(new_count, dtype=INDEX)
+    face = np.empty(new_count, dtype=INDEX)
+
+    # The two halves of every old halfedge.
+    h = np.arange(n_halfedges, dtype=np.int64)
+    first, second = _first_half(h), _second_half(h)                 # (H,)
+    origin[first] = old_origin
+    origin[second] = n_vertices + (h >> 1)                          # the edge point
+
+    # Boundary halves stay on the boundary loop: first -> second -> first half of the next.
+    boundary = np.flatnonzero(old_face < 0)                         # (B,)
+    after = _first_half(old_next[boundary])
+    next_[first[boundary]] = second[boundary]
+    prev[second[boundary]] = first[boundary]
+    next_[second[boundary]] = after
+    prev[after] = second[boundary]
+    face[first[boundary]] = -1
+    face[second[boundary]] = -1
+
+    # Per old face: its halfedges h_k (k = 0, 1, 2), their halves, and the three new
+    # inner edges 2E + 3f + k. Inner halfedge "centre_k" runs m_k -> m_(k+1) inside the
+    # centre triangle; its twin "corner_k" runs m_(k+1) -> m_k inside a corner triangle.
+    h0 = mesh.face_halfedge.astype(np.int64)                        # (F,)
+    h1 = old_next[h0]
+    h2 = old_next[h1]
+    corners = np.stack([h0, h1, h2], axis=1)                        # (F, 3) old halfedges
+    firsts, seconds = _first_half(corners), _second_half(corners)   # (F, 3)
+    edge_point = n_vertices + (corners >> 1)                        # (F, 3) m_k
+    inner_edge = 2 * n_edges + 3 * np.arange(n_faces)[:, None] + np.arange(3)   # (F, 3)
+    centre = 2 * inner_edge                                         # (F, 3) m_k -> m_(k+1)
+    corner = centre + 1                                             # (F, 3) m_(k+1) -> m_k
+    origin[centre] = edge_point
+    origin[corner] = edge_point[:, [1, 2, 0]]
+
+    # Corner triangle k sits at v_k: first half of h_k (v_k -> m_k), then the inner
+    # halfedge m_k -> m_(k-1), then the second half of h_(k-1) (m_(k-1) -> v_k).
+    back_inner = corner[:, [2, 0, 1]]                               # (F, 3) m_k -> m_(k-1)
+    back_second = seconds[:, [2, 0, 1]]                             # (F, 3) m_(k-1) -> v_k
+    next_[firsts] = back_inner
+    next_[back_inner] = back_second
+    next_[back_second] = firsts
+    prev[back_inner] = firsts
+    prev[back_second] = back_inner
+    prev[firsts] = back_second
+    new_face = 4 * np.arange(n_faces)[:, None] + np.arange(4)       # (F, 4)
+    face[firsts] = face[back_inner] = face[back_second] = new_face[:, :3]
+    # Centre triangle: m0 -> m1 -> m2.
+    next_[centre] = centre[:, [1, 2, 0]]
+    prev[centre] = centre[:, [2, 0, 1]]
+    face[centre] = new_face[:, 3:]
+
+    face_halfedge = np.concatenate([firsts, centre[:, :1]], axis=1).ravel()      # (4F,)
+    # An old vertex keeps the first half of its halfedge (a boundary one stays boundary,
+    # and the smallest index stays the smallest). An edge point leaves along the second
+    # half of the edge's odd halfedge (4e+1), or of 2e (4e+2) if 2e is the boundary side.
+    vertex_halfedge = np.concatenate([
+        _first_half(mesh.vertex_halfedge.astype(np.int64)),
+        np.where(old_face[0::2] < 0, 4 * np.arange(n_edges) + 2, 4 * np.arange(n_edges) + 1),
+    ])
+    return HalfedgeArrays(
+        positions=np.concatenate([vertex_points, edge_points]),
+        vertex_halfedge=vertex_halfedge.astype(INDEX),
+        halfedge_next=next_,
+        halfedge_prev=prev,
+        halfedge_vertex=origin,
+        halfedge_face=face,
+        face_halfedge=face_halfedge.astype(INDEX),
+    )
