@@ -52,6 +52,11 @@ class ObjData:
     n_polygons_triangulated: int = 0
 
 
+#: Larger positive indices are rejected while parsing (the range check proper is at the end,
+#: since a positive index may name a vertex defined further down the file).
+_MAX_INDEX = 2**40
+
+
 def _fail(source: str, line_no: int, text: str, problem: str) -> MeshInputError:
     """The error for one bad line: names the file, the line number and quotes the line."""
     return MeshInputError(f"{source}, line {line_no}: {problem}: {text.strip()!r}", line=line_no)
@@ -117,7 +122,9 @@ def read_obj(path_or_file: str | os.PathLike | IO, *, triangulate: bool = True) 
             quoted), a binary or unreadable file, or a file without faces.
 
     Attention: vertices no face uses are kept here (``ObjData.vertices`` is every ``v``
-    record); ``HalfedgeMesh.from_faces`` drops them with a warning.
+    record); ``HalfedgeMesh.from_faces`` drops them with a warning. A negative index
+    counts back from the vertices defined above its line; a positive one may also name
+    a vertex defined further down.
     """
     text, source = _read_text(path_or_file)
 
@@ -145,6 +152,8 @@ def read_obj(path_or_file: str | os.PathLike | IO, *, triangulate: bool = True) 
                     index = int(token.split("/", 1)[0])
                 except ValueError:
                     raise _fail(source, line_no, line, f"{token!r} is not a vertex index") from None
+                if index > _MAX_INDEX:  # would not fit an int64 array; no file has this many vertices
+                    raise _fail(source, line_no, line, f"vertex index {index} is out of range")
                 if index > 0:
                     corners.append(index - 1)  # OBJ counts from 1
                 elif index < 0:
