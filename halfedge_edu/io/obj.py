@@ -132,7 +132,6 @@ def read_obj(path_or_file: str | os.PathLike | IO, *, triangulate: bool = True) 
     vertex_lines: list[int] = []
     faces: list[tuple[int, int, int]] = []  # 0-based, checked for range below
     face_lines: list[int] = []
-    face_texts: dict[int, str] = {}  # line number -> text, only for lines in an error message
     n_polygons = 0
 
     for line_no, line in _logical_lines(text):
@@ -178,7 +177,6 @@ def read_obj(path_or_file: str | os.PathLike | IO, *, triangulate: bool = True) 
             for k in range(1, len(corners) - 1):  # fan: (i, j, k), (i, k, l), ...
                 faces.append((corners[0], corners[k], corners[k + 1]))
                 face_lines.append(line_no)
-            face_texts[line_no] = line
 
     vertices = _parse_coordinates(coordinates, vertex_lines, text, source)
     if not faces:
@@ -192,7 +190,7 @@ def read_obj(path_or_file: str | os.PathLike | IO, *, triangulate: bool = True) 
         line_no = int(lines_array[first])
         bad = int(faces_array[first].max()) + 1
         raise _fail(
-            source, line_no, face_texts[line_no],
+            source, line_no, _physical_line(text, line_no),
             f"vertex index {bad} is out of range (the file has {len(vertices)} vertices)",
         )
     return ObjData(vertices, faces_array, lines_array, source, n_polygons)
