@@ -1,9 +1,12 @@
 """Whole-mesh algorithms: each reads a mesh and returns a new one (the input is never modified)."""
 
+from .bezier import bezier_curve, bezier_surface, bezier_surface_points, de_casteljau, grid_triangles
 from .loop import loop_positions, loop_subdivide
 from .normals import corner_angles, face_areas, face_normals, vertex_normals
 from .smoothing import smooth, smooth_reference
 
 __all__ = [
-    "corner_angles", "face_areas", "face_normals", "loop_positions", "loop_subdivide", "smooth", "smooth_reference", "vertex_normals",
+    "bezier_curve", "bezier_surface", "bezier_surface_points", "corner_angles", "de_casteljau",
+    "face_areas", "face_normals", "grid_triangles", "loop_positions", "loop_subdivide",
+    "smooth", "smooth_reference", "vertex_normals",
 ]
