@@ -12,8 +12,8 @@ Two rules of the course:
   all vertices move together at the end of the iteration. Updating in place, vertex
   after vertex (Gauss-Seidel), would let later vertices see some neighbours already
   moved, so the result would depend on the order the vertices happen to be numbered
-  in. Jacobi is order-independent, and it is one sparse matrix product
-  ``P' = M @ P``, which is how the fast version runs.
+  in. Jacobi is order-independent, and all the targets together are one sparse
+  matrix product ``W @ P`` per iteration, which is how the fast version runs.
 * **Boundary vertices stay put by default** (``boundary="fixed"``). A boundary vertex
   has neighbours on one side only, so its neighbour mean lies inside the mesh and an
   open mesh shrinks from its rim inwards, iteration after iteration, until a flat
