@@ -1,0 +1,18 @@
+"""Local operations: edge flip, edge split, edge collapse, each with its ``can_*`` check.
+
+One readable file per operation (``flip.py``, ``split.py``, ``collapse.py``); each
+opens with a picture of the elements it names. Every operation is *check, then act*:
+it either succeeds, leaving a valid mesh, or raises ``TopologyError`` with the reason
+and leaves the mesh exactly as it was. Pass ``log=OperationLog()`` to watch one step by
+step (``log.py``); ``link.py`` holds the one-ring and link helpers of chapter 08.
+"""
+
+from .check import OpCheck
+from .flip import can_flip, flip
+from .link import Link, LinkCondition, link_condition, link_of_edge, link_of_vertex
+from .log import OperationLog, PointerChange
+
+__all__ = [
+    "Link", "LinkCondition", "OpCheck", "OperationLog", "PointerChange", "can_flip", "flip",
+    "link_condition", "link_of_edge", "link_of_vertex",
+]

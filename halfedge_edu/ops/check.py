@@ -1,0 +1,106 @@
+"""The answer of ``can_flip`` / ``can_split`` / ``can_collapse``, and argument checking.
+
+Every local operation is *check, then act*: the ``can_*`` function looks at the mesh
+without changing it and returns an :class:`OpCheck`; the operation itself calls the same
+check first and raises :class:`~halfedge_edu.core.errors.TopologyError` with the same
+reason if it fails, so a refused operation never touches the mesh.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from ..core.elements import Edge, Halfedge, _Handle
+from ..core.errors import TopologyError
+
+if TYPE_CHECKING:
+    from ..core.mesh import HalfedgeMesh
+
+
+class OpCheck:
+    """Whether a local operation is allowed: truthy when it is, falsy when refused.
+
+    Attributes:
+        allowed: True or False (also what ``bool(check)`` gives).
+        rule: short name of the rule that refused the operation (for example
+            ``"link-condition"``), or None when it is allowed.
+        reason: a sentence naming the elements involved and the rule, for a student
+            to act on; for an allowed operation, a sentence saying so.
+        elements: ``(kind, index)`` pairs of the elements the reason is about, so a
+            notebook can highlight them, e.g. ``(("edge", 5), ("vertex", 11))``.
+    """
+
+    __slots__ = ("allowed", "rule", "reason", "elements")
+
+    def __init__(self, allowed: bool, reason: str, rule: str | None = None, elements: tuple = ()):
+        self.allowed = allowed
+        self.reason = reason
+        self.rule = rule
+        self.elements = elements
+
+    @classmethod
+    def ok(cls, reason: str, elements: tuple = ()) -> "OpCheck":
+        return cls(True, reason, None, elements)
+
+    @classmethod
+    def refuse(cls, rule: str, reason: str, elements: tuple = ()) -> "OpCheck":
+        return cls(False, reason, rule, elements)
+
+    def __bool__(self) -> bool:
+        return self.allowed
+
+    def error(self) -> TopologyError:
+        """The :class:`TopologyError` an operation raises for this refusal.
+
+        The error carries the same ``reason``, plus ``rule`` and ``elements``.
+        """
+        error = TopologyError(self.reason)
+        error.rule = self.rule
+        error.elements = self.elements
+        return error
+
+    def __repr__(self) -> str:
+        if self.allowed:
+            return f"OpCheck(allowed: {self.reason})"
+        return f"OpCheck(refused by {self.rule!r}: {self.reason})"
+
+
+def edge_argument(mesh: "HalfedgeMesh", edge, operation: str) -> tuple[int, int]:
+    """Turn the ``edge`` a user passed into ``(edge index e, halfedge h)``.
+
+    ``edge`` may be an :class:`Edge` handle or an int (then ``h = 2e``, the edge's
+    own halfedge) or a :class:`Halfedge` handle (then ``h`` is that halfedge, which
+    gives collapse its direction).
+
+    Raises:
+        IndexError: no such edge, or it was deleted by an earlier operation.
+        TypeError: a vertex or face handle, or something that is not an index.
+        ValueError: a handle of another mesh.
+    """
+    if isinstance(edge, _Handle):
+        if edge.mesh is not mesh:
+            raise ValueError(f"{operation}: {edge!r} belongs to another mesh")
+        if isinstance(edge, Halfedge):
+            h = edge.index
+            if not 0 <= h < 2 * mesh._n_edge_slots:
+                raise IndexError(f"{operation}: there is no halfedge {h}")
+            if mesh._edge_deleted[h >> 1]:
+                raise IndexError(
+                    f"{operation}: halfedge {h} was deleted (its edge {h >> 1} was removed by an "
+                    f"earlier operation; indices are compacted by garbage_collect())"
+                )
+            return h >> 1, h
+        if not isinstance(edge, Edge):
+            raise TypeError(f"{operation} works on an edge (or a halfedge), not on {edge!r}")
+    elif isinstance(edge, bool) or not hasattr(edge, "__index__"):
+        raise TypeError(f"{operation} needs an edge, an edge index or a halfedge, not {edge!r}")
+    e = edge.__index__()
+    if not 0 <= e < mesh._n_edge_slots:
+        last = mesh._n_edge_slots - 1
+        raise IndexError(f"{operation}: there is no edge {e}: edges are numbered 0 to {last}")
+    if mesh._edge_deleted[e]:
+        raise IndexError(
+            f"{operation}: edge {e} was deleted by an earlier operation "
+            f"(indices are compacted by garbage_collect())"
+        )
+    return e, 2 * e

@@ -1,0 +1,102 @@
+"""The step log: named elements, every pointer change in order, replay, and no cost when off."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from halfedge_edu.data import sample
+from halfedge_edu.ops import OperationLog, PointerChange, flip
+from halfedge_edu.ops import log as log_module
+
+ARRAYS = (
+    "_positions", "_vertex_halfedge", "_halfedge_next", "_halfedge_prev", "_halfedge_vertex",
+    "_halfedge_face", "_face_halfedge", "_vertex_deleted", "_edge_deleted", "_face_deleted",
+)
+
+
+def assert_replay_gives(before, after, log: OperationLog) -> None:
+    """Replaying the log's changes on ``before`` must give ``after`` exactly: nothing is missing."""
+    replayed = before.copy()
+    log.replay(replayed)
+    for name in ARRAYS:
+        np.testing.assert_array_equal(getattr(replayed, name), getattr(after, name), err_msg=name)
+    assert (replayed.n_vertices, replayed.n_edges, replayed.n_faces) == (after.n_vertices, after.n_edges, after.n_faces)
+
+
+def logged(operation, mesh, *args, **kwargs):
+    before = mesh.copy()
+    log = OperationLog()
+    result = operation(mesh, *args, log=log, **kwargs)
+    assert_replay_gives(before, mesh, log)
+    assert all(change.old != change.new for change in log.changes)
+    return log, result
+
+
+def test_flip_log_names_the_elements_of_the_picture():
+    strip = sample("strip")  # edge 1 is 1 -> 2 in face 0 = (0, 1, 2); face 1 = (1, 3, 2)
+    log, _ = logged(flip, strip, 1)
+    assert log.operation == "flip" and log.edge == 1 and log.halfedge == 2
+    assert list(log.named) == ["h0", "h1", "h2", "h3", "h4", "h5", "v0", "v1", "v2", "v3", "f0", "f1"]
+    assert {name: index for name, (kind, index) in log.named.items() if kind == "vertex"} == {
+        "v0": 1, "v1": 2, "v2": 0, "v3": 3,
+    }
+    assert log.named["f0"] == ("face", 0) and log.named["f1"] == ("face", 1)
+    assert log.created == [] and log.deleted == []
+
+
+def test_flip_log_lists_every_change_in_order_with_its_old_value():
+    log, _ = logged(flip, sample("strip"), 1)
+    assert log.changes[:2] == [
+        PointerChange("halfedge", 2, "vertex", 1, 3),
+        PointerChange("halfedge", 3, "vertex", 2, 0),
+    ]
+    fields = {change.field for change in log.changes}
+    assert fields <= {"next", "prev", "vertex", "face", "halfedge"}
+    assert [title for _, title in log.phases][0].startswith("turn the edge")
+
+
+def test_describe_has_one_line_per_change():
+    log, _ = logged(flip, sample("strip"), 1)
+    text = log.describe()
+    assert "halfedge 2 .vertex: 1 -> 3" in text.splitlines()
+    change_lines = [line for line in text.splitlines() if " ." in line and "->" in line]
+    assert len(change_lines) == len(log.changes)
+
+
+def test_a_log_is_cleared_when_used_again():
+    mesh, log = sample("octahedron"), OperationLog()
+    flip(mesh, 0, log=log)
+    between = mesh.copy()
+    flip(mesh, 0, log=log)
+    assert_replay_gives(between, mesh, log)
+
+
+def test_replaying_part_of_the_log_gives_the_in_between_state():
+    mesh = sample("strip")
+    before = mesh.copy()
+    log = OperationLog()
+    flip(mesh, 1, log=log)
+    halfway = before.copy()
+    log.replay(halfway, 2)
+    assert halfway.halfedge_vertex[2] == 3 and halfway.halfedge_vertex[3] == 0
+    assert halfway.halfedge_next[2] == before.halfedge_next[2]
+
+
+def test_without_a_log_no_log_object_is_built(monkeypatch):
+    def forbidden(*args, **kwargs):
+        raise AssertionError("the plain operation built a log object")
+
+    monkeypatch.setattr(log_module.LoggingWriter, "__init__", forbidden)
+    monkeypatch.setattr(log_module.OperationLog, "begin", forbidden)
+    monkeypatch.setattr(log_module.OperationLog, "name", forbidden)
+    mesh = sample("octahedron")
+    flip(mesh, 0)
+    mesh.validate()
+
+
+def test_a_refused_operation_leaves_the_log_empty():
+    log = OperationLog()
+    with pytest.raises(ValueError):
+        flip(sample("tetrahedron"), 0, log=log)
+    assert log.changes == [] and log.operation == ""
