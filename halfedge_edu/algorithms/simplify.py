@@ -1,0 +1,496 @@
+"""Quadric error simplification (Garland and Heckbert, 1997), in rounds of collapses.
+
+The idea, in four sentences:
+
+1. Every face lies in a plane ``n . x + d = 0``; the squared distance of a point ``x`` to
+   that plane is ``[x, 1] K [x, 1]^T`` with the 4x4 matrix ``K = p p^T``, ``p = [n, d]``.
+2. A vertex starts with the sum ``Q`` of the ``K`` of its faces (weighted by area), so
+   ``[x, 1] Q [x, 1]^T`` measures how far ``x`` is from the vertex's original planes.
+3. Collapsing edge ``(a, b)`` to a point ``x`` costs ``[x, 1] (Q_a + Q_b) [x, 1]^T``; the
+   best ``x`` solves a 3x3 linear system (when that system is ill-conditioned we take the
+   best of the two endpoints and the midpoint instead).
+4. Collapse the cheapest edges first; the merged vertex keeps ``Q_a + Q_b``.
+
+The course's version (see ``simplify_sequential``) pops one edge at a time from a priority
+queue. This default version does the same work in *rounds*: each round prices every
+edge at once, then collapses a set of cheap edges that are far enough apart not to
+disturb each other (no two within one ring of each other), all at once, with numpy. An
+edge is taken only if it is the cheapest in its neighbourhood, so the order stays
+close to the queue's, and tens of rounds replace tens of thousands of Python steps.
+
+Every collapse must pass the same checks as :func:`halfedge_edu.ops.can_collapse`: the
+link condition (the endpoints share exactly the two opposite vertices, one on the
+boundary), no interior edge between two boundary vertices, no opposite vertex left with
+too few edges; and a geometric check the topology does not see: no face around the
+edge may turn over (its normal may not swing by more than ``max_normal_angle``).
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..core.errors import MeshWarning
+from ..core.mesh import HalfedgeMesh
+
+
+@dataclass
+class SimplifyReport:
+    """What :func:`simplify` did: faces before and after, rounds, and whether it reached the target."""
+
+    faces_before: int
+    faces_after: int
+    target_faces: int
+    rounds: int
+    reached_target: bool
+
+    def __str__(self) -> str:
+        status = "reached" if self.reached_target else "could not reach"
+        return (
+            f"{self.faces_before} -> {self.faces_after} faces in {self.rounds} rounds "
+            f"({status} the target of {self.target_faces})"
+        )
+
+
+# ----------------------------------------------------------------------------------------
+# Quadrics
+# ----------------------------------------------------------------------------------------
+
+def face_quadrics(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """(m, 4, 4) area-weighted plane quadric ``area * p p^T`` of each face, ``p = [n, d]``.
+
+    Area weighting makes a big face count for more than a sliver, so the error does
+    not depend on how finely a flat region happens to be triangulated.
+    """
+    a, b, c = (vertices[faces[:, k]] for k in range(3))
+    cross = np.cross(b - a, c - a)                                   # (m, 3), length 2 * area
+    double_area = np.linalg.norm(cross, axis=1)
+    normal = cross / np.maximum(double_area, 1e-300)[:, None]
+    plane = np.concatenate([normal, -np.einsum("ij,ij->i", normal, a)[:, None]], axis=1)  # (m, 4)
+    return 0.5 * double_area[:, None, None] * plane[:, :, None] * plane[:, None, :]
+
+
+def boundary_quadrics(vertices: np.ndarray, faces: np.ndarray, boundary_edges: np.ndarray,
+                      boundary_faces: np.ndarray, weight: float) -> np.ndarray:
+    """(k, 4, 4) quadrics of planes through each boundary edge, perpendicular to its face.
+
+    They make moving a boundary vertex off its boundary line expensive, so holes keep
+    their shape. ``weight`` scales them against the surface quadrics.
+    """
+    start, end = vertices[boundary_edges[:, 0]], vertices[boundary_edges[:, 1]]
+    a, b, c = (vertices[faces[boundary_faces, k]] for k in range(3))
+    face_normal = np.cross(b - a, c - a)
+    direction = end - start
+    normal = np.cross(direction, face_normal)
+    length = np.linalg.norm(normal, axis=1)
+    normal = normal / np.maximum(length, 1e-300)[:, None]
+    plane = np.concatenate([normal, -np.einsum("ij,ij->i", normal, start)[:, None]], axis=1)
+    scale = weight * np.einsum("ij,ij->i", direction, direction)
+    return scale[:, None, None] * plane[:, :, None] * plane[:, None, :]
+
+
+def accumulate(quadrics: np.ndarray, owners: np.ndarray, n: int) -> np.ndarray:
+    """(n, 4, 4) sum of ``quadrics[i]`` into ``owners[i]`` (each (4, 4) entry by bincount)."""
+    flat = quadrics.reshape(len(quadrics), 16)
+    total = np.empty((n, 16))
+    for entry in range(16):
+        total[:, entry] = np.bincount(owners, weights=flat[:, entry], minlength=n)
+    return total.reshape(n, 4, 4)
+
+
+def quadric_cost(quadric: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """(k,) ``[x, 1] Q [x, 1]^T`` for k quadrics (k, 4, 4) and points (k, 3)."""
+    homogeneous = np.concatenate([points, np.ones((len(points), 1))], axis=1)
+    return np.einsum("ki,kij,kj->k", homogeneous, quadric, homogeneous)
+
+
+def optimal_points(quadric: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Best collapse point and its cost for each edge, with the course's fallback.
+
+    Minimizing ``[x, 1] Q [x, 1]^T`` means solving ``A x = -q`` with ``A`` the top-left
+    3x3 block of Q and ``q`` its last column. Where ``A`` is nearly singular (a flat or
+    straight region, where many points are equally good) we take whichever of the two
+    endpoints and the midpoint costs least.
+    """
+    A = quadric[:, :3, :3]
+    q = quadric[:, :3, 3]
+    scale = np.abs(A).max(axis=(1, 2))
+    well_posed = np.abs(np.linalg.det(A)) > 1e-9 * np.maximum(scale, 1e-300) ** 3
+    points = 0.5 * (a + b)
+    if well_posed.any():
+        points[well_posed] = np.linalg.solve(A[well_posed], -q[well_posed][:, :, None])[:, :, 0]
+    cost = quadric_cost(quadric, points)
+    # Fallback for the ill-posed ones: best of a, b and the midpoint.
+    ill = np.flatnonzero(~well_posed)
+    if len(ill):
+        options = np.stack([a[ill], b[ill], 0.5 * (a[ill] + b[ill])], axis=1)       # (j, 3 options, 3)
+        costs = np.stack([quadric_cost(quadric[ill], options[:, k]) for k in range(3)], axis=1)
+        best = np.argmin(costs, axis=1)
+        points[ill] = options[np.arange(len(ill)), best]
+        cost[ill] = costs[np.arange(len(ill)), best]
+    return points, np.maximum(cost, 0.0)
+
+
+# ----------------------------------------------------------------------------------------
+# Connectivity from the face array (rebuilt each round: a few sorts)
+# ----------------------------------------------------------------------------------------
+
+def unique_edges(faces: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Edges of a face array: ``(edges (E, 2) low/high, face_count (E,), one_face (E,))``."""
+    tail = faces.reshape(-1).astype(np.int64)
+    head = faces[:, [1, 2, 0]].reshape(-1).astype(np.int64)
+    key = np.minimum(tail, head) * n + np.maximum(tail, head)
+    unique_key, first, count = np.unique(key, return_index=True, return_counts=True)
+    edges = np.stack([unique_key // n, unique_key % n], axis=1)
+    return edges, count, first // 3
+
+
+def csr(rows: np.ndarray, values: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Group ``values`` by ``rows`` into CSR ``(offsets (n + 1,), values sorted by row)``."""
+    order = np.argsort(rows, kind="stable")
+    offsets = np.zeros(n + 1, dtype=np.int64)
+    np.cumsum(np.bincount(rows, minlength=n), out=offsets[1:])
+    return offsets, values[order]
+
+
+def expand(offsets: np.ndarray, values: np.ndarray, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For each i, the CSR row ``rows[i]``: returns ``(owner i of each item, items)``."""
+    counts = offsets[rows + 1] - offsets[rows]
+    owner = np.repeat(np.arange(len(rows)), counts)
+    start = np.repeat(offsets[rows] - np.cumsum(counts) + counts, counts)
+    return owner, values[start + np.arange(counts.sum())]
+
+
+# ----------------------------------------------------------------------------------------
+# One round
+# ----------------------------------------------------------------------------------------
+
+def _topology_ok(n, all_edges, edges, boundary_edge, boundary_vertex, degree):
+    """Which candidate collapses the topology allows, and each one's opposite vertices.
+
+    Returns ``(ok (k,), opposite_owner, opposite_vertex)``: candidate i is allowed where
+    ``ok[i]``; its opposite vertices are ``opposite_vertex[opposite_owner == i]``. The
+    geometric check (:func:`_no_turned_faces`) comes later, only for chosen edges.
+    """
+    k = len(edges)
+    a, b = edges[:, 0], edges[:, 1]
+
+    # Interior edge whose ends are both on the boundary: would pinch the surface.
+    ok = ~(~boundary_edge & boundary_vertex[a] & boundary_vertex[b])
+
+    # Link condition: common neighbours of a and b must be exactly the opposite vertices.
+    both = np.concatenate([all_edges, all_edges[:, ::-1]])      # every edge, both ways
+    nbr_offsets, nbr = csr(both[:, 0], both[:, 1], n)
+    owner_a, around_a = expand(nbr_offsets, nbr, a)
+    owner_b, around_b = expand(nbr_offsets, nbr, b)
+    owner = np.concatenate([owner_a, owner_b])
+    around = np.concatenate([around_a, around_b])
+    key = np.sort(owner * n + around)
+    shared = key[1:][key[1:] == key[:-1]]                          # keys seen twice
+    shared_owner, shared_vertex = shared // n, shared % n
+    n_shared = np.bincount(shared_owner, minlength=k)
+    ok &= n_shared == np.where(boundary_edge, 1, 2)
+
+    # An opposite vertex must keep enough edges: interior ones at least 3 after losing one.
+    needed = np.where(boundary_vertex[shared_vertex], 3, 4)
+    too_thin = degree[shared_vertex] < needed
+    ok[shared_owner[too_thin]] = False
+
+    return ok, shared_owner, shared_vertex
+
+
+def _cross(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Row-wise cross product of (j, 3) arrays (faster than np.cross for many short rows)."""
+    return np.stack(
+        [u[:, 1] * v[:, 2] - u[:, 2] * v[:, 1],
+         u[:, 2] * v[:, 0] - u[:, 0] * v[:, 2],
+         u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]],
+        axis=1,
+    )
+
+
+def _no_turned_faces(vertices, faces, vertex_faces, points, keep, remove, max_normal_cos) -> np.ndarray:
+    """(k,) True where moving both ends of edge i to ``points[i]`` turns no face over.
+
+    The faces around ``keep`` and around ``remove`` get a corner moved to the new point;
+    the two faces holding both ends vanish and are skipped. A face "turns over" when its
+    normal swings by more than the allowed angle or its area drops to (almost) nothing.
+    """
+    face_offsets, face_of_corner = vertex_faces
+    owners, corner_lists, movers = [], [], []
+    for end, other in ((keep, remove), (remove, keep)):
+        owner, face = expand(face_offsets, face_of_corner, end)
+        corners = faces[face]                                           # (j, 3)
+        survives = ~(corners == other[owner, None]).any(axis=1)        # faces holding both vanish
+        owners.append(owner[survives])
+        corner_lists.append(corners[survives])
+        movers.append(end[owner[survives]])
+    owner = np.concatenate(owners)
+    corners = np.concatenate(corner_lists)
+    mover = np.concatenate(movers)
+    before = vertices[corners]                                          # (j, 3 corners, 3)
+    after = before.copy()
+    after[corners == mover[:, None]] = points[owner]
+    n_before = _cross(before[:, 1] - before[:, 0], before[:, 2] - before[:, 0])
+    n_after = _cross(after[:, 1] - after[:, 0], after[:, 2] - after[:, 0])
+    length_before = np.sqrt(np.einsum("ij,ij->i", n_before, n_before))
+    length_after = np.sqrt(np.einsum("ij,ij->i", n_after, n_after))
+    cosine = np.einsum("ij,ij->i", n_before, n_after) / np.maximum(length_before * length_after, 1e-300)
+    turned = (cosine < max_normal_cos) | (length_after <= 1e-12 * np.maximum(length_before, 1e-300))
+    ok = np.ones(len(keep), dtype=bool)
+    ok[owner[turned]] = False
+    return ok
+
+
+def _one_collapse_per_opposite_vertex(chosen: np.ndarray, opposite_owner: np.ndarray,
+                                      opposite_vertex: np.ndarray) -> np.ndarray:
+    """Drop chosen candidates that share an opposite vertex with a cheaper chosen one.
+
+    Each collapse takes one edge from each opposite vertex; two collapses in one round
+    could take two from the same vertex and leave it with too few. ``chosen`` (k,) is a
+    mask over candidates, which are sorted cheapest first.
+    """
+    mine = chosen[opposite_owner]
+    owner, vertex = opposite_owner[mine], opposite_vertex[mine]
+    order = np.lexsort((owner, vertex))                 # by vertex, then cheapest owner
+    owner, vertex = owner[order], vertex[order]
+    repeated = np.zeros(len(vertex), dtype=bool)
+    repeated[1:] = vertex[1:] == vertex[:-1]
+    result = chosen.copy()
+    result[owner[repeated]] = False
+    return result
+
+
+def _independent(edges: np.ndarray, priority: np.ndarray, neighbours: np.ndarray, n: int) -> np.ndarray:
+    """(k,) True for edges that are the cheapest within one ring of both their ends.
+
+    ``m1[x]`` is the lowest priority among candidate edges at vertex x; ``m2[y]`` the
+    lowest ``m1`` over y and its neighbours. An edge taken only where it equals ``m2`` at
+    both ends is at least two edges away from every other taken edge, so the collapses
+    of one round touch disjoint neighbourhoods and can be applied together.
+    """
+    big = np.iinfo(np.int64).max
+    m1 = np.full(n, big)
+    np.minimum.at(m1, edges[:, 0], priority)
+    np.minimum.at(m1, edges[:, 1], priority)
+    m2 = m1.copy()
+    np.minimum.at(m2, neighbours[:, 0], m1[neighbours[:, 1]])
+    np.minimum.at(m2, neighbours[:, 1], m1[neighbours[:, 0]])
+    return (m2[edges[:, 0]] == priority) & (m2[edges[:, 1]] == priority)
+
+
+class _EdgePrices:
+    """Collapse point and cost of every edge, kept from round to round.
+
+    An edge's price depends only on its two vertices' quadrics and positions (and on
+    which of them are on the boundary, which collapses do not change). So each round
+    re-prices just the edges at a vertex that moved; the others are looked up by their
+    key ``low * n + high`` in the previous round's sorted keys.
+    """
+
+    def __init__(self):
+        self.keys = np.empty(0, dtype=np.int64)
+
+    def update(self, edges, boundary_edge, boundary_vertex, vertices, quadrics, moved, n):
+        keys = edges[:, 0] * n + edges[:, 1]                       # ascending (np.unique order)
+        stale = moved[edges[:, 0]] | moved[edges[:, 1]]
+        if len(self.keys):
+            where = np.minimum(np.searchsorted(self.keys, keys), len(self.keys) - 1)
+            stale |= self.keys[where] != keys
+        points = np.empty((len(edges), 3))
+        cost = np.empty(len(edges))
+        keep = np.empty(len(edges), dtype=np.int64)
+        fresh = ~stale
+        if fresh.any():
+            points[fresh] = self.points[where[fresh]]
+            cost[fresh] = self.cost[where[fresh]]
+            keep[fresh] = self.keep[where[fresh]]
+        todo = np.flatnonzero(stale)
+        a, b = edges[todo, 0], edges[todo, 1]
+        quadric = quadrics[a] + quadrics[b]
+        p, c = optimal_points(quadric, vertices[a], vertices[b])
+        # An interior edge with one boundary end collapses onto that end, keeping the outline.
+        a_fixed = boundary_vertex[a] & ~boundary_edge[todo] & ~boundary_vertex[b]
+        b_fixed = boundary_vertex[b] & ~boundary_edge[todo] & ~boundary_vertex[a]
+        p[a_fixed] = vertices[a[a_fixed]]
+        p[b_fixed] = vertices[b[b_fixed]]
+        pinned = a_fixed | b_fixed
+        c[pinned] = quadric_cost(quadric[pinned], p[pinned])
+        points[todo], cost[todo], keep[todo] = p, c, np.where(b_fixed, b, a)
+        self.keys, self.points, self.cost, self.keep = keys, points, cost, keep
+        remove = np.where(keep == edges[:, 0], edges[:, 1], edges[:, 0])
+        return points, cost, keep, remove
+
+
+def _choose_round(edges, candidates, valid, opposite_owner, opposite_vertex, n, no_turned_faces, passes: int = 3):
+    """Mask over candidates: a set of allowed collapses that can all be done at once.
+
+    Each pass takes the candidates that are cheapest in their neighbourhood (see
+    :func:`_independent`), then blocks every vertex within one ring of them, and every
+    vertex that just lost an edge as an opposite vertex; the next pass picks among what
+    is left. A few passes come close to a maximal set, so fewer rounds are needed.
+    ``no_turned_faces(indices)`` is the geometric check for candidates ``indices``.
+    """
+    chosen = np.zeros(len(candidates), dtype=bool)
+    open_ = valid.copy()
+    blocked = np.zeros(n, dtype=bool)            # within one ring of a chosen edge
+    opposite_used = np.zeros(n, dtype=bool)      # already lost an edge this round
+    priority = np.arange(len(candidates), dtype=np.int64)   # candidates are cheapest first
+    cand_edges = edges[candidates]
+    for _ in range(passes):
+        open_ &= ~blocked[cand_edges[:, 0]] & ~blocked[cand_edges[:, 1]]
+        open_[opposite_owner[opposite_used[opposite_vertex]]] = False
+        if not open_.any():
+            break
+        picked = np.zeros(len(candidates), dtype=bool)
+        picked[open_] = _independent(cand_edges[open_], priority[open_], edges, n)
+        picked = _one_collapse_per_opposite_vertex(picked, opposite_owner, opposite_vertex)
+        open_ &= ~picked
+        # The geometric check, only for the picked few; a refused one just drops out.
+        which = np.flatnonzero(picked)
+        picked[which[~no_turned_faces(which)]] = False
+        chosen |= picked
+        ends = np.zeros(n, dtype=bool)
+        ends[cand_edges[picked].reshape(-1)] = True
+        blocked |= ends
+        blocked[edges[ends[edges[:, 0]], 1]] = True
+        blocked[edges[ends[edges[:, 1]], 0]] = True
+        opposite_used[opposite_vertex[picked[opposite_owner]]] = True
+    return chosen
+
+
+def simplify(
+    mesh: HalfedgeMesh,
+    target_faces: int,
+    *,
+    boundary_weight: float = 100.0,
+    max_normal_angle: float = 80.0,
+    candidate_fraction: float = 0.25,
+    progress: bool = False,
+    return_report: bool = False,
+):
+    """Simplify ``mesh`` to about ``target_faces`` faces by quadric-error edge collapses.
+
+    Args:
+        mesh: the input; it is not modified.
+        target_faces: how many faces to keep. The result has exactly this many, or one
+            fewer (an interior collapse removes two faces), or more when no allowed
+            collapse is left (a :class:`MeshWarning` says so).
+        boundary_weight: how strongly boundaries keep their shape.
+        max_normal_angle: largest allowed swing of a face normal in one collapse, degrees.
+        candidate_fraction: each round considers only this cheapest fraction of edges,
+            which keeps the order close to the one-at-a-time priority queue.
+        progress: show a progress bar (tqdm) of faces removed.
+        return_report: also return a :class:`SimplifyReport`.
+
+    Returns:
+        A new :class:`HalfedgeMesh` (and the report, if asked).
+    """
+    vertices, faces = mesh.to_arrays()
+    vertices = vertices.copy()
+    n = len(vertices)
+    faces_before = len(faces)
+    target_faces = int(target_faces)
+    if target_faces < 1:
+        raise ValueError(f"target_faces must be at least 1, got {target_faces}")
+    max_normal_cos = float(np.cos(np.radians(max_normal_angle)))
+
+    quadrics = accumulate(np.repeat(face_quadrics(vertices, faces), 3, axis=0), faces.reshape(-1), n)
+    edges, count, edge_face = unique_edges(faces, n)
+    on_boundary = count == 1
+    if on_boundary.any():
+        bq = boundary_quadrics(vertices, faces, edges[on_boundary], edge_face[on_boundary], boundary_weight)
+        quadrics += accumulate(np.concatenate([bq, bq]), np.concatenate([edges[on_boundary, 0], edges[on_boundary, 1]]), n)
+
+    bar = _progress_bar(progress, faces_before - target_faces)
+    rounds = 0
+    priced = _EdgePrices()
+    moved = np.ones(n, dtype=bool)             # vertices whose price inputs changed
+    while len(faces) > target_faces:
+        rounds += 1
+        edges, count, _ = unique_edges(faces, n)
+        boundary_edge = count == 1
+        boundary_vertex = np.zeros(n, dtype=bool)
+        boundary_vertex[edges[boundary_edge].reshape(-1)] = True
+        degree = np.bincount(edges.reshape(-1), minlength=n)
+        points, cost, keep, remove = priced.update(edges, boundary_edge, boundary_vertex, vertices, quadrics, moved, n)
+
+        # Consider the cheapest edges only, and not many more than the faces still to go.
+        faces_to_remove = len(faces) - target_faces
+        n_candidates = int(max(64, candidate_fraction * len(edges)))
+        n_candidates = min(n_candidates, max(64, 4 * faces_to_remove), len(edges))
+        if n_candidates < len(edges):
+            candidates = np.argpartition(cost, n_candidates - 1)[:n_candidates]
+        else:
+            candidates = np.arange(len(edges))
+        candidates = candidates[np.argsort(cost[candidates], kind="stable")]
+
+        valid, opposite_owner, opposite_vertex = _topology_ok(
+            n, edges, edges[candidates], boundary_edge[candidates], boundary_vertex, degree
+        )
+        if not valid.any():
+            break
+        vertex_faces = csr(faces.reshape(-1), np.repeat(np.arange(len(faces)), 3), n)
+
+        def no_turned_faces(indices: np.ndarray) -> np.ndarray:
+            chosen_edges = candidates[indices]
+            return _no_turned_faces(vertices, faces, vertex_faces, points[chosen_edges],
+                                    keep[chosen_edges], remove[chosen_edges], max_normal_cos)
+
+        chosen_mask = _choose_round(edges, candidates, valid, opposite_owner, opposite_vertex, n, no_turned_faces)
+        chosen = candidates[chosen_mask]
+        # Stop exactly at the target: take chosen edges in cost order until enough faces go.
+        removes_faces = np.where(boundary_edge[chosen], 1, 2)
+        chosen = chosen[np.cumsum(removes_faces) <= faces_to_remove]
+        if len(chosen) == 0:
+            # Nothing passed the geometric check, or only interior collapses are left with
+            # one face to go (then one more collapse is the nearest we can get).
+            allowed = np.flatnonzero(valid)
+            allowed = allowed[no_turned_faces(allowed)][:1]
+            if len(allowed) == 0:
+                break
+            chosen = candidates[allowed]
+
+        keep_c, remove_c = keep[chosen], remove[chosen]
+        vertices[keep_c] = points[chosen]
+        quadrics[keep_c] += quadrics[remove_c]
+        moved[:] = False
+        moved[keep_c] = True
+        relabel = np.arange(n)
+        relabel[remove_c] = keep_c
+        faces = relabel[faces]
+        degenerate = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 2] == faces[:, 0])
+        removed_now = int(degenerate.sum())
+        faces = faces[~degenerate]
+        if bar is not None:
+            bar.update(removed_now)
+
+    if bar is not None:
+        bar.close()
+    reached = len(faces) <= target_faces
+    if not reached:
+        warnings.warn(
+            f"simplify stopped at {len(faces)} faces: no allowed collapse is left "
+            f"(target was {target_faces})",
+            MeshWarning,
+            stacklevel=2,
+        )
+    used = np.unique(faces)
+    new_index = np.full(n, -1, dtype=np.int64)
+    new_index[used] = np.arange(len(used))
+    result = HalfedgeMesh.from_faces(vertices[used], new_index[faces])
+    if return_report:
+        return result, SimplifyReport(faces_before, len(faces), target_faces, rounds, reached)
+    return result
+
+
+def _progress_bar(enabled: bool, total: int):
+    if not enabled:
+        return None
+    try:
+        from tqdm.auto import tqdm
+    except ImportError:
+        return None
+    return tqdm(total=total, desc="simplify", unit="face")
