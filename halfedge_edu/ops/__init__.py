@@ -11,8 +11,9 @@ from .check import OpCheck
 from .flip import can_flip, flip
 from .link import Link, LinkCondition, link_condition, link_of_edge, link_of_vertex
 from .log import OperationLog, PointerChange
+from .split import can_split, split
 
 __all__ = [
-    "Link", "LinkCondition", "OpCheck", "OperationLog", "PointerChange", "can_flip", "flip",
-    "link_condition", "link_of_edge", "link_of_vertex",
+    "Link", "LinkCondition", "OpCheck", "OperationLog", "PointerChange", "can_flip", "can_split", "flip",
+    "link_condition", "link_of_edge", "link_of_vertex", "split",
 ]

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+import numpy as np
+
 from ..core.elements import Edge, Halfedge, _Handle
 from ..core.errors import TopologyError
 
@@ -104,3 +106,22 @@ def edge_argument(mesh: "HalfedgeMesh", edge, operation: str) -> tuple[int, int]
             f"(indices are compacted by garbage_collect())"
         )
     return e, 2 * e
+
+
+def position_argument(position, operation: str) -> np.ndarray | None:
+    """Check a user's ``position`` (None, or three finite numbers) before anything changes.
+
+    Raises:
+        ValueError: not three numbers, or not finite.
+    """
+    if position is None:
+        return None
+    try:
+        point = np.array(position, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ValueError(f"{operation}: position must be three numbers (x, y, z), not {position!r}") from None
+    if point.shape != (3,):
+        raise ValueError(f"{operation}: position must be three numbers (x, y, z), not shape {point.shape}")
+    if not np.isfinite(point).all():
+        raise ValueError(f"{operation}: position must be finite, not {tuple(point)}")
+    return point

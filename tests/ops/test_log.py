@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from halfedge_edu.data import sample
-from halfedge_edu.ops import OperationLog, PointerChange, flip
+from halfedge_edu.ops import OperationLog, PointerChange, flip, split
 from halfedge_edu.ops import log as log_module
 
 ARRAYS = (
@@ -100,3 +100,11 @@ def test_a_refused_operation_leaves_the_log_empty():
     with pytest.raises(ValueError):
         flip(sample("tetrahedron"), 0, log=log)
     assert log.changes == [] and log.operation == ""
+
+
+@pytest.mark.parametrize(("name", "edge"), [("octahedron", 0), ("strip", 0), ("strip", 1), ("lone_triangle", 0)])
+def test_split_log_replays_and_names_the_new_elements(name, edge):
+    log, m = logged(split, sample(name), edge)
+    assert log.operation == "split" and log.named["m"] == ("vertex", m.index)
+    assert ("vertex", m.index) in log.created and log.deleted == []
+    assert list(log.named)[:4] == ["h0", "h1", "h2", "h3"]
