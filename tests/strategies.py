@@ -367,9 +367,10 @@ def _open_shape(draw) -> MeshCase:
     # A patch need not be a disc (it may wrap around a torus), so the loops and the genus
     # of what is left are counted here, independently of the library.
     loops = _count_boundary_loops(cut_faces)
-    n_edges = len(np.unique(np.sort(np.concatenate([cut_faces[:, [0, 1]], cut_faces[:, [1, 2]], cut_faces[:, [2, 0]]]), axis=1), axis=0))
-    chi = len(cut_vertices) - n_edges + len(cut_faces)
-    return MeshCase(f"{closed.name}-minus-{how}", cut_vertices, cut_faces, genus=(2 - loops - chi) // 2, n_boundary_loops=loops)
+    sides = np.concatenate([cut_faces[:, [0, 1]], cut_faces[:, [1, 2]], cut_faces[:, [2, 0]]])
+    chi = len(cut_vertices) - len(np.unique(np.sort(sides, axis=1), axis=0)) + len(cut_faces)
+    genus = (2 - loops - chi) // 2
+    return MeshCase(f"{closed.name}-minus-{how}", cut_vertices, cut_faces, genus=genus, n_boundary_loops=loops)
 
 
 def _is_connected(faces: np.ndarray) -> bool:
