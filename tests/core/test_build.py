@@ -195,11 +195,15 @@ def test_non_finite_coordinate_is_rejected_naming_the_vertex(bad):
         (np.zeros((4, 3)), [[0, 1, 2, 3]], "triangles"),
         (np.zeros((4, 3)), [[0, 1], [1, 2]], "at least 3"),
         (np.zeros((4, 3)), [0, 1, 2], "(m, 3)"),
+        (np.zeros((4, 3)), [[0, 1, 2], [0, 2]], "(m, 3)"),
         (np.zeros((4, 3)), np.zeros((0, 3), dtype=int), "no faces"),
         (np.zeros((4, 3)), [[0, 1.5, 2]], "whole numbers"),
         ([["a", "b", "c"]], [[0, 1, 2]], "not numbers"),
     ],
-    ids=["2d vertices", "flat vertices", "quads", "edges", "flat faces", "no faces", "fractional index", "text"],
+    ids=[
+        "2d vertices", "flat vertices", "quads", "edges", "flat faces", "ragged faces", "no faces", "fractional index",
+        "text",
+    ],
 )
 def test_wrong_shapes_and_types_are_rejected(vertices, faces, text):
     with pytest.raises(hx.MeshInputError) as caught:

@@ -67,6 +67,8 @@ def test_deleting_one_component_leaves_exactly_the_other(first, second, keep_fir
     _delete_component(mesh, doomed)
     mesh.validate()                                      # sound, with garbage
     assert mesh.has_garbage and mesh.n_components == 1
+    assert (mesh.face_vertices()[mesh.face_deleted] == -1).all()
+    exported_with_garbage = mesh.to_arrays()
 
     maps = mesh.garbage_collect()
     mesh.validate()
@@ -78,6 +80,7 @@ def test_deleting_one_component_leaves_exactly_the_other(first, second, keep_fir
     _assert_same_arrays(mesh, _snapshot(hx.HalfedgeMesh.from_faces(kept_positions, kept_arrays[1])))
     vertices, faces = mesh.to_arrays()
     assert np.array_equal(vertices, kept_positions) and np.array_equal(faces, kept_arrays[1])
+    assert np.array_equal(exported_with_garbage[0], vertices) and np.array_equal(exported_with_garbage[1], faces)
 
     # The maps send deleted elements to -1 and live ones to their new place.
     assert (maps.vertices[doomed] == -1).all()

@@ -85,6 +85,13 @@ def test_boundary_vertices_point_at_their_outgoing_boundary_halfedge(drawn):
         assert sum(h.is_boundary for h in v.outgoing()) == int(on_boundary)
 
 
+def test_an_isolated_vertex_is_not_on_the_boundary_in_either_view(square):
+    # add_vertex leaves vertex_halfedge at -1; the array view must not read halfedge -1.
+    v = square.add_vertex([5.0, 5.0, 5.0])
+    assert not square.vertex(v).is_boundary
+    assert square.vertex_is_boundary().tolist() == [True, True, True, True, False]
+
+
 @given(meshes())
 def test_neighbors_are_the_rows_of_vertex_adjacency(drawn):
     mesh = build(drawn)
