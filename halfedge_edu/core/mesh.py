@@ -392,10 +392,12 @@ class HalfedgeMesh:
         return np.bincount(self.halfedge_vertex[live], minlength=self._n_vertex_slots)
 
     def vertex_is_boundary(self) -> np.ndarray:
-        """(n_vertex_slots,) True for vertices on a boundary loop."""
+        """(n_vertex_slots,) True for vertices on a boundary loop (False for isolated ones)."""
         live = ~self.vertex_deleted
         result = np.zeros(self._n_vertex_slots, dtype=bool)
-        result[live] = self.halfedge_face[self.vertex_halfedge[live]] == -1
+        outgoing = self.vertex_halfedge[live]
+        # An isolated vertex has halfedge -1, which must not be read as the last halfedge.
+        result[live] = (outgoing >= 0) & (self.halfedge_face[outgoing] == -1)
         return result
 
     def one_rings(self) -> RingWalk:
