@@ -97,7 +97,12 @@ def check_input(
             element=("vertex", bad),
         )
 
-    face_array = np.asarray(faces)
+    try:
+        face_array = np.asarray(faces)
+    except ValueError:
+        raise MeshInputError(
+            "faces must be an (m, 3) array of vertex indices (triangles), but its rows have different lengths"
+        ) from None
     if face_array.ndim != 2 or face_array.shape[1] != 3:
         if face_array.ndim == 2 and face_array.shape[1] < 3:
             raise MeshInputError(
