@@ -111,8 +111,8 @@ def optimal_points(quadric: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[n
 
     Minimizing ``[x, 1] Q [x, 1]^T`` means solving ``A x = -q`` with ``A`` the top-left
     3x3 block of Q and ``q`` its last column. Where ``A`` is nearly singular (a flat or
-    straight region, where many points are equally good) we take whichever of the two
-    endpoints and the midpoint costs least.
+    straight region, where many points are equally good) we take whichever of the
+    midpoint and the two endpoints costs least (the midpoint when they tie).
     """
     A = quadric[:, :3, :3]
     q = quadric[:, :3, 3]
@@ -125,7 +125,9 @@ def optimal_points(quadric: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[n
     # Fallback for the ill-posed ones: best of a, b and the midpoint.
     ill = np.flatnonzero(~well_posed)
     if len(ill):
-        options = np.stack([a[ill], b[ill], 0.5 * (a[ill] + b[ill])], axis=1)       # (j, 3 options, 3)
+        # Midpoint first, so that ties (a flat region, where all three cost nothing) go
+        # to it: moving a vertex to its neighbour folds thin triangles far more often.
+        options = np.stack([0.5 * (a[ill] + b[ill]), a[ill], b[ill]], axis=1)       # (j, 3 options, 3)
         costs = np.stack([quadric_cost(quadric[ill], options[:, k]) for k in range(3)], axis=1)
         best = np.argmin(costs, axis=1)
         points[ill] = options[np.arange(len(ill)), best]
@@ -324,7 +326,7 @@ class _EdgePrices:
         return points, cost, keep, remove
 
 
-def _choose_round(edges, candidates, valid, opposite_owner, opposite_vertex, n, no_turned_faces, passes: int = 3):
+def _choose_round(edges, candidates, valid, opposite_owner, opposite_vertex, n, no_turned_faces, passes: int = 5):
     """Mask over candidates: a set of allowed collapses that can all be done at once.
 
     Each pass takes the candidates that are cheapest in their neighbourhood (see
