@@ -1,0 +1,25 @@
+"""Pictures and notebook widgets for halfedge meshes (PyVista + ipywidgets).
+
+    from halfedge_edu.viz import HalfedgeScene, HalfedgeExplorer, OneRingViewer
+    from halfedge_edu.viz import FlipStepper, SplitStepper, CollapseStepper, CollapseAtlas
+
+- :class:`HalfedgeScene`: draw a mesh with its halfedges as arrows inside their faces,
+  highlight elements by role (current, twin, next, prev, origin, tip, face, one-ring),
+  labels, legend, ``preset="large"`` for projectors.
+- Widgets: a view beside buttons and tables; live 3D in JupyterLab, a static image that
+  follows every step elsewhere (:func:`choose_mode`, ``HALFEDGE_EDU_VIZ=static|live``).
+  Each can be driven from code (``w.go("twin")``, ``w.step()``) and says its state in
+  plain text (``w.describe()``).
+
+Nothing here imports pyvista or ipywidgets until a scene or widget is made, and the
+package itself (``import halfedge_edu``) never imports this module.
+"""
+
+from .palette import PRESETS, ROLES
+from .renderer import choose_mode
+from .scene import HalfedgeScene
+from .widgets import HalfedgeExplorer, OneRingViewer
+
+__all__ = [
+    "PRESETS", "ROLES", "choose_mode", "HalfedgeScene", "HalfedgeExplorer", "OneRingViewer",
+]

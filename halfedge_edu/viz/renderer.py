@@ -1,0 +1,103 @@
+"""Where a widget's picture goes: a live 3D view, or a static image redrawn each step.
+
+One widget code path, two renderers:
+
+- ``"live"``: the scene's plotter is shown through PyVista's trame backend inside
+  JupyterLab; a step updates the actors and pushes a frame (``plotter.render()``).
+- ``"static"``: the plotter renders off screen and each step puts a fresh PNG into an
+  ``ipywidgets.Image``. This is what course CI, ``nbconvert``, GitHub's preview and a
+  static HTML export can show.
+
+:func:`choose_mode` picks one: the ``mode`` argument if given, else the environment
+variable ``HALFEDGE_EDU_VIZ`` (``static``, ``live`` or ``auto``), else automatically:
+live only inside a Jupyter kernel with trame available and PyVista's notebook backend
+not forced to something static (``PYVISTA_JUPYTER_BACKEND=static``, as the headless test
+and figure builds set it).
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import os
+
+MODES = ("live", "static")
+ENV_VARIABLE = "HALFEDGE_EDU_VIZ"
+_LIVE_BACKENDS = {"trame", "server", "client"}
+
+
+def choose_mode(mode: str | None = None) -> str:
+    """``"live"`` or ``"static"``, from ``mode``, then ``$HALFEDGE_EDU_VIZ``, then the setting.
+
+    Raises:
+        ValueError: ``mode`` (or the variable) is not ``live``, ``static`` or ``auto``.
+    """
+    source = "mode"
+    if mode is None:
+        mode, source = os.environ.get(ENV_VARIABLE, "auto"), ENV_VARIABLE
+    chosen = str(mode).strip().lower() or "auto"
+    if chosen == "auto":
+        return "live" if live_available() else "static"
+    if chosen not in MODES:
+        raise ValueError(f"{source}={mode!r}: use 'live', 'static' or 'auto'")
+    return chosen
+
+
+def live_available() -> bool:
+    """True inside a Jupyter kernel that can show PyVista's trame view."""
+    try:
+        from IPython import get_ipython
+    except ImportError:
+        return False
+    shell = get_ipython()
+    if shell is None or type(shell).__name__ != "ZMQInteractiveShell":
+        return False
+    if importlib.util.find_spec("trame_pyvista") is None and importlib.util.find_spec("trame") is None:
+        return False
+    backend = os.environ.get("PYVISTA_JUPYTER_BACKEND")
+    if backend is None:
+        import pyvista
+
+        backend = pyvista.global_theme.jupyter_backend
+    # pyvista leaves the backend unset (None) to mean "trame if it is installed".
+    return backend is None or str(backend).lower() in _LIVE_BACKENDS
+
+
+def make_plotter(mode: str, window_size: tuple[int, int]):
+    """A ``pyvista.Plotter`` for ``mode``: off screen for static, notebook-ready for live."""
+    import pyvista as pv
+
+    if mode == "static":
+        return pv.Plotter(off_screen=True, window_size=list(window_size))
+    return pv.Plotter(notebook=True, window_size=list(window_size))
+
+
+class View:
+    """The picture part of a widget, for a scene, in one of the two modes.
+
+    ``view.widget`` is what goes into the widget's layout; ``view.update()`` shows the
+    scene's current state (a new PNG, or a pushed frame).
+    """
+
+    def __init__(self, scene, mode: str):
+        import ipywidgets as widgets
+
+        self.scene = scene
+        self.mode = mode
+        width, height = scene.window_size
+        if mode == "static":
+            self.widget = widgets.Image(format="png", width=width, height=height,
+                                        layout=widgets.Layout(width=f"{width}px", height=f"{height}px",
+                                                              flex="0 0 auto"))
+        else:
+            self.widget = scene.plotter.show(jupyter_backend="trame", return_viewer=True)
+        self.update()
+
+    def update(self) -> None:
+        """Show the scene's current state."""
+        if self.mode == "static":
+            self.widget.value = self.scene.screenshot()
+        else:
+            self.scene.render()
+            update = getattr(self.widget, "update", None)
+            if callable(update):
+                update()
