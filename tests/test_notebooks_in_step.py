@@ -1,0 +1,38 @@
+"""Every chapter notebook matches its source and was executed top to bottom.
+
+nbval (run on notebooks/ by the same pytest command) then checks that today's code
+prints what the stored outputs say. These tests catch the two ways that check could
+be empty: a notebook edited by hand away from its source, or one stored unexecuted.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import nbformat
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tools"))
+from build_notebooks import chapter_sources, in_step  # noqa: E402
+
+SOURCES = chapter_sources([])
+
+
+def test_there_are_chapters():
+    assert len(SOURCES) >= 1
+
+
+@pytest.mark.parametrize("source", SOURCES, ids=[s.stem for s in SOURCES])
+def test_notebook_matches_its_source(source: Path):
+    assert in_step(source) is None
+
+
+@pytest.mark.parametrize("source", SOURCES, ids=[s.stem for s in SOURCES])
+def test_notebook_was_run_top_to_bottom(source: Path):
+    notebook = nbformat.read(ROOT / "notebooks" / (source.stem + ".ipynb"), as_version=4)
+    code = [cell for cell in notebook.cells if cell.cell_type == "code" and cell.source.strip()]
+    counts = [cell.execution_count for cell in code]
+    assert None not in counts, "some code cells were never executed"
+    assert counts == list(range(1, len(code) + 1)), "cells were not run once each, in order, in a fresh kernel"
