@@ -237,6 +237,27 @@ def test_unreferenced_vertices_are_dropped_with_a_warning_keeping_the_order():
     mesh.validate()
 
 
+@pytest.mark.parametrize(
+    "faces, element",
+    [
+        ([[1, 2, 3], [1, 4, 5]], ("vertex", 1)),
+        ([[1, 2, 3], [2, 1, 4], [2, 1, 5]], ("edge", (1, 2))),
+        ([[1, 2, 3], [1, 2, 4]], ("edge", (1, 2))),
+        ((_two_tetrahedra_sharing_vertex_0()[1] + 1).tolist(), ("vertex", 1)),
+    ],
+    ids=["bowtie", "edge with three faces", "flipped face", "two closed fans"],
+)
+def test_errors_name_vertices_as_numbered_in_the_input_even_when_some_are_dropped(faces, element):
+    # Vertex 0 is used by no face and is dropped before the halfedges are built; the
+    # error must still name the vertices the way the caller (or the file) numbers them.
+    vertices = np.arange(3.0 * (1 + np.max(faces))).reshape(-1, 3)
+    with pytest.warns(hx.MeshWarning), pytest.raises(hx.MeshInputError) as caught:
+        hx.HalfedgeMesh.from_faces(vertices, faces)
+    assert caught.value.element == element
+    name = f"vertex {element[1]}" if element[0] == "vertex" else str(element[1])
+    assert name in str(caught.value)
+
+
 def test_a_pillow_of_two_triangles_is_a_valid_closed_mesh():
     mesh = hx.HalfedgeMesh.from_faces(np.eye(3), [[0, 1, 2], [0, 2, 1]])
     mesh.validate()
