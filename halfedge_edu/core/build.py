@@ -292,12 +292,16 @@ def build_arrays(
     faces: np.ndarray,
     face_lines: np.ndarray | None = None,
     source: str | None = None,
+    vertex_ids: np.ndarray | None = None,
 ) -> HalfedgeArrays:
     """Build the halfedge arrays with whole-array operations (no Python loop per face).
 
     ``positions`` (n, 3) and ``faces`` (m, 3) must already have passed
     :func:`check_input`, and every vertex must be used by a face. The numbering is the
     one described in the module docstring, identical to :func:`build_reference`.
+    ``vertex_ids`` (n,), if given, is the caller's number of each vertex (the ``kept``
+    of :func:`drop_unreferenced`); error messages use it, so that they name vertices
+    the way the input numbered them.
 
     Raises:
         MeshInputError: an edge with more than two faces, a directed edge used twice
@@ -308,6 +312,7 @@ def build_arrays(
     n_vertices = len(positions)
     n_faces = len(faces)
     n_corners = 3 * n_faces
+    name = _vertex_namer(vertex_ids)
 
     # Directed edge number p = 3 * face + corner runs from tail[p] to head[p].
     corners = np.asarray(faces, dtype=INDEX)                  # (m, 3)
@@ -320,7 +325,7 @@ def build_arrays(
     same_as_next = sorted_key[1:] == sorted_key[:-1]          # (3m - 1,)
     del sorted_key
     if (same_as_next[1:] & same_as_next[:-1]).any():
-        _raise_crowded_edge(order, same_as_next, tail, head, face_lines, source)
+        _raise_crowded_edge(order, same_as_next, tail, head, face_lines, source, name)
     pair = np.flatnonzero(same_as_next)                       # (P,) where each pair starts
     first_p = order[pair]                                     # first use of each shared edge
     second_p = order[pair + 1]                                # second use (first_p < second_p)
@@ -332,12 +337,13 @@ def build_arrays(
         where = int(np.flatnonzero(same_direction)[0])
         p, q = int(first_p[where]), int(second_p[where])
         f, g = p // 3, q // 3
+        a, b = name(tail[p]), name(head[p])
         raise MeshInputError(
-            f"directed edge ({int(tail[p])}, {int(head[p])}) is used by two faces, "
+            f"directed edge ({a}, {b}) is used by two faces, "
             f"face {f}{_where(f, face_lines, source)} and face {g}{_where(g, face_lines, source)}: "
             f"neighbouring faces must run along a shared edge in opposite directions "
             f"(the faces are inconsistently oriented, or one is a duplicate)",
-            element=("edge", (int(tail[p]), int(head[p]))),
+            element=("edge", (a, b)),
             line=_line(g, face_lines),
         )
 
@@ -382,9 +388,9 @@ def build_arrays(
     if (count > 1).any():
         vertex = int(np.flatnonzero(count > 1)[0])
         raise MeshInputError(
-            f"vertex {vertex} is non-manifold: its faces form more than one fan "
+            f"vertex {name(vertex)} is non-manifold: its faces form more than one fan "
             f"(it lies on {int(count[vertex])} separate pieces of boundary)",
-            element=("vertex", vertex),
+            element=("vertex", name(vertex)),
         )
     outgoing_boundary = np.full(n_vertices, -1, dtype=INDEX)
     outgoing_boundary[boundary_origin] = boundary
@@ -408,8 +414,15 @@ def build_arrays(
         halfedge_face=halfedge_face,
         face_halfedge=face_halfedge,
     )
-    _check_single_fans(arrays)
+    _check_single_fans(arrays, name)
     return arrays
+
+
+def _vertex_namer(vertex_ids: np.ndarray | None):
+    """``name(v)``: the number the caller gave vertex ``v`` (for messages)."""
+    if vertex_ids is None:
+        return int
+    return lambda v: int(vertex_ids[v])
 
 
 def _sort_undirected(tail: np.ndarray, head: np.ndarray, n_vertices: int):
@@ -442,14 +455,14 @@ def _sort_undirected(tail: np.ndarray, head: np.ndarray, n_vertices: int):
     return order, key[order]
 
 
-def _raise_crowded_edge(order, same_as_next, tail, head, face_lines, source):
+def _raise_crowded_edge(order, same_as_next, tail, head, face_lines, source, name=int):
     """Raise the error for the first edge that has more than two faces."""
     start = int(np.flatnonzero(same_as_next[1:] & same_as_next[:-1])[0])
     end = start + 1
     while end < len(same_as_next) and same_as_next[end]:
         end += 1
     members = order[start: end + 1]
-    a, b = int(tail[members[0]]), int(head[members[0]])
+    a, b = name(tail[members[0]]), name(head[members[0]])
     faces = [int(p) // 3 for p in members]
     listed = ", ".join(f"{f}{_where(f, face_lines, source)}" for f in faces)
     raise MeshInputError(
@@ -460,7 +473,7 @@ def _raise_crowded_edge(order, same_as_next, tail, head, face_lines, source):
     )
 
 
-def _check_single_fans(arrays: HalfedgeArrays) -> None:
+def _check_single_fans(arrays: HalfedgeArrays, name=int) -> None:
     """Raise if some vertex's faces form more than one fan (an 'hourglass' vertex).
 
     Walking counter-clockwise from a vertex's halfedge must meet every one of its
@@ -473,7 +486,7 @@ def _check_single_fans(arrays: HalfedgeArrays) -> None:
     if int(ring_length.sum()) == len(arrays.halfedge_prev):
         return
     degree = np.bincount(arrays.halfedge_vertex, minlength=n_vertices)
-    vertex = int(np.flatnonzero(ring_length != degree)[0])
+    vertex = name(np.flatnonzero(ring_length != degree)[0])
     raise MeshInputError(
         f"vertex {vertex} is non-manifold: its faces form more than one fan "
         f"(like two cones touching at their tips), so one halfedge pointer cannot "

@@ -138,8 +138,9 @@ class HalfedgeMesh:
         vertices keep their order.
         """
         positions, face_array = check_input(vertices, faces, face_lines, source)
-        positions, face_array, _ = drop_unreferenced(positions, face_array)
-        return cls(build_arrays(positions, face_array, face_lines, source))
+        positions, face_array, kept = drop_unreferenced(positions, face_array)
+        # Errors name vertices by ``kept``: the caller's numbers, not the compacted ones.
+        return cls(build_arrays(positions, face_array, face_lines, source, vertex_ids=kept))
 
     @classmethod
     def from_trimesh(cls, tm) -> "HalfedgeMesh":
