@@ -1,12 +1,13 @@
 """Whole-mesh algorithms: each reads a mesh and returns a new one (the input is never modified)."""
 
 from .bezier import bezier_curve, bezier_surface, bezier_surface_points, de_casteljau, grid_triangles
-from .loop import loop_positions, loop_subdivide
+from .loop import LoopStep, loop_positions, loop_subdivide, loop_subdivide_by_operations
 from .normals import corner_angles, face_areas, face_normals, vertex_normals
 from .smoothing import smooth, smooth_reference
 
 __all__ = [
-    "bezier_curve", "bezier_surface", "bezier_surface_points", "corner_angles", "de_casteljau",
-    "face_areas", "face_normals", "grid_triangles", "loop_positions", "loop_subdivide",
-    "smooth", "smooth_reference", "vertex_normals",
+    "LoopStep", "bezier_curve", "bezier_surface", "bezier_surface_points", "corner_angles",
+    "de_casteljau", "face_areas", "face_normals", "grid_triangles", "loop_positions",
+    "loop_subdivide", "loop_subdivide_by_operations", "smooth", "smooth_reference",
+    "vertex_normals",
 ]

@@ -42,9 +42,11 @@ old and a new vertex, then move everything) is :func:`loop_subdivide_by_operatio
 
 from __future__ import annotations
 
+from typing import Callable, NamedTuple
+
 import numpy as np
 
-from ..core import HalfedgeMesh
+from ..core import Edge, HalfedgeMesh, Vertex
 from ..core.build import INDEX, HalfedgeArrays
 from ._progress import progress_range
 
@@ -228,3 +230,91 @@ def _refined_arrays(mesh: HalfedgeMesh, weights: str) -> HalfedgeArrays:
         halfedge_face=face,
         face_halfedge=face_halfedge.astype(INDEX),
     )
+
+
+# --------------------------------------------------------------------------------------
+# The course's route: split every edge, flip, then move (local operations, slow)
+# --------------------------------------------------------------------------------------
+
+class LoopStep(NamedTuple):
+    """One step of :func:`loop_subdivide_by_operations`, as passed to ``on_step``.
+
+    Attributes:
+        phase: ``"split"``, ``"flip"`` or ``"reposition"``.
+        number: 0, 1, 2, ... counting the steps of this phase.
+        element: the new :class:`Vertex` (split), the flipped :class:`Edge` (flip), or
+            None (reposition, which is one step for all vertices).
+        mesh: the mesh being worked on, right after the step. It keeps changing;
+            take ``step.mesh.copy()`` to keep a picture of it.
+    """
+
+    phase: str
+    number: int
+    element: Vertex | Edge | None
+    mesh: HalfedgeMesh
+
+
+def loop_subdivide_by_operations(
+    mesh: HalfedgeMesh,
+    *,
+    weights: str = "warren",
+    on_step: Callable[[LoopStep], None] | None = None,
+) -> HalfedgeMesh:
+    """One level of Loop subdivision the way the course builds it, with local operations.
+
+    1. Compute every new position from the old mesh (:func:`loop_positions`), before
+       any connectivity changes.
+    2. Split every original edge (``ops.split``) at its midpoint. Splitting edge ``e``
+       adds vertex ``V + e``, because the edges are split in index order and a split
+       appends its vertex; the split also adds one or two edges cutting *across* the
+       neighbouring triangles, and those are remembered.
+    3. Flip every remembered edge that joins an old vertex and a new one
+       (``ops.flip``). Cross edges joining two new vertices stay: they are the sides
+       of the centre triangles. Now every old triangle is four.
+    4. Move every vertex to the position computed in step 1.
+
+    Args:
+        mesh: the mesh to subdivide (not modified).
+        weights: ``"warren"`` or ``"loop"``, as for :func:`loop_subdivide`.
+        on_step: called with a :class:`LoopStep` after every split, every flip and
+            the final repositioning, for a stepper that shows the work.
+
+    Returns:
+        A new mesh with the same vertices, positions and faces as
+        ``loop_subdivide(mesh, weights=weights)``: old vertices keep their indices and
+        the edge point of edge ``e`` is vertex ``V + e`` (of the compacted mesh). The
+        faces are the same triangles, in a different order, and the edge numbering
+        differs.
+
+    Attention: one Python step per edge; use :func:`loop_subdivide` on big meshes.
+    """
+    from ..ops import flip, split
+
+    if weights not in VERTEX_WEIGHTS:
+        raise ValueError(f"weights must be one of {VERTEX_WEIGHTS}, got {weights!r}")
+    work = mesh.copy()
+    if work.has_garbage:
+        work.garbage_collect()
+    n_old_vertices, n_old_edges = work.n_vertex_slots, work.n_edge_slots
+    report = on_step if on_step is not None else (lambda step: None)
+
+    vertex_points, edge_points = loop_positions(work, weights)     # 1. from the old mesh
+
+    across = []                                                    # 2. split every old edge
+    for e in range(n_old_edges):
+        ends = {int(v) for v in work.edge(e).vertices}
+        m = split(work, e)
+        across += [h.edge.index for h in m.outgoing() if h.tip.index not in ends]
+        report(LoopStep("split", e, m, work))
+
+    flips = 0                                                      # 3. flip old-new cross edges
+    for e in across:
+        a, b = (int(v) for v in work.edge(e).vertices)
+        if (a < n_old_vertices) != (b < n_old_vertices):
+            report(LoopStep("flip", flips, flip(work, e), work))
+            flips += 1
+
+    work.positions[:n_old_vertices] = vertex_points                # 4. move everything
+    work.positions[n_old_vertices:] = edge_points
+    report(LoopStep("reposition", 0, None, work))
+    return work

@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 from scipy.spatial import cKDTree
 
 import halfedge_edu as hx
-from halfedge_edu.algorithms import face_normals, loop_subdivide
+from halfedge_edu.algorithms import face_normals, loop_subdivide, loop_subdivide_by_operations
 from tests import strategies as shapes
 from tests.strategies import build, cases, closed_meshes, meshes
 
@@ -209,6 +209,33 @@ def test_deleted_elements_are_compacted_first():
 
 def test_progress_bar_gives_the_same_mesh(icosphere):
     assert np.array_equal(loop_subdivide(icosphere, 2, progress=True).positions, loop_subdivide(icosphere, 2).positions)
+
+
+@given(meshes(), st.sampled_from(["warren", "loop"]))
+def test_the_course_route_by_operations_gives_the_same_mesh(drawn, weights):
+    # Split every edge, flip old-new cross edges, move: the same vertices (same numbers,
+    # bit-identical positions) and the same triangles, only the face order differs.
+    mesh = build(drawn)
+    before = mesh.copy()
+    by_operations = loop_subdivide_by_operations(mesh, weights=weights)
+    direct = loop_subdivide(mesh, weights=weights)
+    by_operations.validate()
+    assert np.array_equal(by_operations.positions, direct.positions)
+    assert canonical_faces(by_operations.face_vertices()) == canonical_faces(direct.face_vertices())
+    assert np.array_equal(mesh.positions, before.positions)
+    assert np.array_equal(mesh.halfedge_next, before.halfedge_next)
+
+
+def test_the_course_route_reports_its_steps_in_order(square):
+    steps = []
+    loop_subdivide_by_operations(square, on_step=lambda step: steps.append((step.phase, step.number, step.element)))
+    phases = [phase for phase, _, _ in steps]
+    assert phases == ["split"] * 5 + ["flip"] * 2 + ["reposition"]
+    # Splitting edge e (in index order) adds vertex V + e = 4 + e.
+    assert [element.index for phase, _, element in steps if phase == "split"] == [4, 5, 6, 7, 8]
+    assert [number for phase, number, _ in steps if phase == "flip"] == [0, 1]
+    assert all(isinstance(element, hx.Edge) for phase, _, element in steps if phase == "flip")
+    assert steps[-1][2] is None
 
 
 @pytest.mark.parametrize("arguments", [{"levels": -1}, {"levels": 0.5}, {"weights": "catmull-clark"}])
