@@ -6,9 +6,11 @@ import numpy as np
 import pytest
 import trimesh
 from hypothesis import given
+from hypothesis import strategies as st
 
 import halfedge_edu as hx
 from halfedge_edu.core.manifold import manifold_report
+from tests import strategies as shapes
 from tests.strategies import build, disjoint_union, meshes, square, tetrahedron
 
 ARRAY_NAMES = (
@@ -27,6 +29,21 @@ def test_strategies_draw_manifold_meshes(drawn):
     assert np.array_equal(np.unique(faces), np.arange(len(vertices)))
 
 
+def _canonical_rows(faces: np.ndarray) -> set[tuple[int, int, int]]:
+    """Each face rotated to start at its smallest vertex (rotation keeps orientation)."""
+    return {tuple(np.roll(row, -int(np.argmin(row))).tolist()) for row in faces}
+
+
+@given(st.integers(0, 2**32 - 1))
+def test_relabel_shuffles_numbering_but_keeps_the_oriented_surface(seed):
+    vertices, faces = shapes.torus(5, 4)
+    new_vertices, new_faces = shapes.relabel(vertices, faces, np.random.default_rng(seed))
+    # Positions are distinct, so each new vertex can be traced back to its old number.
+    old_number = {tuple(p): k for k, p in enumerate(vertices.tolist())}
+    traced = np.array([old_number[tuple(p)] for p in new_vertices.tolist()])[new_faces]
+    assert _canonical_rows(traced) == _canonical_rows(faces)
+
+
 @given(meshes())
 def test_vectorized_build_equals_reference_loop(drawn):
     vertices, faces = drawn
@@ -34,6 +51,22 @@ def test_vectorized_build_equals_reference_loop(drawn):
     reference = hx.build_reference(faces, n_vertices=len(vertices))
     for name in ARRAY_NAMES:
         assert np.array_equal(getattr(mesh, name), getattr(reference, name)), name
+
+
+@given(meshes())
+def test_both_sorting_paths_order_directed_edges_alike(drawn):
+    # Small meshes pack the position into the key; huge vertex counts fall back to a
+    # stable argsort. Both must list directed edges by (low, high) vertex, ties in order.
+    from halfedge_edu.core.build import _sort_undirected
+
+    _, faces = drawn
+    tail = faces.reshape(-1).astype(np.int32)
+    head = faces[:, [1, 2, 0]].reshape(-1).astype(np.int32)
+    expected = np.lexsort((np.arange(len(tail)), np.maximum(tail, head), np.minimum(tail, head)))
+    packed_order, _ = _sort_undirected(tail, head, int(faces.max()) + 1)
+    fallback_order, _ = _sort_undirected(tail, head, 2**31 - 1)
+    assert np.array_equal(packed_order, expected)
+    assert np.array_equal(fallback_order, expected)
 
 
 def test_two_triangle_square_is_numbered_as_in_the_course():
