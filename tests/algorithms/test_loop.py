@@ -137,6 +137,45 @@ def test_counts_and_topology(case, levels):
     assert fine.is_closed == (case.n_boundary_loops == 0)
 
 
+def _with_twins_swapped(mesh, edges):
+    """The same mesh with halfedges 2e and 2e + 1 of each edge in ``edges`` exchanged.
+
+    ``from_faces`` always puts a boundary edge's missing face on ``2e + 1``; meshes
+    edited by local operations need not, and this builds such a mesh directly.
+    """
+    from halfedge_edu.core.build import HalfedgeArrays
+
+    swap = np.arange(mesh.n_halfedge_slots)
+    for e in edges:
+        swap[[2 * e, 2 * e + 1]] = [2 * e + 1, 2 * e]         # an involution: old <-> new
+    arrays = HalfedgeArrays(
+        positions=mesh.positions.copy(),
+        vertex_halfedge=swap[mesh.vertex_halfedge],
+        halfedge_next=swap[mesh.halfedge_next][swap],
+        halfedge_prev=swap[mesh.halfedge_prev][swap],
+        halfedge_vertex=mesh.halfedge_vertex[swap],
+        halfedge_face=mesh.halfedge_face[swap],
+        face_halfedge=swap[mesh.face_halfedge],
+    )
+    swapped = hx.HalfedgeMesh(arrays)
+    swapped.validate()
+    return swapped
+
+
+def test_boundary_on_the_even_halfedge_of_an_edge(grid):
+    boundary_edges = np.flatnonzero(grid.halfedge_face[1::2] < 0)
+    swapped = _with_twins_swapped(grid, boundary_edges[::2])
+    assert (swapped.halfedge_face[0::2] < 0).any()
+    once = loop_subdivide(swapped)
+    once.validate()
+    assert np.allclose(once.positions, loop_subdivide(grid).positions)
+    # The children of a swapped edge are numbered from its other end, so compare the
+    # second level against the rules rather than against the unswapped mesh.
+    twice = loop_subdivide(once)
+    twice.validate()
+    assert np.allclose(twice.positions, written_out_loop(*once.to_arrays(), once.edge_vertices()))
+
+
 def test_children_face_the_same_way_as_their_parent():
     sphere = hx.HalfedgeMesh.from_faces(*shapes.icosphere(1))
     fine = loop_subdivide(sphere)
