@@ -118,11 +118,14 @@ class OperationLog:
         if self.named:
             lines.append("gathered: " + ", ".join(f"{n} = {k} {i}" for n, (k, i) in self.named.items()))
         lines += self.notes
-        starts = dict(self.phases)
-        for position, change in enumerate(self.changes):
-            if position in starts:
-                lines.append(f"# {starts[position]}")
-            lines.append(change.describe())
+        bounds = [start for start, _ in self.phases[1:]] + [len(self.changes)]
+        if self.phases and self.phases[0][0] > 0:
+            lines += [change.describe() for change in self.changes[: self.phases[0][0]]]
+        for (start, title), end in zip(self.phases, bounds):
+            lines.append(f"# {title}")
+            lines += [change.describe() for change in self.changes[start:end]] or ["(nothing to change here)"]
+        if not self.phases:
+            lines += [change.describe() for change in self.changes]
         if self.created:
             lines.append("created: " + ", ".join(f"{k} {i}" for k, i in self.created))
         if self.deleted:

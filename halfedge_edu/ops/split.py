@@ -33,7 +33,13 @@ the edges to ``v2`` and ``v3`` are the new ones cutting across: the convention L
 subdivision relies on. When the edge is a boundary edge whose halfedge ``2e`` has no
 face, ``h0`` is ``2e + 1`` instead, so ``h0`` always has a face.
 
-Any edge can be split, so ``can_split`` only checks the argument. Constant work.
+Almost any edge can be split. The one rule (``can_split``, its ``.rule`` name):
+
+* ``back-to-back``: both triangles beside an interior edge have the same opposite
+  vertex (two triangles glued back to back, a 3-vertex "pillow"); the new vertex would
+  be joined to it by two edges.
+
+Constant work.
 """
 
 from __future__ import annotations
@@ -51,10 +57,27 @@ __all__ = ["can_split", "split"]
 
 
 def can_split(mesh: "HalfedgeMesh", edge) -> OpCheck:
-    """Whether ``edge`` can be split: always, for an edge that exists (truthy :class:`OpCheck`)."""
+    """Whether ``edge`` can be split: a truthy :class:`OpCheck`, or falsy with the reason."""
     e, _ = edge_argument(mesh, edge, "split")
-    where = "boundary" if mesh.edge(e).is_boundary else "interior"
-    return OpCheck.ok(f"{where} edge {e} can be split")
+    return _check(mesh, e)
+
+
+def _check(mesh: "HalfedgeMesh", e: int) -> OpCheck:
+    origin_of, prev_of, face_of = mesh._halfedge_vertex.item, mesh._halfedge_prev.item, mesh._halfedge_face.item
+    h0, h1 = 2 * e, 2 * e + 1
+    v0, v1 = origin_of(h0), origin_of(h1)
+    if face_of(h0) < 0 or face_of(h1) < 0:
+        return OpCheck.ok(f"boundary edge {e} (vertices {v0} and {v1}) can be split")
+    v2, v3 = origin_of(prev_of(h0)), origin_of(prev_of(h1))
+    if v2 == v3:
+        return OpCheck.refuse(
+            "back-to-back",
+            f"both triangles beside edge {e} (vertices {v0} and {v1}) have vertex {v2} opposite it: "
+            f"they are glued back to back, and splitting the edge would join the new vertex to "
+            f"vertex {v2} by two different edges.",
+            (("edge", e), ("vertex", v2)),
+        )
+    return OpCheck.ok(f"edge {e} (vertices {v0} and {v1}) can be split")
 
 
 def split(mesh: "HalfedgeMesh", edge, position=None, *, log: OperationLog | None = None) -> Vertex:
@@ -69,11 +92,15 @@ def split(mesh: "HalfedgeMesh", edge, position=None, *, log: OperationLog | None
         The new vertex ``m``. Its halfedge runs along the original edge.
 
     Raises:
+        TopologyError: the split is not allowed (the reason says why); the mesh is unchanged.
         IndexError: there is no such edge, or it was deleted.
         ValueError: ``position`` is not three finite numbers (the mesh is unchanged).
     """
     e, _ = edge_argument(mesh, edge, "split")
     position = position_argument(position, "split")
+    check = _check(mesh, e)
+    if not check:
+        raise check.error()
 
     # Gather, as for flip; at the boundary h1 has no face and v3, f1 do not exist.
     next_of, prev_of = mesh._halfedge_next.item, mesh._halfedge_prev.item

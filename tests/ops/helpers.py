@@ -96,3 +96,21 @@ def open_tetrahedron() -> hx.HalfedgeMesh:
     """A tetrahedron without its bottom face: apex 0 over a triangular hole 1 - 2 - 3."""
     vertices = [[0, 0, 1], [1, 0, 0], [-0.5, 0.8, 0], [-0.5, -0.8, 0]]
     return hx.HalfedgeMesh.from_faces(vertices, [[0, 1, 2], [0, 2, 3], [0, 3, 1]])
+
+
+_ARRAYS = (
+    "_positions", "_vertex_halfedge", "_halfedge_next", "_halfedge_prev", "_halfedge_vertex",
+    "_halfedge_face", "_face_halfedge", "_vertex_deleted", "_edge_deleted", "_face_deleted",
+)
+
+
+def assert_replay_gives(before: hx.HalfedgeMesh, after: hx.HalfedgeMesh, log) -> None:
+    """Replaying ``log``'s changes on a copy of ``before`` gives ``after`` exactly.
+
+    So the log is complete: no pointer was changed without a line saying so.
+    """
+    replayed = before.copy()
+    log.replay(replayed)
+    for name in _ARRAYS:
+        np.testing.assert_array_equal(getattr(replayed, name), getattr(after, name), err_msg=name)
+    assert counts(replayed) == counts(after)

@@ -6,23 +6,9 @@ import numpy as np
 import pytest
 
 from halfedge_edu.data import sample
-from halfedge_edu.ops import OperationLog, PointerChange, flip, split
+from halfedge_edu.ops import OperationLog, PointerChange, collapse, flip, split
 from halfedge_edu.ops import log as log_module
-
-ARRAYS = (
-    "_positions", "_vertex_halfedge", "_halfedge_next", "_halfedge_prev", "_halfedge_vertex",
-    "_halfedge_face", "_face_halfedge", "_vertex_deleted", "_edge_deleted", "_face_deleted",
-)
-
-
-def assert_replay_gives(before, after, log: OperationLog) -> None:
-    """Replaying the log's changes on ``before`` must give ``after`` exactly: nothing is missing."""
-    replayed = before.copy()
-    log.replay(replayed)
-    for name in ARRAYS:
-        np.testing.assert_array_equal(getattr(replayed, name), getattr(after, name), err_msg=name)
-    assert (replayed.n_vertices, replayed.n_edges, replayed.n_faces) == (after.n_vertices, after.n_edges, after.n_faces)
-
+from tests.ops.helpers import assert_replay_gives
 
 def logged(operation, mesh, *args, **kwargs):
     before = mesh.copy()
@@ -108,3 +94,27 @@ def test_split_log_replays_and_names_the_new_elements(name, edge):
     assert log.operation == "split" and log.named["m"] == ("vertex", m.index)
     assert ("vertex", m.index) in log.created and log.deleted == []
     assert list(log.named)[:4] == ["h0", "h1", "h2", "h3"]
+
+
+def test_collapse_log_names_va_vb_and_the_halfedges_around_them():
+    log, survivor = logged(collapse, sample("single_collapse"), 0)
+    assert log.operation == "collapse" and log.halfedge == 0
+    assert log.named["vA"] == ("vertex", survivor.index) and log.named["vB"] == ("vertex", 0)
+    assert list(log.named)[:4] == ["vA", "vB", "h_BA", "h_AB"]
+    for name in ("h_A_L", "h_L_B", "h_L_A", "h_B_L", "h_B_R", "h_R_A", "h_R_B", "h_A_R"):
+        assert log.named[name][0] == "halfedge"
+    assert log.named["vL"] == ("vertex", 4) and log.named["vR"] == ("vertex", 8)
+    assert ("vertex", 0) in log.deleted and ("face", 0) in log.deleted and log.created == []
+    assert log.changes[0].field == "position"
+    assert any("removed" in note for note in log.notes)
+
+
+@pytest.mark.parametrize(("name", "halfedge"), [("cube", 0), ("cube", 1), ("strip", 0), ("strip", 1), ("open_patch", 2)])
+def test_collapse_log_replays_in_every_case(name, halfedge):
+    mesh = sample(name)
+    logged(collapse, mesh, mesh.halfedge(halfedge))
+
+
+def test_an_empty_step_is_described_as_such():
+    log, _ = logged(collapse, sample("cube"), 0)  # vB has degree 3: no other halfedge moves
+    assert "(nothing to change here)" in log.describe()

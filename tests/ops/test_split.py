@@ -6,8 +6,9 @@ import numpy as np
 import pytest
 
 from halfedge_edu.data import sample
-from halfedge_edu.ops import can_split, split
-from tests.ops.helpers import assert_same_mesh, assert_unchanged, counts, snapshot
+import halfedge_edu as hx
+from halfedge_edu.ops import can_split, collapse, split
+from tests.ops.helpers import assert_same_mesh, assert_unchanged, counts, pillow, snapshot
 
 STRIP_VERTICES = [[0, 0, 0], [1, 0, 0], [0.5, 1, 0], [1.5, 1, 0], [2, 0, 0]]
 
@@ -93,3 +94,23 @@ def test_the_mesh_method_is_the_same_operation():
     m = mesh.split(3, position=None)
     mesh.validate()
     assert m.index == 8 and mesh.n_faces == 14
+
+
+def test_split_of_a_boundary_edge_stored_hole_side_first():
+    strip = sample("strip")
+    collapse(strip, 0)  # leaves edge 1 with its face on halfedge 3 and the hole on 2
+    assert strip.halfedge_face[2] < 0 <= strip.halfedge_face[3]
+    m = split(strip, 1)
+    strip.validate()
+    assert m.is_boundary and m.halfedge.is_boundary
+    assert counts(strip) == (5, 7, 3)
+
+
+def test_two_triangles_back_to_back_cannot_be_split():
+    mesh = pillow()
+    before = snapshot(mesh)
+    check = can_split(mesh, 0)
+    assert not check and check.rule == "back-to-back" and "two different edges" in check.reason
+    with pytest.raises(hx.TopologyError):
+        split(mesh, 0)
+    assert_unchanged(mesh, before)
