@@ -1,0 +1,430 @@
+"""Checks for the exercises of chapters 06 and 07: ``check_flip`` and ``check_collapse``.
+
+A learner writes one local operation; the check runs it on copies of small meshes, step
+by step, and after every step compares the learner's mesh with the package's own
+operation. It stops at the *first* difference and explains it in a sentence that names
+the mesh, the edge, the element that is wrong and the rule it breaks, using the names
+of the operation's picture (``h0 ... h5, v0 ... v3`` for a flip, ``vA, vB, h_A_L ...``
+for a collapse)::
+
+    from halfedge_edu.exercises.ops_checks import check_flip, check_collapse
+    check_flip(my_flip)            # "Not yet. On 'strip', flipping edge 2: ..." or a congratulation
+    check_collapse(my_collapse)
+    check_flip(my_flip).show()     # the offending element, drawn on the mesh before the step
+
+The contracts (also stated in the chapters):
+
+* ``flip(mesh, e)``: ``e`` is an edge index (an int) of an interior edge that may be
+  flipped. Edit the mesh in place, writing the arrays ``mesh.halfedge_next``,
+  ``halfedge_prev``, ``halfedge_vertex``, ``halfedge_face``, ``vertex_halfedge`` and
+  ``face_halfedge``. Edge ``e`` must afterwards join the two vertices that were opposite
+  it; no element is created, deleted or moved.
+* ``collapse(mesh, h)``: ``h`` is a halfedge index (an int) of an interior edge that may
+  be collapsed. ``h`` runs from ``vB``, the vertex that goes, to ``vA``, the vertex that
+  stays and moves to the edge's midpoint. Delete (with ``mesh.delete_vertex``,
+  ``delete_edge``, ``delete_face``) ``vB``, the edge, both its faces and one more edge of
+  each of those faces; which of the two edges that become one is kept is up to you.
+
+"Compared with the reference" means *up to relabelling*: every face is written as the
+positions of its three corners, in counter-clockwise order, and the two meshes must
+have the same faces. A flip or collapse that keeps other halfedge numbers than the
+library's is just as right.
+
+Callers never need to run the package's operations themselves: the meshes, the edges
+and the expected results all come from here. Nothing here imports pyvista; only
+``CheckResult.show()`` draws.
+"""
+
+from __future__ import annotations
+
+import re
+from typing import Callable
+
+import numpy as np
+
+from halfedge_edu.core.errors import MeshInvariantError
+from halfedge_edu.core.mesh import HalfedgeMesh
+from halfedge_edu.data import sample
+from halfedge_edu.ops import OperationLog, can_collapse, can_flip, collapse, flip
+
+from .checks import TIME_LIMIT, CheckResult, _failed, _passed, _run
+
+__all__ = ["check_collapse", "check_flip", "collapse_cases", "flip_cases"]
+
+#: Decimals that positions are rounded to when faces are compared by their corners.
+_DECIMALS = 9
+
+
+# --------------------------------------------------------------------------------------
+# The meshes and edges
+# --------------------------------------------------------------------------------------
+
+def _random_steps(mesh: HalfedgeMesh, allowed, operate, count: int, seed: int, *, halfedges: bool) -> list[int]:
+    """``count`` random allowed steps, each on the mesh as the earlier steps left it.
+
+    Returns edge indices (or halfedge indices when ``halfedges``); ``mesh`` is not changed.
+    """
+    rng = np.random.default_rng(seed)
+    work = mesh.copy()
+    steps = []
+    for _ in range(count):
+        live = np.flatnonzero(~work.edge_deleted)
+        for e in rng.permutation(live):
+            if not work.edge(int(e)).is_boundary and allowed(work, int(e)):
+                break
+        else:
+            break
+        step = 2 * int(e) + int(rng.integers(0, 2)) if halfedges else int(e)
+        operate(work, step)
+        steps.append(step)
+    return steps
+
+
+def flip_cases() -> list[tuple[str, HalfedgeMesh, list[int]]]:
+    """What ``check_flip`` runs: ``(name, mesh, edges)``, the edges flipped one after another.
+
+    Small meshes first, where a mistake is easy to draw, then a run of random flips on
+    an icosphere. Every listed flip is allowed at the moment it is made.
+    """
+    strip = sample("strip")
+    cube = sample("cube")
+    single = sample("single_collapse")
+    sphere = sample("icosphere", subdivisions=1)
+    flip_edge = lambda mesh, e: flip(mesh, e)  # noqa: E731
+    return [
+        ("strip", strip, [int(strip.find_edge(1, 2))]),
+        ("cube", cube, [int(cube.find_edge(2, 4)), int(cube.find_edge(4, 6))]),
+        ("single_collapse", single, [0, int(single.find_edge(1, 3))]),
+        ("icosphere, 6 random flips", sphere, _random_steps(sphere, can_flip, flip_edge, 6, seed=6, halfedges=False)),
+    ]
+
+
+def collapse_cases() -> list[tuple[str, HalfedgeMesh, list[int]]]:
+    """What ``check_collapse`` runs: ``(name, mesh, halfedges)``, collapsed one after another.
+
+    Each halfedge runs from the vertex that goes (vB) to the one that stays (vA). The
+    cube's halfedge 0 removes vertex 0, of degree 3 (the case where the faces beyond
+    both removed edges are one and the same face); halfedge 1 removes vertex 4, of
+    degree 5; ``single_collapse`` removes a vertex of degree 6.
+    """
+    single = sample("single_collapse")
+    sphere = sample("icosphere", subdivisions=1)
+    collapse_halfedge = lambda mesh, h: collapse(mesh, mesh.halfedge(h))  # noqa: E731
+    return [
+        ("single_collapse", single, [0]),
+        ("cube, removing the degree-3 vertex 0", sample("cube"), [0]),
+        ("cube, removing vertex 4 (degree 5)", sample("cube"), [1]),
+        ("icosphere, 6 random collapses", sphere,
+         _random_steps(sphere, can_collapse, collapse_halfedge, 6, seed=7, halfedges=True)),
+    ]
+
+
+# --------------------------------------------------------------------------------------
+# Comparing two meshes up to relabelling
+# --------------------------------------------------------------------------------------
+
+def _corner_faces(mesh: HalfedgeMesh) -> dict[tuple, int]:
+    """Every live face as the rounded positions of its corners, rotated to a fixed start.
+
+    Maps ``((x, y, z), (x, y, z), (x, y, z))`` (counter-clockwise, smallest corner
+    first) to the face index.
+    """
+    corners = mesh.face_vertices()
+    positions = np.round(mesh.positions, _DECIMALS) + 0.0
+    faces = {}
+    for f in np.flatnonzero(~mesh.face_deleted):
+        points = [tuple(float(c) for c in positions[v]) for v in corners[f]]
+        k = points.index(min(points))
+        faces[tuple(points[k:] + points[:k])] = int(f)
+    return faces
+
+
+def _vertex_at(mesh: HalfedgeMesh, point: tuple) -> int:
+    """The live vertex at ``point`` (rounded positions), or -1."""
+    close = np.flatnonzero(~mesh.vertex_deleted & np.all(np.round(mesh.positions, _DECIMALS) == point, axis=1))
+    return int(close[0]) if len(close) else -1
+
+
+def _face_words(mesh: HalfedgeMesh, corner_points: tuple) -> str:
+    return "(" + ", ".join(str(_vertex_at(mesh, p)) for p in corner_points) + ")"
+
+
+def _compare_faces(yours: HalfedgeMesh, wanted: HalfedgeMesh) -> str | None:
+    """None if both meshes have the same faces (by corner positions); else what differs."""
+    have, want = _corner_faces(yours), _corner_faces(wanted)
+    missing = [key for key in want if key not in have]
+    extra = [key for key in have if key not in want]
+    if not missing and not extra:
+        return None
+    parts = []
+    if missing:
+        key = missing[0]
+        reversed_key = (key[0], key[2], key[1])
+        text = f"the face with corners {_face_words(wanted, key)} is missing"
+        if reversed_key in have:
+            text += (f": yours has face {have[reversed_key]} on the same corners but clockwise, "
+                     f"{_face_words(yours, reversed_key)}; a face's halfedges must run counter-clockwise")
+        parts.append(text)
+    if extra and not (missing and (missing[0][0], missing[0][2], missing[0][1]) in have):
+        key = extra[0]
+        parts.append(f"your face {have[key]} has corners {_face_words(yours, key)}, which the result should not have")
+    return "; ".join(parts)
+
+
+# --------------------------------------------------------------------------------------
+# Words
+# --------------------------------------------------------------------------------------
+
+def _named(log: OperationLog, kind: str, index: int) -> str:
+    """``"halfedge 5 (h3)"``: an element with the names the operation gathered it under."""
+    names = log.names_of(kind, int(index))
+    return f"{kind} {index}" + (f" ({' = '.join(names)})" if names else "")
+
+
+# "halfedge 5", "vertex 2", "face 1"; and halfedges written as "its next (9)" or "halfedge is 3".
+_ELEMENT_WORDS = re.compile(r"\b(halfedge|vertex|face) (\d+)|\b(?:next|prev) \((\d+)\)|\bhalfedge is (\d+)")
+
+
+def _names_in_error(message: str, log: OperationLog) -> str:
+    """The picture's names of the elements a validation message mentions, as a sentence."""
+    mentioned = []
+    for kind, index, pointed, pointer in _ELEMENT_WORDS.findall(message):
+        mentioned.append((kind, index) if kind else ("halfedge", pointed or pointer))
+    said = []
+    for kind, index in dict.fromkeys(mentioned):
+        names = log.names_of(kind, int(index))
+        if names:
+            said.append(f"{kind} {index} is {' = '.join(names)}")
+    return f" In the picture of the operation, {', '.join(said)}." if said else ""
+
+
+def _describe_error(name: str, error: Exception) -> str:
+    if isinstance(error, NotImplementedError):
+        return (f"your {name} is not written yet (it raised NotImplementedError). Replace the raise with "
+                f"your code and run the check again.")
+    return (f"your {name} raised {type(error).__name__}: {error}. Call it yourself on a copy of this mesh to "
+            f"see the full traceback.")
+
+
+def _gathered(log: OperationLog, names: str) -> str:
+    return ", ".join(f"{n} = {log.named[n][1]}" for n in names.split() if n in log.named)
+
+
+def _validation_problem(mesh: HalfedgeMesh, log: OperationLog, doing: str) -> tuple[str, tuple] | None:
+    try:
+        mesh.validate()
+    except MeshInvariantError as error:
+        message = str(error).split("] ", 1)[-1]
+        return (f"after {doing}, the mesh breaks the rule {error.rule}: {message}."
+                f"{_names_in_error(message, log)}", error.element)
+    return None
+
+
+def _shown(element):
+    """An element ``CheckResult.show`` can draw (an index it can look up), else None."""
+    if element is None:
+        return None
+    kind, index = element
+    if kind in ("halfedge", "vertex", "face") and isinstance(index, (int, np.integer)) and index >= 0:
+        return kind, int(index)
+    return None
+
+
+# --------------------------------------------------------------------------------------
+# check_flip
+# --------------------------------------------------------------------------------------
+
+def _flip_problem(before: HalfedgeMesh, yours: HalfedgeMesh, e: int) -> tuple[str, tuple | None] | None:
+    """None if ``yours`` is ``before`` with edge ``e`` flipped; else (words, element)."""
+    log = OperationLog()
+    wanted = before.copy()
+    flip(wanted, e, log=log)
+    ids = {n: index for n, (_, index) in log.named.items()}
+    v0, v1, v2, v3 = ids["v0"], ids["v1"], ids["v2"], ids["v3"]
+    doing = f"your flip of edge {e}"
+    picture = f"(v0 = {v0}, v1 = {v1}; opposite it v2 = {v2} and v3 = {v3})"
+
+    counts = [(kind, getattr(before, f"n_{kind}"), getattr(yours, f"n_{kind}")) for kind in ("vertices", "edges", "faces")]
+    changed = [f"{have} {kind} instead of {had}" for kind, had, have in counts if had != have]
+    if changed:
+        return (f"after {doing} the mesh has {', '.join(changed)}. A flip creates and deletes nothing: it reuses "
+                f"the same edge, its two halfedges and the two faces.", ("halfedge", 2 * e))
+    if before.n_vertex_slots != yours.n_vertex_slots or before.n_edge_slots != yours.n_edge_slots \
+            or before.n_face_slots != yours.n_face_slots:
+        return (f"{doing} added elements (and deleted as many). A flip only rewires pointers: reuse the edge's "
+                f"halfedges and the two faces.", ("halfedge", 2 * e))
+    moved = np.flatnonzero(np.any(yours.positions != before.positions, axis=1))
+    if len(moved):
+        return (f"{doing} moved vertex {int(moved[0])}. A flip changes only connectivity; positions stay.",
+                ("vertex", int(moved[0])))
+    problem = _validation_problem(yours, log, doing)
+    if problem is not None:
+        return problem
+    ends = sorted(int(v) for v in yours.edge(e).vertices)
+    if ends != sorted((v2, v3)):
+        return (f"after {doing} {picture}, edge {e} joins vertices {ends[0]} and {ends[1]}; it should join "
+                f"v2 and v3, the two vertices that were opposite it (in the picture, h0 = {2 * e} then runs "
+                f"v3 -> v2 and h1 = {2 * e + 1} runs v2 -> v3).", ("halfedge", 2 * e))
+    different = _compare_faces(yours, wanted)
+    if different is not None:
+        return (f"after {doing} {picture}, {different}. The two triangles should be (v3, v2, v0) and "
+                f"(v2, v3, v1), and no other face may change.", ("halfedge", 2 * e))
+    return None
+
+
+def check_flip(learner_flip: Callable) -> CheckResult:
+    """Run ``learner_flip(mesh, e)`` on copies of small meshes and compare with the library's flip.
+
+    Args:
+        learner_flip: a function ``(mesh, e) -> anything`` that flips edge ``e`` (an int)
+            of ``mesh`` in place. It is only called on edges that may be flipped.
+
+    Returns:
+        A :class:`~halfedge_edu.exercises.CheckResult`: at the first difference, what it
+        is in words and which element (``result.show()`` draws it on the mesh as it was
+        before that flip); otherwise a short congratulation.
+    """
+    checked: list[str] = []
+    for name, mesh, edges in flip_cases():
+        for e in edges:
+            before = mesh.copy()
+            yours = mesh.copy()
+            status, answer = _run(learner_flip, yours, e)
+            if status == "timeout":
+                return _failed("flip", checked, name, f"flipping edge {e}, your flip did not finish within {TIME_LIMIT:g} s. A flip "
+                               "is a fixed number of pointer writes; look for a loop that never ends.",
+                               ("halfedge", 2 * e), before)
+            if status == "error":
+                return _failed("flip", checked, name, f"flipping edge {e}, " + _describe_error("flip", answer),
+                               ("halfedge", 2 * e), before)
+            yours.topology_version += 1  # the learner wrote the arrays directly
+            problem = _flip_problem(before, yours, e)
+            if problem is not None:
+                text, element = problem
+                return _failed("flip", checked, name, text, _shown(element), before)
+            flip(mesh, e)
+        checked.append(name)
+    return _passed("flip", checked, "Every pointer ends up where it should, and the mesh is still valid.")
+
+
+# --------------------------------------------------------------------------------------
+# check_collapse
+# --------------------------------------------------------------------------------------
+
+def _deleted(before: HalfedgeMesh, yours: HalfedgeMesh, kind: str) -> set[int]:
+    flags = {"vertex": "vertex_deleted", "edge": "edge_deleted", "face": "face_deleted"}[kind]
+    old, new = getattr(before, flags), getattr(yours, flags)
+    return {int(i) for i in np.flatnonzero(new[: len(old)] & ~old)}
+
+
+def _collapse_problem(before: HalfedgeMesh, yours: HalfedgeMesh, h: int) -> tuple[str, tuple | None] | None:
+    """None if ``yours`` is ``before`` with halfedge ``h`` collapsed; else (words, element)."""
+    log = OperationLog()
+    wanted = before.copy()
+    collapse(wanted, wanted.halfedge(h), log=log)
+    ids = {n: index for n, (_, index) in log.named.items()}
+    vA, vB, e = ids["vA"], ids["vB"], h >> 1
+    doing = f"your collapse of halfedge {h}"
+    picture = f"(vB = {vB} goes, vA = {vA} stays; fL = {ids['fL']}, fR = {ids['fR']}, vL = {ids['vL']}, vR = {ids['vR']})"
+
+    if before.n_vertex_slots != yours.n_vertex_slots or before.n_edge_slots != yours.n_edge_slots \
+            or before.n_face_slots != yours.n_face_slots:
+        return (f"{doing} added elements. A collapse only deletes: the surviving vertex, halfedges and faces are "
+                f"reused.", ("halfedge", h))
+    gone = {kind: _deleted(before, yours, kind) for kind in ("vertex", "edge", "face")}
+    if vA in gone["vertex"]:
+        return (f"{doing} {picture} deleted vertex {vA}, vA. Halfedge {h} runs from vB to vA: vA = h.tip survives "
+                f"(at the midpoint) and vB = h.vertex goes.", ("vertex", vA))
+    if gone["vertex"] != {vB}:
+        if not gone["vertex"]:
+            text = f"{doing} {picture} deleted no vertex; vB = {vB} must go (mesh.delete_vertex(vB))."
+        else:
+            text = f"{doing} {picture} deleted vertices {sorted(gone['vertex'])}; only vB = {vB} should go."
+        return text, ("vertex", vB)
+    if e not in gone["edge"]:
+        return (f"{doing} {picture} did not delete edge {e}, the collapsed edge itself "
+                f"(mesh.delete_edge({e})).", ("halfedge", h))
+    for side in ("fL", "fR"):
+        if ids[side] not in gone["face"]:
+            return (f"{doing} {picture} did not delete face {ids[side]} ({side}). Both faces beside the edge "
+                    f"shrink to nothing and must be deleted.", ("face", ids[side]))
+    extra_faces = gone["face"] - {ids["fL"], ids["fR"]}
+    if extra_faces:
+        f = min(extra_faces)
+        return (f"{doing} {picture} deleted face {f} too; only fL and fR should go. "
+                f"{_named(log, 'face', f).capitalize()} survives the collapse.", ("face", f))
+    for side, first, second in (("L", "h_A_L", "h_L_B"), ("R", "h_R_A", "h_B_R")):
+        pair = {ids[first] >> 1, ids[second] >> 1}
+        count = len(gone["edge"] & pair)
+        if count != 1:
+            a, b = sorted(pair)
+            what = "neither" if count == 0 else "both"
+            return (f"{doing} {picture} deleted {what} of edges {a} and {b}, the other two edges of f{side}. "
+                    f"They become one edge when vB and vA merge, so exactly one of them must go "
+                    f"(either one).", ("face", ids["f" + side]))
+    others = gone["edge"] - {e} - {ids[n] >> 1 for n in ("h_A_L", "h_L_B", "h_R_A", "h_B_R")}
+    if others:
+        other = min(others)
+        return (f"{doing} {picture} deleted edge {other} too. A collapse deletes 3 edges: the edge itself and one "
+                f"more from each of its two faces.", ("halfedge", 2 * other))
+    midpoint = 0.5 * (before.positions[vA] + before.positions[vB])
+    if not np.allclose(yours.positions[vA], midpoint):
+        return (f"after {doing}, vA = {vA} is at {np.round(yours.positions[vA], 4).tolist()}; it should be at the "
+                f"midpoint of the edge, {np.round(midpoint, 4).tolist()}.", ("vertex", vA))
+    live = ~before.vertex_deleted
+    live[vB] = live[vA] = False
+    moved = np.flatnonzero(live & np.any(yours.positions != before.positions, axis=1))
+    if len(moved):
+        return (f"{doing} moved vertex {int(moved[0])}; only vA moves (to the midpoint).", ("vertex", int(moved[0])))
+    problem = _validation_problem(yours, log, doing)
+    if problem is not None:
+        text, element = problem
+        if before.vertex(vB).degree == 3:
+            text += (f" Here vB has degree 3, so gL and gR are the same face ({ids['gL']}): replacing h_R_B "
+                     f"must read the pointers that replacing h_B_L has just changed. Read each neighbour "
+                     f"right before you rewrite it, not all of them at the start.")
+        return text, element
+    different = _compare_faces(yours, wanted)
+    if different is not None:
+        return (f"after {doing} {picture}, {different}. Every face that used vB should now use vA, and no "
+                f"other face changes.", ("halfedge", h))
+    return None
+
+
+def check_collapse(learner_collapse: Callable) -> CheckResult:
+    """Run ``learner_collapse(mesh, h)`` on copies of small meshes and compare with the library's collapse.
+
+    Args:
+        learner_collapse: a function ``(mesh, h) -> anything`` that collapses the edge of
+            halfedge ``h`` (an int) in place: ``h.vertex`` (vB) goes, ``h.tip`` (vA) stays
+            and moves to the midpoint. It is only called on interior edges that may be
+            collapsed, some of them on meshes that already have deleted elements.
+
+    Returns:
+        A :class:`~halfedge_edu.exercises.CheckResult`: at the first difference, what it
+        is in words and which element (``result.show()`` draws it on the mesh as it was
+        before that collapse); otherwise a short congratulation.
+    """
+    checked: list[str] = []
+    for name, mesh, halfedges in collapse_cases():
+        for h in halfedges:
+            before = mesh.copy()
+            yours = mesh.copy()
+            status, answer = _run(learner_collapse, yours, h)
+            if status == "timeout":
+                return _failed("collapse", checked, name,
+                               f"collapsing halfedge {h}, your collapse did not finish within {TIME_LIMIT:g} s. The walk around vB "
+                               f"(h = twin(prev(h))) probably never comes back to its start: compare halfedge "
+                               f"indices, and stop before you change the pointers you walk along.",
+                               ("halfedge", h), before)
+            if status == "error":
+                return _failed("collapse", checked, name, f"collapsing halfedge {h}, " + _describe_error("collapse", answer),
+                               ("halfedge", h), before)
+            yours.topology_version += 1  # the learner wrote the arrays directly
+            problem = _collapse_problem(before, yours, h)
+            if problem is not None:
+                text, element = problem
+                return _failed("collapse", checked, name, text, _shown(element), before)
+            collapse(mesh, mesh.halfedge(h))
+        checked.append(name)
+    return _passed("collapse", checked, "Both cases work, degree 3 and higher, and the mesh stays valid.")
