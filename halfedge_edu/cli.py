@@ -1,10 +1,22 @@
-"""The command line: ``halfedge-edu info FILE`` and ``halfedge-edu check FILE``.
+"""The command line: ``halfedge-edu COMMAND ...`` (also ``python -m halfedge_edu``).
 
-Also run as ``python -m halfedge_edu``. Each subcommand reads one mesh file and prints
-plain text. A problem with the input (a missing or unreadable file, a file that cannot
-become a halfedge mesh) ends with one line on stderr, ``halfedge-edu: error: ...``, and
-exit status 2, never a traceback. The library is imported only once a subcommand runs,
-so ``--help`` is instant.
+``info`` and ``check`` read one mesh file and print plain text. ``subdivide``,
+``simplify``, ``smooth`` and ``convert`` read IN, run one algorithm and write OUT (the
+format picked by OUT's suffix), then print a one-line summary.
+
+Promises, each tested in tests/test_cli.py:
+
+- A problem with the input (a missing or unreadable file, a file that cannot become a
+  halfedge mesh, a bad option value, an output folder that is missing or not writable)
+  ends with one line on stderr, ``halfedge-edu: error: ...``, and exit status 2, never a
+  traceback. Usage errors too.
+- OUT is written to a temporary file beside it and moved into place (``hx.save``), so a
+  failure at any point leaves no partial file, and an existing OUT is left untouched.
+- Each result is validated before it is written. A broken result is a bug in
+  halfedge_edu, not in the input: one line saying so, exit status 1 (the status ``check``
+  gives a broken mesh), and nothing written.
+
+The library is imported only once a subcommand runs, so ``--help`` is instant.
 """
 
 from __future__ import annotations
@@ -13,13 +25,14 @@ import argparse
 import os
 import sys
 import warnings
+from contextlib import contextmanager
 from pathlib import Path
-from typing import Sequence
+from typing import Callable, Iterator, NoReturn, Sequence
 
 PROG = "halfedge-edu"
 
 EXIT_OK = 0
-EXIT_INVALID = 1  # `check`: the file loads, but the mesh breaks a halfedge invariant
+EXIT_INVALID = 1  # a mesh breaks a halfedge invariant: `check`'s input, or a command's result
 EXIT_ERROR = 2  # bad input or usage (argparse uses 2 for usage errors too)
 
 # How many non-manifold elements `info` lists by index before it only counts them.
@@ -30,6 +43,18 @@ class InputProblem(Exception):
     """Input the command cannot use; reported as one line on stderr with exit status 2."""
 
 
+class BrokenResult(Exception):
+    """An algorithm returned a mesh that fails ``validate()``: a bug, reported with exit status 1."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """An ``ArgumentParser`` whose usage errors are one line, like every other error."""
+
+    def error(self, message: str) -> NoReturn:
+        _fail(f"{message} (see '{self.prog} --help')")
+        self.exit(EXIT_ERROR)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line with ``argv`` (default: ``sys.argv[1:]``); return the exit status."""
     parser = build_parser()
@@ -38,8 +63,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         return args.run(args)
     except InputProblem as problem:
         return _fail(str(problem))
+    except BrokenResult as problem:
+        return _fail(str(problem), EXIT_INVALID)
     except KeyboardInterrupt:
         return 130
+    except MemoryError:
+        return _fail("out of memory: the mesh or the result is too large for this machine")
     except BrokenPipeError:
         # `halfedge-edu info x.obj | head -1`: the reader left; nothing went wrong here.
         # Point stdout at devnull so that flushing it at exit does not fail again.
@@ -62,12 +91,13 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser with every registered subcommand."""
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog=PROG,
-        description="Inspect triangle meshes as halfedge meshes.",
+        description="Inspect, check, refine, simplify, smooth and convert triangle meshes as halfedge meshes.",
         epilog=(
-            "Exit status: 0 success; 1 `check` found a broken invariant; "
-            "2 the input could not be read or built into a halfedge mesh, or bad usage."
+            "Exit status: 0 success; 1 a mesh breaks a halfedge invariant (`check` on its "
+            "input; any other command on its own result, which is a bug: nothing is "
+            "written); 2 bad input or usage (one line on stderr, no output file)."
         ),
     )
     parser.add_argument("--version", action="version", version=f"%(prog)s {_version()}")
@@ -85,7 +115,8 @@ def build_parser() -> argparse.ArgumentParser:
             "not manifold gets a report of its non-manifold edges and vertices instead."
         ),
     )
-    info.add_argument("file", type=Path, metavar="FILE", help=".obj (or .ply .stl .off .glb)")
+    info.add_argument("file", type=Path, metavar="FILE", help=INPUT_HELP)
+    _add_repair(info)
     info.set_defaults(run=run_info)
 
     check = commands.add_parser(
@@ -97,9 +128,119 @@ def build_parser() -> argparse.ArgumentParser:
             "not, 2 if the file cannot be read or built."
         ),
     )
-    check.add_argument("file", type=Path, metavar="FILE", help=".obj (or .ply .stl .off .glb)")
+    check.add_argument("file", type=Path, metavar="FILE", help=INPUT_HELP)
+    _add_repair(check)
     check.set_defaults(run=run_check)
+
+    subdivide = _add_transform(
+        commands, "subdivide", run_subdivide,
+        help="Loop subdivision: every level splits each triangle into 4",
+        description=(
+            "Loop subdivision, N levels (each multiplies the faces by 4), written to OUT. "
+            "Example: halfedge-edu subdivide in.obj out.obj 2"
+        ),
+    )
+    subdivide.add_argument(
+        "levels", nargs="?", type=_whole_number(0), metavar="N",
+        help="how many levels (default 1)",
+    )
+    subdivide.add_argument(
+        "--levels", dest="levels_option", type=_whole_number(0), metavar="N",
+        help="the same as the positional N",
+    )
+
+    simplify = _add_transform(
+        commands, "simplify", run_simplify,
+        help="quadric-error edge collapses down to a face count",
+        description=(
+            "Simplify by quadric-error edge collapses to N faces (--faces) or to a "
+            "fraction of the input's faces (--ratio), written to OUT."
+        ),
+    )
+    target = simplify.add_mutually_exclusive_group(required=True)
+    target.add_argument("--faces", type=_whole_number(1), metavar="N", help="how many faces to keep")
+    target.add_argument(
+        "--ratio", type=_ratio, metavar="R", help="the fraction of faces to keep, 0 < R <= 1"
+    )
+
+    smooth = _add_transform(
+        commands, "smooth", run_smooth,
+        help="Laplacian smoothing (uniform or cotangent weights)",
+        description="Laplacian smoothing: move every vertex towards a weighted mean of its neighbours.",
+    )
+    smooth.add_argument(
+        "--iterations", type=_whole_number(0), default=1, metavar="N", help="how many iterations (default 1)"
+    )
+    smooth.add_argument(
+        "--weights", choices=("uniform", "cotangent"), default="uniform",
+        help="the neighbours' weights (default uniform)",
+    )
+    smooth.add_argument(
+        "--boundary", choices=("fixed", "along"), default="fixed",
+        help="boundary vertices stay (fixed, the default) or move along their boundary loop",
+    )
+
+    _add_transform(
+        commands, "convert", run_convert, progress=False,
+        help="write a mesh in another format (picked by OUT's suffix)",
+        description=(
+            "Read IN and write it to OUT; the format is picked by the suffix "
+            "(.obj by halfedge_edu's own writer, .ply .stl .off .glb .gltf through trimesh)."
+        ),
+    )
     return parser
+
+
+INPUT_HELP = "a .obj, .ply, .stl, .off, .glb or .gltf file"
+
+
+def _add_repair(command: argparse.ArgumentParser) -> None:
+    command.add_argument(
+        "--repair", action="store_true",
+        help="repair the triangles on loading: drop degenerate and duplicate faces, "
+        "orient them consistently, split non-manifold edges and vertices",
+    )
+
+
+def _add_transform(commands, name: str, run: Callable, *, progress: bool = True, **texts) -> argparse.ArgumentParser:
+    """Add a subcommand ``name IN OUT ...`` with ``--repair`` (and ``--progress``)."""
+    command = commands.add_parser(name, **texts)
+    command.add_argument("file", type=Path, metavar="IN", help=INPUT_HELP)
+    command.add_argument("output", type=Path, metavar="OUT", help="where to write; the suffix picks the format")
+    _add_repair(command)
+    if progress:
+        command.add_argument(
+            "--progress", action=argparse.BooleanOptionalAction, default=None,
+            help="show a progress bar on stderr (default: when stderr is a terminal)",
+        )
+    command.set_defaults(run=run)
+    return command
+
+
+def _whole_number(minimum: int) -> Callable[[str], int]:
+    """An argparse type: a whole number >= ``minimum``."""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+        if value < minimum:
+            raise argparse.ArgumentTypeError(f"must be at least {minimum}, got {value}")
+        return value
+
+    return parse
+
+
+def _ratio(text: str) -> float:
+    """An argparse type: a number in (0, 1]."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not 0 < value <= 1:
+        raise argparse.ArgumentTypeError(f"must be in (0, 1], got {text}")
+    return value
 
 
 def run_info(args: argparse.Namespace) -> int:
@@ -108,7 +249,7 @@ def run_info(args: argparse.Namespace) -> int:
 
     path = args.file
     try:
-        mesh = _load(path)
+        mesh = _load(path, repair=args.repair)
     except MeshInputError as error:
         return _info_not_buildable(path, error)
 
@@ -183,7 +324,7 @@ def run_check(args: argparse.Namespace) -> int:
     from halfedge_edu.core.errors import MeshInvariantError
 
     path = args.file
-    mesh = _load(path)
+    mesh = _load_or_fail(path, repair=args.repair)
     try:
         mesh.validate()
     except MeshInvariantError as error:
@@ -193,7 +334,143 @@ def run_check(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
-def _load(path: Path):
+def run_subdivide(args: argparse.Namespace) -> int:
+    """``subdivide IN OUT N``: Loop subdivision, N levels."""
+    levels = args.levels if args.levels is not None else args.levels_option
+    if args.levels_option is not None and levels != args.levels_option:
+        raise InputProblem(f"N is {args.levels} but --levels is {args.levels_option}; give the number of levels once")
+    levels = 1 if levels is None else levels
+
+    def algorithm(mesh):
+        from halfedge_edu.algorithms.loop import loop_subdivide
+
+        return loop_subdivide(mesh, levels, progress=_progress(args))
+
+    return _transform(args, algorithm)
+
+
+def run_simplify(args: argparse.Namespace) -> int:
+    """``simplify IN OUT --faces N | --ratio R``: quadric-error edge collapses."""
+
+    def algorithm(mesh):
+        from halfedge_edu.algorithms.simplify import simplify
+
+        target = args.faces if args.faces is not None else max(1, round(args.ratio * mesh.n_faces))
+        if target >= mesh.n_faces:
+            _warn(f"the target of {target} faces is not below the input's {mesh.n_faces}: nothing to simplify")
+        return simplify(mesh, target, progress=_progress(args))
+
+    return _transform(args, algorithm)
+
+
+def run_smooth(args: argparse.Namespace) -> int:
+    """``smooth IN OUT [--iterations N] [--weights W] [--boundary B]``: Laplacian smoothing."""
+
+    def algorithm(mesh):
+        from halfedge_edu.algorithms.smoothing import smooth
+
+        return smooth(
+            mesh, args.iterations, weights=args.weights, boundary=args.boundary, progress=_progress(args)
+        )
+
+    return _transform(args, algorithm)
+
+
+def run_convert(args: argparse.Namespace) -> int:
+    """``convert IN OUT``: the same mesh in the format of OUT's suffix."""
+    return _transform(args, lambda mesh: mesh)
+
+
+def _transform(args: argparse.Namespace, algorithm: Callable) -> int:
+    """Load IN, run ``algorithm(mesh) -> mesh``, validate the result, write it to OUT.
+
+    OUT is checked before loading (so a long run does not end in "cannot write
+    there"), and written last, atomically: if anything fails, OUT is as it was.
+    """
+    from halfedge_edu.core.errors import MeshInvariantError
+
+    output = args.output
+    _check_readable(args.file)
+    _check_writable(output)
+    mesh = _load_or_fail(args.file, repair=args.repair)
+    faces_before = mesh.n_faces
+    with _warnings_as_lines():
+        result = algorithm(mesh)
+    try:
+        result.validate()
+    except MeshInvariantError as error:
+        raise BrokenResult(
+            f"internal error: {args.command} made a mesh that is not a valid halfedge mesh "
+            f"({_one_line(str(error))}); nothing was written; please report it"
+        ) from error
+    _save(result, output)
+    print(f"{args.command}: {faces_before} -> {result.n_faces} faces, wrote {output}")
+    return EXIT_OK
+
+
+def _progress(args: argparse.Namespace) -> bool:
+    """``--progress`` / ``--no-progress``, or by default: is stderr a terminal?"""
+    if args.progress is not None:
+        return args.progress
+    try:
+        return sys.stderr.isatty()
+    except (AttributeError, ValueError):  # replaced or closed stderr
+        return False
+
+
+def _check_writable(output: Path) -> None:
+    """Raise ``InputProblem`` if ``output`` cannot be written (suffix, folder, permission)."""
+    from halfedge_edu.io import SUFFIXES
+
+    suffix = output.suffix.lower()
+    if suffix not in SUFFIXES:
+        raise InputProblem(f"{output}: unknown file type {suffix or '(no suffix)'!r}; use one of {', '.join(SUFFIXES)}")
+    if output.is_dir():
+        raise InputProblem(f"{output}: is a folder, not a file name")
+    folder = output.parent
+    if not folder.exists():
+        raise InputProblem(f"{folder}: no such folder")
+    if not folder.is_dir():
+        raise InputProblem(f"{folder}: is not a folder")
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise InputProblem(f"{folder}: cannot write in this folder (permission denied)")
+
+
+def _save(mesh, output: Path) -> None:
+    """``hx.save`` (temporary file beside OUT, then moved into place), errors as ``InputProblem``."""
+    import halfedge_edu as hx
+
+    try:
+        hx.save(mesh, output)
+    except OSError as error:
+        raise InputProblem(_with_path(output, error)) from error
+
+
+def _load_or_fail(path: Path, *, repair: bool = False):
+    """``_load``, with every ``MeshInputError`` an ``InputProblem`` (suggesting ``--repair`` if it helps)."""
+    from halfedge_edu.core.errors import MeshInputError
+
+    try:
+        return _load(path, repair=repair)
+    except MeshInputError as error:
+        message = _with_path(path, error)
+        if not repair and _repair_would_help(path):
+            message += "; run again with --repair to load it repaired"
+        raise InputProblem(message) from error
+
+
+def _repair_would_help(path: Path) -> bool:
+    """Are the file's triangles readable but not manifold (what ``repair=True`` fixes)?"""
+    import halfedge_edu as hx
+
+    try:
+        _, faces = _read_raw(path)
+        return not hx.manifold_report(faces)
+    except Exception:  # the file cannot even be read as triangles: repair will not help
+        return False
+
+
+def _load(path: Path, *, repair: bool = False):
     """``hx.load(path)`` with input problems turned into ``InputProblem``.
 
     ``MeshInputError`` is passed through so that a caller can look closer; the library's
@@ -203,17 +480,28 @@ def _load(path: Path):
     from halfedge_edu.core.errors import MeshInputError
 
     _check_readable(path)
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", UserWarning)  # MeshWarning among them
+    with _warnings_as_lines():
         try:
-            mesh = hx.load(path)
+            mesh = hx.load(path, repair=repair)
         except MeshInputError:
             raise
         except (OSError, ValueError) as error:  # UnicodeDecodeError is a ValueError
             raise InputProblem(_with_path(path, error)) from error
-    for warning in caught:
-        print(f"{PROG}: warning: {_one_line(str(warning.message))}", file=sys.stderr)
     return mesh
+
+
+@contextmanager
+def _warnings_as_lines() -> Iterator[None]:
+    """Collect the library's warnings in the body; if it succeeds, print each as one line."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", UserWarning)  # MeshWarning among them
+        yield
+    for warning in caught:
+        _warn(str(warning.message))
+
+
+def _warn(message: str) -> None:
+    print(f"{PROG}: warning: {_one_line(message)}", file=sys.stderr)
 
 
 def _read_raw(path: Path):
@@ -272,9 +560,9 @@ def _one_line(text: str) -> str:
     return " ".join(text.split())
 
 
-def _fail(message: str) -> int:
+def _fail(message: str, status: int = EXIT_ERROR) -> int:
     print(f"{PROG}: error: {_one_line(message)}", file=sys.stderr)
-    return EXIT_ERROR
+    return status
 
 
 def _version() -> str:

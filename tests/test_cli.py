@@ -1,13 +1,16 @@
-"""The command line: `halfedge-edu info|check FILE` (halfedge_edu/cli.py).
+"""The command line: `halfedge-edu info|check|subdivide|simplify|smooth|convert` (halfedge_edu/cli.py).
 
 Most tests call ``main([...])`` in-process; a few run the real ``python -m
 halfedge_edu`` to check what a user sees. Bad input always means: exit status 2, one
-line on stderr starting ``halfedge-edu: error:``, no traceback.
+line on stderr starting ``halfedge-edu: error:``, no traceback, and no output file (an
+existing one is left as it was). Progress bars are off: stderr is not a terminal here.
 """
 
 from __future__ import annotations
 
+import errno
 import math
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -18,6 +21,8 @@ import halfedge_edu as hx
 from halfedge_edu.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
+
+ALL_COMMANDS = ("info", "check", "subdivide", "simplify", "smooth", "convert")
 
 
 # ---------------------------------------------------------------- small OBJ files
@@ -268,11 +273,25 @@ def test_internal_error_is_one_line_unless_debug(capsys, tetra, monkeypatch):
         main(["--debug", "info", str(tetra)])
 
 
-def test_no_command_is_a_usage_error(capsys):
+def usage_error(capsys, *argv) -> str:
+    """Run a command line argparse rejects; return its stderr, checked to be one line."""
     with pytest.raises(SystemExit) as stop:
-        main([])
+        main([str(a) for a in argv])
     assert stop.value.code == 2
-    assert "usage: halfedge-edu" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    assert len(err.splitlines()) == 1 and err.startswith("halfedge-edu: error: "), err
+    return err
+
+
+def test_no_command_is_a_one_line_usage_error(capsys):
+    err = usage_error(capsys)
+    assert "COMMAND" in err and "'halfedge-edu --help'" in err
+
+
+def test_an_unknown_command_lists_the_commands(capsys):
+    err = usage_error(capsys, "frobnicate")
+    for command in ALL_COMMANDS:
+        assert repr(command) in err
 
 
 # ---------------------------------------------------------------- as a real process
@@ -288,12 +307,12 @@ def test_python_m_help_lists_the_commands():
     result = python_m("--help")
     assert result.returncode == 0, result.stderr
     assert result.stdout.startswith("usage: halfedge-edu")
-    for command in ("info", "check"):
-        assert command in result.stdout
+    for command in ALL_COMMANDS:
+        assert f"\n    {command}" in result.stdout
     assert result.stderr == ""
 
 
-@pytest.mark.parametrize("command", ["info", "check"])
+@pytest.mark.parametrize("command", ["info", "subdivide"])
 def test_python_m_subcommand_help(command):
     result = python_m(command, "--help")
     assert result.returncode == 0
@@ -316,3 +335,379 @@ def test_python_m_info_on_a_file(tmp_path, tetra):
     result = python_m("info", tetra)
     assert result.returncode == 0, result.stderr
     assert fields(result.stdout)["euler characteristic"] == "2"
+
+
+def test_python_m_subdivide_in_the_loop_assignments_form(tmp_path):
+    source = tmp_path / "in.obj"
+    hx.save(hx.sample("spot"), source)
+    result = python_m("subdivide", "in.obj", "out.obj", "2", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert result.stderr == ""  # no progress bar: stderr is not a terminal
+    faces_in = len(hx.read_obj(source).faces)
+    assert len(hx.read_obj(tmp_path / "out.obj").faces) == 16 * faces_in
+    assert result.stdout == f"subdivide: {faces_in} -> {16 * faces_in} faces, wrote out.obj\n"
+
+
+# ---------------------------------------------------------------- commands that write a file
+
+WRITERS = {  # each command's arguments after IN OUT, for tests that run them all
+    "subdivide": ["1"],
+    "simplify": ["--faces", "4"],
+    "smooth": ["--iterations", "2"],
+    "convert": [],
+}
+
+
+def sample_file(directory: Path, name: str, suffix: str = ".obj") -> Path:
+    path = directory / f"{name}{suffix}"
+    hx.save(hx.sample(name), path)
+    return path
+
+
+def faces_in(path: Path) -> int:
+    return hx.load(path).n_faces
+
+
+@pytest.fixture
+def cube(tmp_path):
+    return sample_file(tmp_path, "cube")
+
+
+@pytest.mark.parametrize("command", WRITERS)
+def test_every_writer_prints_one_summary_line_and_writes_a_valid_mesh(capsys, tmp_path, cube, command):
+    out = tmp_path / "out.obj"
+    status, stdout, err = run(capsys, command, cube, out, *WRITERS[command])
+    assert status == 0 and err == ""
+    written = hx.load(out)
+    written.validate()
+    assert stdout == f"{command}: 12 -> {written.n_faces} faces, wrote {out}\n"
+
+
+@pytest.mark.parametrize("command", ALL_COMMANDS)
+def test_every_command_has_help(capsys, command):
+    with pytest.raises(SystemExit) as stop:
+        main([command, "--help"])
+    assert stop.value.code == 0
+    assert capsys.readouterr().out.startswith(f"usage: halfedge-edu {command}")
+
+
+# ---------------------------------------------------------------- subdivide
+
+def test_subdivide_n_levels_multiplies_the_faces_by_4_to_the_n(capsys, tmp_path, cube):
+    out = tmp_path / "out.obj"
+    status, stdout, _ = run(capsys, "subdivide", cube, out, 2)
+    assert status == 0
+    assert faces_in(out) == 12 * 16
+    assert stdout == f"subdivide: 12 -> 192 faces, wrote {out}\n"
+
+
+@pytest.mark.parametrize("levels", [[], ["--levels", "1"], ["1", "--levels", "1"]])
+def test_subdivide_levels_by_option_or_default_one(capsys, tmp_path, cube, levels):
+    out = tmp_path / "out.obj"
+    status, _, _ = run(capsys, "subdivide", cube, out, *levels)
+    assert status == 0
+    assert faces_in(out) == 48
+
+
+def test_subdivide_writes_what_loop_subdivide_returns(capsys, tmp_path):
+    from halfedge_edu.algorithms.loop import loop_subdivide
+
+    source = sample_file(tmp_path, "open_patch")
+    out = tmp_path / "out.obj"
+    run(capsys, "subdivide", source, out, 1)
+    expected_vertices, expected_faces = loop_subdivide(hx.load(source)).to_arrays()
+    written = hx.read_obj(out)
+    assert (written.vertices == expected_vertices).all()  # OBJ keeps float64 exactly
+    assert (written.faces == expected_faces).all()
+
+
+def test_subdivide_n_and_levels_that_disagree(capsys, tmp_path, cube):
+    status, _, err = run(capsys, "subdivide", cube, tmp_path / "out.obj", 2, "--levels", 3)
+    assert_one_line_error(status, err)
+    assert not (tmp_path / "out.obj").exists()
+
+
+@pytest.mark.parametrize("levels", ["-1", "1.5", "two"])
+def test_subdivide_rejects_a_bad_n(capsys, tmp_path, cube, levels):
+    err = usage_error(capsys, "subdivide", cube, tmp_path / "out.obj", levels)
+    assert "argument N" in err
+    assert not (tmp_path / "out.obj").exists()
+
+
+def test_progress_bar_when_asked(capsys, tmp_path, cube):
+    status, _, err = run(capsys, "subdivide", cube, tmp_path / "out.obj", 2, "--progress")
+    assert status == 0
+    assert "loop subdivision" in err and "2/2" in err
+
+
+# ---------------------------------------------------------------- simplify
+
+@pytest.fixture
+def sphere(tmp_path):
+    path = tmp_path / "sphere.obj"
+    hx.save(hx.sample("icosphere", subdivisions=2), path)  # 320 faces
+    return path
+
+
+def test_simplify_to_a_face_count(capsys, tmp_path, sphere):
+    out = tmp_path / "out.obj"
+    status, stdout, err = run(capsys, "simplify", sphere, out, "--faces", 100)
+    assert status == 0 and err == ""
+    assert faces_in(out) in (99, 100)  # an interior collapse removes two faces
+    assert stdout.startswith("simplify: 320 -> ")
+
+
+def test_simplify_to_a_ratio(capsys, tmp_path, sphere):
+    out = tmp_path / "out.obj"
+    status, _, _ = run(capsys, "simplify", sphere, out, "--ratio", 0.25)
+    assert status == 0
+    assert faces_in(out) in (79, 80)
+
+
+@pytest.mark.parametrize("ratio", ["0", "1.5", "-0.2", "nan", "half"])
+def test_simplify_rejects_a_ratio_outside_0_to_1(capsys, tmp_path, sphere, ratio):
+    err = usage_error(capsys, "simplify", sphere, tmp_path / "out.obj", "--ratio", ratio)
+    assert "--ratio" in err
+    assert not (tmp_path / "out.obj").exists()
+
+
+@pytest.mark.parametrize("target", [[], ["--faces", "10", "--ratio", "0.5"], ["--faces", "0"]])
+def test_simplify_needs_exactly_one_valid_target(capsys, tmp_path, sphere, target):
+    usage_error(capsys, "simplify", sphere, tmp_path / "out.obj", *target)
+    assert not (tmp_path / "out.obj").exists()
+
+
+def test_simplify_to_more_faces_than_the_input_warns_and_copies(capsys, tmp_path, sphere):
+    out = tmp_path / "out.obj"
+    status, stdout, err = run(capsys, "simplify", sphere, out, "--faces", 1000)
+    assert status == 0
+    assert err.startswith("halfedge-edu: warning: ") and len(err.splitlines()) == 1
+    assert stdout == f"simplify: 320 -> 320 faces, wrote {out}\n"
+
+
+def test_simplify_says_in_one_line_when_it_stops_short(capsys, tmp_path):
+    source = sample_file(tmp_path, "tetrahedron")
+    status, stdout, err = run(capsys, "simplify", source, tmp_path / "out.obj", "--faces", 2)
+    assert status == 0
+    assert err.splitlines() == [
+        "halfedge-edu: warning: simplify stopped at 4 faces: no allowed collapse is left (target was 2)"
+    ]
+    assert "4 -> 4 faces" in stdout
+
+
+# ---------------------------------------------------------------- smooth
+
+@pytest.mark.parametrize("weights", ["uniform", "cotangent"])
+@pytest.mark.parametrize("boundary", ["fixed", "along"])
+def test_smooth_writes_what_smooth_returns(capsys, tmp_path, weights, boundary):
+    from halfedge_edu.algorithms.smoothing import smooth
+
+    source = sample_file(tmp_path, "open_patch")
+    out = tmp_path / "out.obj"
+    status, _, _ = run(
+        capsys, "smooth", source, out, "--iterations", 3, "--weights", weights, "--boundary", boundary
+    )
+    assert status == 0
+    expected, _ = smooth(hx.load(source), 3, weights=weights, boundary=boundary).to_arrays()
+    assert (hx.read_obj(out).vertices == expected).all()
+
+
+def test_smooth_rejects_unknown_weights(capsys, tmp_path, cube):
+    err = usage_error(capsys, "smooth", cube, tmp_path / "out.obj", "--weights", "mean")
+    assert "'uniform', 'cotangent'" in err
+
+
+# ---------------------------------------------------------------- convert
+
+@pytest.mark.parametrize("suffix", [".ply", ".stl", ".off", ".glb", ".obj"])
+def test_convert_by_suffix_keeps_the_mesh(capsys, tmp_path, cube, suffix):
+    out = tmp_path / f"out{suffix}"
+    status, stdout, _ = run(capsys, "convert", cube, out)
+    assert status == 0
+    assert stdout == f"convert: 12 -> 12 faces, wrote {out}\n"
+    back = hx.load(out)
+    assert (back.n_vertices, back.n_faces) == (8, 12)
+
+
+def test_convert_reads_other_formats_too(capsys, tmp_path, cube):
+    run(capsys, "convert", cube, tmp_path / "cube.off")
+    status, _, _ = run(capsys, "convert", tmp_path / "cube.off", tmp_path / "back.obj")
+    assert status == 0
+    assert faces_in(tmp_path / "back.obj") == 12
+
+
+# ---------------------------------------------------------------- bad input for the writers
+
+def assert_only(directory: Path, *names: str) -> None:
+    """The folder holds exactly these files: no output, no temporary file left behind."""
+    assert sorted(p.name for p in directory.iterdir()) == sorted(names)
+
+
+@pytest.mark.parametrize("command", WRITERS)
+def test_writer_with_a_missing_input(capsys, tmp_path, command):
+    status, out, err = run(capsys, command, tmp_path / "nothere.obj", tmp_path / "out.obj", *WRITERS[command])
+    assert_one_line_error(status, err)
+    assert "nothere.obj: no such file" in err and out == ""
+    assert_only(tmp_path)
+
+
+@pytest.mark.parametrize("command", WRITERS)
+def test_writer_with_a_malformed_obj(capsys, tmp_path, command):
+    bad = tmp_path / "bad.obj"
+    bad.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n")
+    status, _, err = run(capsys, command, bad, tmp_path / "out.obj", *WRITERS[command])
+    assert_one_line_error(status, err)
+    assert "bad.obj" in err and "line 4" in err
+    assert "--repair" not in err  # repairing cannot fix a file that does not parse
+    assert_only(tmp_path, "bad.obj")
+
+
+FIN_V = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1)]
+FIN_F = [(0, 1, 2), (1, 0, 3), (0, 1, 4)]  # three triangles on the edge 0-1
+
+
+@pytest.mark.parametrize("command", WRITERS)
+def test_writer_on_a_non_manifold_mesh_suggests_repair(capsys, tmp_path, command):
+    fin = write_obj(tmp_path / "fin.obj", FIN_V, FIN_F)
+    status, _, err = run(capsys, command, fin, tmp_path / "out.obj", *WRITERS[command])
+    assert_one_line_error(status, err)
+    assert "has 3 faces" in err and "run again with --repair" in err
+    assert_only(tmp_path, "fin.obj")
+
+
+def test_repair_loads_a_non_manifold_mesh(capsys, tmp_path):
+    fin = write_obj(tmp_path / "fin.obj", FIN_V, FIN_F)
+    out = tmp_path / "out.obj"
+    status, stdout, err = run(capsys, "subdivide", "--repair", fin, out, 1)
+    assert status == 0
+    assert err.startswith("halfedge-edu: warning: fin.obj: repair_faces changed the mesh")
+    assert stdout == f"subdivide: 3 -> 12 faces, wrote {out}\n"
+
+
+def test_check_with_repair(capsys, tmp_path):
+    fin = write_obj(tmp_path / "fin.obj", FIN_V, FIN_F)
+    status, out, _ = run(capsys, "check", "--repair", fin)
+    assert status == 0
+    assert "valid halfedge mesh" in out
+
+
+@pytest.mark.parametrize(
+    "output, expected",
+    [
+        ("out.xyz", "unknown file type '.xyz'"),
+        ("out", "unknown file type '(no suffix)'"),
+        ("missing/out.obj", "missing: no such folder"),
+        ("cube.obj/out.obj", "cube.obj: is not a folder"),
+        ("folder.obj", "folder.obj: is a folder"),
+    ],
+)
+def test_writer_with_an_output_it_cannot_write(capsys, tmp_path, cube, output, expected):
+    (tmp_path / "folder.obj").mkdir()
+    status, _, err = run(capsys, "convert", cube, tmp_path / output)
+    assert_one_line_error(status, err)
+    assert expected in err
+    assert_only(tmp_path, "cube.obj", "folder.obj")
+    assert_only(tmp_path / "folder.obj")
+
+
+@pytest.mark.skipif(os.name != "posix" or os.geteuid() == 0, reason="root writes into read-only folders")
+def test_writer_into_a_read_only_folder(capsys, tmp_path, cube):
+    locked = tmp_path / "locked"
+    locked.mkdir()
+    locked.chmod(0o555)
+    try:
+        status, _, err = run(capsys, "convert", cube, locked / "out.obj")
+    finally:
+        locked.chmod(0o755)
+    assert_one_line_error(status, err)
+    assert "permission denied" in err
+    assert_only(locked)
+
+
+# ---------------------------------------------------------------- no partial output, ever
+
+@pytest.fixture
+def old_output(tmp_path):
+    """An output file from an earlier run, which a failed run must leave as it was."""
+    path = tmp_path / "out.obj"
+    path.write_text("# an earlier result\n")
+    return path
+
+
+def test_algorithm_failing_half_way_writes_nothing(capsys, tmp_path, cube, old_output, monkeypatch):
+    import halfedge_edu.algorithms.loop as loop
+
+    real_loop_subdivide = loop.loop_subdivide
+
+    def one_level_then_fail(mesh, levels, **options):
+        real_loop_subdivide(mesh, 1)
+        raise RuntimeError("failed after one level")
+
+    monkeypatch.setattr(loop, "loop_subdivide", one_level_then_fail)
+    status, out, err = run(capsys, "subdivide", cube, old_output, 2)
+    assert_one_line_error(status, err, internal=True)
+    assert "failed after one level" in err and out == ""
+    assert old_output.read_text() == "# an earlier result\n"
+    assert_only(tmp_path, "cube.obj", "out.obj")
+    old_output.unlink()
+    run(capsys, "subdivide", cube, old_output, 2)
+    assert_only(tmp_path, "cube.obj")
+
+
+def test_disk_full_half_way_through_writing_leaves_no_partial_file(capsys, tmp_path, cube, old_output, monkeypatch):
+    real_fdopen = os.fdopen
+
+    class DiskFillsUp:
+        """The temporary file: half of what is written fits, then the disk is full."""
+
+        def __init__(self, file):
+            self.file = file
+
+        def __enter__(self):
+            return self
+
+        def __exit__(self, *exception):
+            self.file.close()
+
+        def write(self, text):
+            self.file.write(text[: len(text) // 2])
+            self.file.flush()
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+    monkeypatch.setattr(os, "fdopen", lambda *args, **kwargs: DiskFillsUp(real_fdopen(*args, **kwargs)))
+    status, out, err = run(capsys, "subdivide", cube, old_output, 1)
+    monkeypatch.undo()
+    assert_one_line_error(status, err)
+    assert f"{old_output}: {os.strerror(errno.ENOSPC)}" in err and out == ""
+    assert old_output.read_text() == "# an earlier result\n"
+    assert_only(tmp_path, "cube.obj", "out.obj")
+
+
+def test_a_broken_result_is_an_internal_error_with_status_1(capsys, tmp_path, cube, old_output, monkeypatch):
+    import halfedge_edu.algorithms.smoothing as smoothing
+
+    def smooth_and_break(mesh, *args, **options):
+        nxt = mesh.halfedge_next
+        nxt[0] = nxt[nxt[0]]  # face loop of halfedge 0 now has two steps
+        return mesh
+
+    monkeypatch.setattr(smoothing, "smooth", smooth_and_break)
+    status, out, err = run(capsys, "smooth", cube, old_output)
+    assert status == 1 and out == ""
+    assert len(err.splitlines()) == 1
+    assert err.startswith("halfedge-edu: error: internal error: smooth made a mesh that is not a valid halfedge mesh (")
+    assert "nothing was written" in err
+    assert old_output.read_text() == "# an earlier result\n"
+
+
+def test_running_out_of_memory_is_one_line(capsys, tmp_path, cube, monkeypatch):
+    import halfedge_edu.algorithms.loop as loop
+
+    def too_big(mesh, levels, **options):
+        raise MemoryError
+
+    monkeypatch.setattr(loop, "loop_subdivide", too_big)
+    status, _, err = run(capsys, "subdivide", cube, tmp_path / "out.obj", 12)
+    assert_one_line_error(status, err)
+    assert "out of memory" in err
+    assert_only(tmp_path, "cube.obj")
