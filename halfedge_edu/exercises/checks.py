@@ -117,6 +117,8 @@ def _passed(exercise: str, checked: list[str], praise: str) -> CheckResult:
 def _failed(exercise: str, checked: list[str], mesh_name: str | None, text: str,
             element: tuple | None = None, mesh: HalfedgeMesh | None = None) -> CheckResult:
     where = f"On {mesh_name!r}: " if mesh_name else ""
+    if not where:
+        text = text[:1].upper() + text[1:]
     before = f" (It agreed on {', '.join(checked)} first.)" if checked else ""
     return CheckResult(exercise, False, f"Not yet. {where}{text}{before}", list(checked), mesh_name, element, mesh)
 
@@ -166,6 +168,15 @@ def _describe_error(name: str, error: Exception) -> str:
                 f"Fill in the blanks marked ... and run the check again.")
     return (f"your {name} raised {type(error).__name__}: {error}. Call it yourself on the faces above "
             f"to see the full traceback.")
+
+
+def _unfinished(function: Callable, name: str) -> str | None:
+    """The "fill in the blanks" message if the function's own code still holds a ``...``."""
+    code = getattr(function, "__code__", None)
+    if code is not None and any(constant is Ellipsis for constant in code.co_consts):
+        return (f"your {name} still has blanks (...) in it. Fill each one in (no ... left) "
+                f"and run the check again.")
+    return None
 
 
 def _has_ellipsis(value) -> bool:
@@ -399,6 +410,9 @@ def check_build(learner_build: Callable) -> CheckResult:
         A :class:`CheckResult`: on the first difference, what it is in words and which
         halfedge (``result.show()`` draws it); otherwise a short congratulation.
     """
+    unfinished = _unfinished(learner_build, "build")
+    if unfinished:
+        return _failed("build", [], None, unfinished)
     checked: list[str] = []
     for name, vertices, faces in build_cases():
         status, answer = _run(learner_build, faces.copy())
@@ -423,8 +437,12 @@ def check_build(learner_build: Callable) -> CheckResult:
 # --------------------------------------------------------------------------------------
 
 def one_ring_cases() -> list[tuple[str, HalfedgeMesh]]:
-    """The meshes ``check_one_ring`` walks around, every vertex of each, in order."""
-    cases = [(name.replace("_", " "), sample(name)) for name in ("tetrahedron", "cube", "strip", "open_patch",
+    """The meshes ``check_one_ring`` walks around, every vertex of each, in order.
+
+    A flat patch comes first: its pictures are the easiest to read, and it has corner,
+    rim and interior vertices.
+    """
+    cases = [(name.replace("_", " "), sample(name)) for name in ("open_patch", "strip", "tetrahedron", "cube",
                                                                "single_collapse")]
     cases.append(("octahedron, shuffled", HalfedgeMesh.from_faces(*_shuffled(*sample("octahedron").to_arrays(), 3))))
     cases.append(("annulus (two boundary loops)", HalfedgeMesh.from_faces(*_annulus())))
@@ -507,6 +525,9 @@ def check_one_ring(learner_one_ring: Callable) -> CheckResult:
         A :class:`CheckResult` naming the first vertex whose ring differs and why
         (``result.show()`` draws that vertex's ring); otherwise a congratulation.
     """
+    unfinished = _unfinished(learner_one_ring, "one_ring")
+    if unfinished:
+        return _failed("one_ring", [], None, unfinished)
     checked: list[str] = []
     for name, mesh in one_ring_cases():
         for vertex in mesh.vertices:

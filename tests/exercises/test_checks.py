@@ -226,8 +226,21 @@ def test_unfinished_stub_says_fill_in_the_blanks():
     assert "Fill in the blanks" in result.message
 
 
-def test_blank_values_say_not_finished():
-    result = check_build(lambda faces: {"vertex": ..., "face": [], "next": []})
+def test_blanks_in_the_code_say_fill_them_in_without_running_it():
+    def stub(faces):
+        h = ...
+        while True:  # would never end: the check must not run it
+            pass
+        return {"vertex": [h], "face": [], "next": []}
+
+    result = check_build(stub)
+    assert result.message == ("Not yet. Your build still has blanks (...) in it. Fill each one in (no ... left) "
+                              "and run the check again.")
+
+
+def test_blank_values_from_elsewhere_say_not_finished():
+    blank = ...
+    result = check_build(lambda faces: {"vertex": blank, "face": [], "next": []})
     assert "still contains a blank (...)" in result.message
 
 
@@ -280,8 +293,8 @@ def test_check_one_ring_accepts_vertex_handles():
 
 def test_clockwise_walk_is_named():
     result = check_one_ring(walk(lambda h: h.twin.next))
-    assert result.mesh_name == "tetrahedron" and result.element == ("vertex", 0)
-    assert "is [1, 2, 3], but yours is [1, 3, 2]" in result.message
+    assert result.mesh_name == "open patch" and result.element == ("vertex", 0)
+    assert "is [4, 1, 5], but yours is [4, 5, 1]" in result.message
     assert "You walked clockwise" in result.message and "h = h.prev.twin" in result.message
 
 
@@ -291,7 +304,7 @@ def test_wrong_start_is_named():
         return ring[1:] + ring[:1]
 
     result = check_one_ring(second_first)
-    assert "Right order, wrong start: begin with the tip of v.halfedge, vertex 1" in result.message
+    assert "Right order, wrong start: begin with the tip of v.halfedge, vertex 4" in result.message
 
 
 def test_origins_instead_of_tips_are_named():
@@ -301,7 +314,7 @@ def test_origins_instead_of_tips_are_named():
 
 def test_walking_around_the_tip_is_named():
     result = check_one_ring(walk(lambda h: h.next.twin))
-    assert "Every entry is vertex 1: the walk circles around that vertex" in result.message
+    assert "Every entry is vertex 4: the walk circles around that vertex" in result.message
 
 
 def test_halfedges_instead_of_vertices_are_named():
@@ -314,9 +327,9 @@ def test_skipping_the_boundary_halfedge_is_named():
         return [h.tip.index for h in v.outgoing() if h.face is not None]
 
     result = check_one_ring(interior_only)
-    assert result.mesh_name == "strip" and result.element == ("vertex", 0)
-    assert "vertex 0 lies on the boundary" in result.message
-    assert "Missing [2]" in result.message and "boundary halfedge" in result.message
+    assert result.mesh_name == "open patch" and result.element == ("vertex", 0)
+    assert "vertex 0 lies on the boundary (its halfedge 9 is the boundary halfedge 0 -> 4)" in result.message
+    assert "Missing [4]" in result.message and "pass through the boundary halfedge" in result.message
 
 
 def test_comparing_handles_with_is_is_stopped_and_explained():
@@ -338,6 +351,22 @@ def test_one_ring_stub_says_not_finished():
     assert "one_ring is not finished yet" in check_one_ring(stub).message
 
 
+def test_one_ring_with_blanks_is_not_run():
+    def stub(mesh, v):
+        start = v.halfedge
+        ring, h = [], start
+        while True:
+            ring.append(...)
+            h = ...
+            if h == start:
+                return ring
+
+    started = time.perf_counter()
+    result = check_one_ring(stub)
+    assert time.perf_counter() - started < checks.TIME_LIMIT
+    assert "Your one_ring still has blanks (...)" in result.message
+
+
 # --------------------------------------------------------------------------------------
 # The result object
 # --------------------------------------------------------------------------------------
@@ -345,7 +374,7 @@ def test_one_ring_stub_says_not_finished():
 def test_result_reads_as_its_message():
     result = check_one_ring(walk(lambda h: h.twin.next))
     assert isinstance(result, CheckResult)
-    assert repr(result) == result.message and result.message.startswith("Not yet. On 'tetrahedron': ")
+    assert repr(result) == result.message and result.message.startswith("Not yet. On 'open patch': ")
     assert isinstance(result.mesh, hx.HalfedgeMesh)
 
 
