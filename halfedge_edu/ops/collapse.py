@@ -2,19 +2,19 @@
 
 The names (a halfedge ``h_X_Y`` runs from vertex ``vX`` to vertex ``vY``)::
 
-                               vL
-                            /  ^  ^  \\
-                     h_L_B /  /    \\  \\ h_L_A         outside fL, across the
-                          v  / h_B_L \\ v             edges at vL: faces gL
-                          / v   fL    \\ \\               (beyond vB - vL) ...
-                     vB  ---- h_BA ---->  vA
-                         <--- h_AB ----
-                          \\ ^   fR     / ^
-                     h_B_R v \\ h_R_B  / / h_R_A      ... and gR (beyond vB - vR)
-                            \\ v      v /
-                               vR
-                                      (h_A_L, the twin of h_L_A, runs vA -> vL;
-                                       h_A_R, the twin of h_R_A, runs vA -> vR)
+                   gL    vL
+                       /    ^
+              h_L_B   /  fL  \\   h_A_L
+                     v        \\
+                  vB ---h_BA---> vA
+                     <--h_AB----
+                     \\        ^
+              h_B_R   \\  fR  /   h_R_A
+                       v    /
+                   gR    vR
+
+    the twins, outside fL and fR: h_B_L = twin(h_L_B), h_L_A = twin(h_A_L),
+                                  h_R_B = twin(h_B_R), h_A_R = twin(h_R_A)
 
     h_BA runs from vB, the vertex that is REMOVED, to vA, the vertex that SURVIVES
     fL = face(h_BA) = (h_BA, h_A_L, h_L_B);  fR = face(h_AB) = (h_AB, h_B_R, h_R_A)

@@ -4,17 +4,18 @@ The two triangles beside edge ``v0 - v1`` form a quadrilateral ``v0 v3 v1 v2``; 
 flip replaces the diagonal ``v0 - v1`` by the other diagonal ``v2 - v3``. Element counts
 do not change: the same edge, its two halfedges and the two faces are reused::
 
-            before                               after
+            before                            after
 
-              v2                                   v2
-            /    ^                               / ^|  ^
-        h3 /      \\ h2                        h3 / h0|h1 \\ h2
-          v   f0   \\                            v   ||v   \\
-       v0 --- h0 ---> v1                     v0  f0 ||  f1  v1
-          <-- h1 ----                           \\   ||    ^
-          \\   f1   ^                          h4 \\  ||   / h5
-        h4 v      / h5                           v |v  /
-              v3                                   v3
+              v2                                v2
+            /    ^                            / ^ | ^
+       h3  /      \\  h2                 h3  /  | |  \\  h2
+          v   f0   \\                       v   | |   \\
+        v0 ---h0---> v1                  v0  f0 h0 h1 f1  v1
+           <--h1----                        \\   | |   ^
+          \\   f1   ^                    h4  \\  | |  /  h5
+       h4  \\      /  h5                      v | v /
+            v    /                              v3
+              v3
 
     h0 = 2e runs v0 -> v1, h1 = 2e + 1 is its twin; f0 = face(h0), f1 = face(h1)
     h2 = next(h0), h3 = prev(h0), h4 = next(h1), h5 = prev(h1)

@@ -4,17 +4,20 @@ An interior edge becomes four triangles around the new vertex ``m``: +1 vertex,
 +3 edges, +2 faces. A boundary edge has one triangle, which becomes two: +1 vertex,
 +2 edges, +1 face, and the boundary loop runs through ``m``::
 
-            before                                  after
+            before                               after
 
-              v2                                     v2
-            /    ^                                 /  ^ ^
-        h3 /      \\ h2                         h3 / h_m2 \\ h2
-          v   f0   \\                             v f0 | f2 \\
-       v0 --- h0 ---> v1                     v0 -h0--> m -h_m1-> v1
-          <-- h1 ----                           <-h1--   <-h_1m-
-          \\   f1   ^                             \\ f1 | f3 ^
-        h4 v      / h5                         h4 v h_m3  / h5
-              v3                                     v3
+              v2                                   v2
+            /    ^                               / ^ | ^
+       h3  /      \\  h2                     h3  /  | |  \\  h2
+          v   f0   \\                           v f0| |f2 \\
+        v0 ---h0---> v1                    v0 -h0-> m -h_m1-> v1
+           <--h1----                           <-h1-   <-h_1m-
+          \\   f1   ^                           \\ f1| |f3 ^
+       h4  \\      /  h5                     h4  \\  | |  /  h5
+            v    /                               v | v /
+              v3                                   v3
+
+    up from m: h_m2 (m -> v2), its twin h_2m comes down; down from m: h_m3 and h_3m
 
     h0 runs v0 -> v1 in f0; h1 is its twin, in f1 (absent at the boundary)
     h2 = next(h0), h3 = prev(h0), h4 = next(h1), h5 = prev(h1) (as for flip)
