@@ -15,7 +15,7 @@ from .log import OperationLog, PointerChange
 from .split import can_split, split
 
 __all__ = [
-    "Link", "LinkCondition", "OpCheck", "OperationLog", "PointerChange", "can_collapse", "can_flip", "can_split",
-    "collapse", "flip",
-    "link_condition", "link_of_edge", "link_of_vertex", "split",
+    "Link", "LinkCondition", "OpCheck", "OperationLog", "PointerChange",
+    "can_collapse", "can_flip", "can_split", "collapse", "flip", "split",
+    "link_condition", "link_of_edge", "link_of_vertex",
 ]

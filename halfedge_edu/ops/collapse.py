@@ -58,8 +58,9 @@ The two cases the course separates:
   each pointer when they need it, so the one code path covers both cases. The face
   survives as ``(vA, vL, vR)``.
 
-Which of the merged edges is kept does not matter either: keeping ``vB``'s would give
-the same mesh with other edge numbers.
+Which of the merged edges is kept does not matter either: keeping ``vB``'s gives the
+same mesh with other edge numbers (collapsing from the other end does exactly that,
+and the tests check that both give the same mesh).
 
 The rules (``can_collapse``), each with the name its refusal carries in ``.rule``:
 
