@@ -51,24 +51,32 @@ _ROLE_LIST = [
     Role("outgoing", "halfedge", BLUE, "outgoing halfedges of v"),
     Role("neighbor", "vertex", SKY_BLUE, "neighbours of v"),
     Role("ring_face", "face", "#F8F2A6", "faces around v"),
-    # Operation steppers (chapters 06-08).
-    Role("changed", "halfedge", VERMILLION, "pointer changes now"),
-    Role("changed_vertex", "vertex", VERMILLION, "pointer changes now"),
-    Role("changed_face", "face", "#F5B38A", "pointer changes now"),
-    Role("old_target", "halfedge", REDDISH_PURPLE, "old target"),
-    Role("new_target", "halfedge", BLUISH_GREEN, "new target"),
-    Role("named", "halfedge", BLUE, "gathered halfedges"),
-    Role("named_vertex", "vertex", ORANGE, "gathered vertices"),
-    Role("named_face", "face", "#CFE6F5", "gathered faces"),
+    # Operation steppers (chapters 06-08): what changes now, its old and new value,
+    # what the operation deletes or creates, and what it gathered first.
+    Role("changed", "halfedge", VERMILLION, "changes now"),
+    Role("changed_vertex", "vertex", VERMILLION, "changes now"),
+    Role("changed_face", "face", "#F5B38A", "changes now"),
+    Role("old_target", "halfedge", REDDISH_PURPLE, "old value"),
+    Role("old_vertex", "vertex", REDDISH_PURPLE, "old value"),
+    Role("old_face", "face", "#EBCFE0", "old value"),
+    Role("new_target", "halfedge", BLUISH_GREEN, "new value"),
+    Role("new_vertex", "vertex", BLUISH_GREEN, "new value"),
+    Role("new_face", "face", "#BFE6D6", "new value"),
     Role("doomed", "halfedge", BLACK, "to be deleted"),
     Role("doomed_vertex", "vertex", BLACK, "to be deleted"),
     Role("doomed_face", "face", "#B8B8B8", "to be deleted"),
-    Role("created", "halfedge", BLUISH_GREEN, "created"),
-    Role("created_vertex", "vertex", BLUISH_GREEN, "created"),
-    Role("created_face", "face", "#BDE8D8", "created"),
+    Role("created", "halfedge", SKY_BLUE, "created"),
+    Role("created_vertex", "vertex", SKY_BLUE, "created"),
+    Role("created_face", "face", "#CBE7F7", "created"),
+    Role("named", "halfedge", BLUE, "gathered"),
+    Role("named_vertex", "vertex", BLUE, "gathered"),
+    Role("named_face", "face", "#DCD3EE", "gathered"),
+    # An edge an operation refuses, with the elements the reason names.
+    Role("refused", "halfedge", VERMILLION, "refused edge"),
+    Role("refused_vertex", "vertex", VERMILLION, "named in the reason"),
 ]
 
-#: Every role by name, in legend order.
+#: Every role by name, in legend order; where an element has two roles, the earlier wins.
 ROLES: dict[str, Role] = {role.name: role for role in _ROLE_LIST}
 
 
@@ -89,6 +97,7 @@ class Preset:
     highlight_vertex_size: float
     arrow_width: float        # relative: 1.0 is the normal thickness
     label_size: int
+    rewiring_face: str        # a face whose pointers are half changed (steppers)
     legend_size: tuple[float, float]  # fraction of the window
     text: str
 
@@ -108,6 +117,7 @@ PRESETS: dict[str, Preset] = {
         highlight_vertex_size=16.0,
         arrow_width=1.0,
         label_size=12,
+        rewiring_face="#F6D7BF",
         legend_size=(0.27, 0.27),
         text="#1A1A1A",
     ),
@@ -126,6 +136,7 @@ PRESETS: dict[str, Preset] = {
         highlight_vertex_size=28.0,
         arrow_width=1.7,
         label_size=22,
+        rewiring_face="#F3C9A6",
         legend_size=(0.32, 0.32),
         text="#000000",
     ),

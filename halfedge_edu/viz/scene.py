@@ -73,6 +73,14 @@ class HalfedgeScene:
         window_size: image size in pixels; the preset's by default.
         follow: ``"auto"`` (a large mesh's camera follows the highlight; a small mesh
             turns only when the highlight is on its far side), True or False.
+        local_faces: faces an edit will touch (steppers): they are drawn apart from the
+            rest of the surface and redrawn by :meth:`set_mesh`, so stepping through an
+            operation never rebuilds the whole surface.
+
+    Two hooks let a stepper draw meshes whose pointers are half rewired:
+    ``scene.corners(mesh, halfedges) -> (A, B, third)`` places the arrows (default
+    :func:`~halfedge_edu.viz.arrows.halfedge_corners`), and ``scene.fixed_window`` (an
+    array of halfedges, or None) replaces the rings around the highlight on large meshes.
     """
 
     def __init__(
@@ -87,6 +95,7 @@ class HalfedgeScene:
         plotter=None,
         window_size: tuple[int, int] | None = None,
         follow="auto",
+        local_faces=None,
     ):
         import pyvista as pv
 
@@ -97,6 +106,9 @@ class HalfedgeScene:
         self.legend = bool(legend)
         self.follow = follow
         self.label_kinds = self._label_kinds(labels)
+        self.corners = _arrows.halfedge_corners
+        self.fixed_window: np.ndarray | None = None
+        self._local_faces = np.unique(np.asarray([] if local_faces is None else local_faces, dtype=np.int64))
         self.window_size = tuple(window_size or self.preset.window_size)
         if plotter is None:
             plotter = pv.Plotter(off_screen=True, window_size=list(self.window_size))
@@ -108,6 +120,8 @@ class HalfedgeScene:
         self._legend_actor = None
         self.roles: dict[str, np.ndarray] = {}
         self.names: dict[tuple[str, int], str] = {}
+        #: Hook for faces whose loop is half rewired: ``faces -> (k, 3)`` corner vertices.
+        self.face_corners = None
         self._legend_key: tuple | None = None
         self._actors: dict[str, object] = {}
         self._data: dict[str, object] = {}
@@ -143,11 +157,17 @@ class HalfedgeScene:
             if role not in ROLES:
                 raise ValueError(f"unknown role {role!r}; roles are {', '.join(ROLES)}")
             indices = np.atleast_1d(np.asarray(members, dtype=np.int64))
+            # Elements that do not exist (yet) are left out.
+            indices = indices[(indices >= 0) & (indices < self._slots(ROLES[role].kind))]
             if len(indices):
                 cleaned[role] = indices
         self.roles = cleaned
         self.names = dict(names or {})
         self._update()
+
+    def _slots(self, kind: str) -> int:
+        mesh = self.mesh
+        return {"vertex": mesh.n_vertex_slots, "halfedge": mesh.n_halfedge_slots, "face": mesh.n_face_slots}[kind]
 
     def show_halfedge(self, h: int) -> None:
         """Highlight halfedge ``h`` with its twin, next, prev, origin, tip and face."""
@@ -189,6 +209,38 @@ class HalfedgeScene:
         """Rebuild everything from the mesh (after an operation or moved vertices)."""
         self._build()
         self._update()
+
+    def set_mesh(self, mesh, roles: Mapping | None = None, *, names=None) -> None:
+        """Draw ``mesh``, an edited version of the scene's mesh, and highlight ``roles``.
+
+        Only the arrows, the vertices and the ``local_faces`` given at construction are
+        redrawn (the rest of the surface stays as built), so an edit must stay inside
+        those faces; created faces count as local. ``mesh`` may be half rewired
+        (a stepper's in-between state): faces whose ``next`` loop is not a triangle
+        are drawn in the preset's "rewiring" colour, where :attr:`face_corners` says.
+        """
+        self.mesh = mesh
+        self._grow_normals()
+        self._geometry_dirty = True
+        self.set_roles({} if roles is None else roles, names=names)
+
+    def look_at(self, vertices, rings: int = 1) -> None:
+        """Point the camera at ``vertices`` and the ``rings`` rings of vertices around them."""
+        vertices = np.asarray(vertices, dtype=np.int64)
+        normal = _unit(self._vertex_normals[vertices].sum(axis=0))
+        if self._flat or not np.linalg.norm(normal) > 0:
+            direction = self._view_direction()
+        elif self.windowed:
+            direction = normal
+        else:
+            direction = _unit(1.5 * normal + _unit(VIEW_DIRECTION))
+        around = np.flatnonzero(self._ring_mark(vertices, rings)) if rings else vertices
+        centre = self.mesh.positions[vertices].mean(axis=0)
+        # The ring around gives context; halfway out to it is enough to show it.
+        points = np.concatenate([self.mesh.positions[vertices],
+                                 centre + 0.6 * (self.mesh.positions[around] - centre)])
+        self._set_camera(centre, direction, self._radius, points=points)
+        self._draw_labels(self._focus_vertices())
 
     def render(self) -> None:
         """Push the current state to the render window."""
@@ -268,7 +320,8 @@ class HalfedgeScene:
         positions = np.array(mesh.positions)
         corners = mesh.face_vertices()[self._live_faces]                  # (F, 3)
         self._live_corners = corners
-        surface = pv.PolyData.from_regular_faces(positions, corners)
+        static = ~np.isin(self._live_faces, self._local_faces)
+        surface = pv.PolyData.from_regular_faces(positions, corners[static])
         self._face_normals = np.zeros((mesh.n_face_slots, 3))
         a, b, c = (positions[corners[:, i]] for i in range(3))
         self._face_normals[self._live_faces] = _unit(np.cross(b - a, c - a))
@@ -277,6 +330,8 @@ class HalfedgeScene:
         for i in range(3):
             np.add.at(vertex_normals, corners[:, i], area_normals)
         self._vertex_normals = _unit(vertex_normals)
+        mean_normal = self._face_normals[self._live_faces].mean(axis=0) if len(self._live_faces) else np.zeros(3)
+        self._flat = bool(np.linalg.norm(mean_normal) > 0.9)
         self._center = positions[~mesh.vertex_deleted].mean(axis=0)
         self._radius = float(np.linalg.norm(positions[~mesh.vertex_deleted] - self._center, axis=1).max()) or 1.0
 
@@ -287,6 +342,9 @@ class HalfedgeScene:
         )
         placeholder = pv.PolyData(np.zeros((3, 3)), faces=[3, 0, 1, 2])
         placeholder.cell_data["rgb"] = np.zeros((1, 3), dtype=np.uint8)
+        self._add("local_surface", placeholder.copy(), scalars="rgb", rgb=True, show_edges=True,
+                  edge_color=look.edge, line_width=look.edge_width, ambient=0.35, diffuse=0.6,
+                  specular=0.0, show_scalar_bar=False)
         self._add("highlight_faces", placeholder.copy(), scalars="rgb", rgb=True,
                   ambient=0.35, diffuse=0.6, specular=0.0, show_scalar_bar=False)
         arrows = placeholder.copy()
@@ -303,11 +361,64 @@ class HalfedgeScene:
                   show_scalar_bar=False)
 
         self._arrow_halfedges = np.zeros(0, dtype=np.int64)
-        if not self.windowed:
-            live = np.flatnonzero(~mesh.halfedge_deleted)
-            self._draw_arrows(live)
-            self._set_data("vertices", pv.PolyData(positions[~mesh.vertex_deleted]))
+        self._local_drawn = (np.zeros(0, dtype=np.int64), np.zeros((0, 3), dtype=np.int64))
+        self._geometry_dirty = True
         self._legend_key = None
+
+    def _grow_normals(self) -> None:
+        """Make room in the normal arrays for vertices and faces an edit created."""
+        mesh = self.mesh
+        if len(self._vertex_normals) < mesh.n_vertex_slots:
+            extra = np.zeros((mesh.n_vertex_slots - len(self._vertex_normals), 3))
+            self._vertex_normals = np.concatenate([self._vertex_normals, extra])
+        if len(self._face_normals) < mesh.n_face_slots:
+            extra = np.zeros((mesh.n_face_slots - len(self._face_normals), 3))
+            self._face_normals = np.concatenate([self._face_normals, extra])
+
+    def _drawable(self, halfedges: np.ndarray) -> np.ndarray:
+        """The live ones among ``halfedges`` whose two ends are set (not -1)."""
+        mesh = self.mesh
+        halfedges = halfedges[(halfedges >= 0) & (halfedges < mesh.n_halfedge_slots)]
+        halfedges = halfedges[~mesh.edge_deleted[halfedges >> 1]]
+        ends_set = (mesh.halfedge_vertex[halfedges] >= 0) & (mesh.halfedge_vertex[halfedges ^ 1] >= 0)
+        return halfedges[ends_set]
+
+    def _draw_local_faces(self) -> None:
+        """Redraw the local faces as the mesh has them now (rewired ones stand out)."""
+        import pyvista as pv
+
+        mesh, look = self.mesh, self.preset
+        faces = self._local_faces[self._local_faces < mesh.n_face_slots]
+        faces = faces[~mesh.face_deleted[faces]]
+        self._local_drawn = (np.zeros(0, dtype=np.int64), np.zeros((0, 3), dtype=np.int64))
+        if len(faces) == 0:
+            self._set_data("local_surface", None)
+            return
+        h0 = mesh.face_halfedge[faces]
+        valid = h0 >= 0
+        h0 = np.where(valid, h0, 0)
+        h1 = mesh.halfedge_next[h0]
+        h2 = mesh.halfedge_next[np.maximum(h1, 0)]
+        loop = np.stack([h0, h1, h2], axis=1)                              # (k, 3)
+        valid &= (loop >= 0).all(axis=1)
+        valid &= mesh.halfedge_next[np.maximum(h2, 0)] == h0
+        valid &= (mesh.halfedge_face[np.maximum(loop, 0)] == faces[:, None]).all(axis=1)
+        corners = mesh.halfedge_vertex[np.maximum(loop, 0)]
+        valid &= (corners >= 0).all(axis=1)
+        # Each halfedge must end where the next one starts.
+        tips = mesh.halfedge_vertex[np.maximum(loop, 0) ^ 1]
+        valid &= (tips == np.roll(corners, -1, axis=1)).all(axis=1)
+        if not valid.all() and self.face_corners is not None:
+            corners[~valid] = self.face_corners(faces[~valid])
+        drawn = (corners >= 0).all(axis=1)
+        faces, corners, valid = faces[drawn], corners[drawn], valid[drawn]
+        points = mesh.positions[corners]                                   # (k, 3, 3)
+        self._face_normals[faces] = _unit(np.cross(points[:, 1] - points[:, 0], points[:, 2] - points[:, 0]))
+        data = pv.PolyData.from_regular_faces(points.reshape(-1, 3), np.arange(3 * len(faces)).reshape(-1, 3))
+        data.cell_data["rgb"] = np.where(valid[:, None], rgb(look.surface), rgb(look.rewiring_face)).astype(np.uint8)
+        self._set_data("local_surface", data)
+        order = np.argsort(faces)
+        self._local_drawn = (faces[order], corners[order])
 
     # ----------------------------------------------------------------------------------
     # Updating (every highlight change)
@@ -332,11 +443,18 @@ class HalfedgeScene:
         return focus[(focus >= 0) & ~mesh.vertex_deleted[np.clip(focus, 0, None)]] if len(focus) else focus
 
     def _corners_of(self, faces: np.ndarray) -> np.ndarray:
+        """(k, 3) corner vertices of ``faces``, as drawn (local faces as last drawn)."""
         mesh = self.mesh
         h0 = mesh.face_halfedge[faces]
         h1 = mesh.halfedge_next[h0]
         h2 = mesh.halfedge_next[h1]
-        return np.stack([mesh.halfedge_vertex[h0], mesh.halfedge_vertex[h1], mesh.halfedge_vertex[h2]], axis=1)
+        corners = np.stack([mesh.halfedge_vertex[h0], mesh.halfedge_vertex[h1], mesh.halfedge_vertex[h2]], axis=1)
+        drawn_faces, drawn_corners = self._local_drawn
+        if len(drawn_faces) and len(faces):
+            slot = np.minimum(np.searchsorted(drawn_faces, faces), len(drawn_faces) - 1)
+            hit = drawn_faces[slot] == faces
+            corners[hit] = drawn_corners[slot[hit]]
+        return corners
 
     def _ring_mark(self, seeds: np.ndarray, rings: int) -> np.ndarray:
         """(n_vertex_slots,) bool: the vertices within ``rings`` edges of ``seeds``."""
@@ -368,7 +486,7 @@ class HalfedgeScene:
         if len(halfedges) == 0:
             self._set_data("arrows", None)
             return
-        A, B, third = _arrows.halfedge_corners(self.mesh, halfedges)
+        A, B, third = self.corners(self.mesh, halfedges)
         points, triangles = _arrows.arrow_geometry(A, B, third, scale=self._scale, width=self.preset.arrow_width)
         data = pv.PolyData.from_regular_faces(points, triangles)
         data.cell_data["rgb"] = np.zeros((len(triangles), 3), dtype=np.uint8)
@@ -382,19 +500,30 @@ class HalfedgeScene:
 
         mesh, look = self.mesh, self.preset
         focus = self._focus_vertices()
+        if self._geometry_dirty:
+            self._draw_local_faces()
         if self.windowed:
-            if len(focus) == 0:
-                focus = np.array([int(np.flatnonzero(~mesh.vertex_deleted)[0])])
-            mark = self._ring_mark(focus, self.rings)
-            inside = np.flatnonzero(mark)
-            outgoing = self._outgoing_of(inside)
-            window = np.sort(outgoing[mark[mesh.halfedge_vertex[outgoing ^ 1]]])
+            if self.fixed_window is not None:
+                window = self._drawable(np.asarray(self.fixed_window, dtype=np.int64))
+                ends = np.concatenate([mesh.halfedge_vertex[window], mesh.halfedge_vertex[window ^ 1]])
+                inside = np.unique(ends)
+            else:
+                if len(focus) == 0:
+                    focus = np.array([int(np.flatnonzero(~mesh.vertex_deleted)[0])])
+                mark = self._ring_mark(focus, self.rings)
+                inside = np.flatnonzero(mark)
+                outgoing = self._outgoing_of(inside)
+                window = np.sort(outgoing[mark[mesh.halfedge_vertex[outgoing ^ 1]]])
             self._draw_arrows(window)
             positions = mesh.positions
             ends = mesh.edge_vertices()[np.unique(window >> 1)]             # (k, 2)
             lines = pv.PolyData(positions, lines=np.hstack([np.full((len(ends), 1), 2), ends]).ravel())
             self._set_data("window_edges", lines)
             self._set_data("vertices", pv.PolyData(positions[inside]))
+        elif self._geometry_dirty:
+            self._draw_arrows(self._drawable(np.arange(mesh.n_halfedge_slots)))
+            self._set_data("vertices", pv.PolyData(np.array(mesh.positions[~mesh.vertex_deleted])))
+        self._geometry_dirty = False
         self._color_arrows()
         self._draw_highlight_faces()
         self._draw_highlight_vertices()
@@ -622,6 +751,7 @@ class HalfedgeScene:
             front = self._facing(positions[corners[:, 0]], self._face_normals[self._live_faces])
             seen = np.zeros(mesh.n_vertex_slots, dtype=bool)
             seen[corners[front].ravel()] = True
+            seen[self._local_drawn[1].ravel()] = True
             vertices = vertices[seen[vertices]]
             points = self._beside(positions[vertices], 0.45 * look.highlight_vertex_size)
             texts["vertex"] = (points, [self._label_text("vertex", v) for v in vertices])
@@ -634,11 +764,10 @@ class HalfedgeScene:
             texts["face"] = (centroids, [self._label_text("face", f) for f in faces])
         halfedges = self._labelled("halfedge", choice.get("halfedge"), near)
         if len(halfedges):
-            A, B, third = _arrows.halfedge_corners(mesh, halfedges)
+            A, B, third = self.corners(mesh, halfedges)
             middle = 0.5 * (A + B)
             points = middle + 0.6 * ((A + B + third) / 3.0 - middle)
-            side = np.where(mesh.halfedge_face[halfedges] < 0, halfedges ^ 1, halfedges)
-            keep = self._facing(points, self._face_normals[np.maximum(mesh.halfedge_face[side], 0)])
+            keep = self._facing(points, np.cross(B - A, third - A))
             texts["halfedge"] = (points[keep], [self._label_text("halfedge", h) for h in halfedges[keep]])
 
         styles = {
@@ -665,7 +794,7 @@ class HalfedgeScene:
     def _label_text(self, kind: str, index: int) -> str:
         plain = f"{_LABEL_PREFIX[kind]}{int(index)}"
         name = self.names.get((kind, int(index)))
-        return plain if name is None else f"{name} = {plain}"
+        return plain if name is None else f"{name} ({int(index)})"
 
     def legend_entries(self) -> list[tuple[str, str, str]]:
         """What the legend shows now: ``(text, "#RRGGBB", kind)`` rows, kind being

@@ -80,8 +80,8 @@ class SceneWidget:
         self.mode = choose_mode(mode)
         self.look = _preset(preset)
         size = tuple(window_size or self.look.window_size)
-        self.scene = HalfedgeScene(mesh, preset=self.look, labels=labels, rings=rings, legend=False,
-                                   plotter=make_plotter(self.mode, size), window_size=size)
+        self.scene = self._make_scene(mesh, labels=labels, rings=rings, legend=False,
+                                      plotter=make_plotter(self.mode, size), window_size=size)
         css = _css(self.look)
         self._status = widgets.HTML(layout=widgets.Layout(min_height="1.5em"))
         self._info = widgets.HTML()
@@ -99,6 +99,9 @@ class SceneWidget:
         return self.scene.mesh
 
     # -- for subclasses ------------------------------------------------------------------
+
+    def _make_scene(self, mesh, **options) -> HalfedgeScene:
+        return HalfedgeScene(mesh, preset=self.look, **options)
 
     def _controls(self) -> list:
         return []
@@ -162,7 +165,7 @@ class SceneWidget:
     def screenshot(self, path=None) -> bytes:
         """The view as PNG bytes (also written to ``path`` if given)."""
         if self.mode == "static" and path is None:
-            return self.view.widget.value
+            return bytes(self.view.widget.value)
         return self.scene.screenshot(path)
 
     def close(self) -> None:

@@ -1,0 +1,512 @@
+"""Step through a local operation one pointer change at a time: flip, split, collapse.
+
+    from halfedge_edu.viz import CollapseStepper
+    w = CollapseStepper(hx.sample("cube"), 0)
+    w                     # step 0: the elements the collapse gathers, with the course's names
+    w.step()              # the first change highlighted and listed, old -> new
+    w.go("phase")         # to the start of the next phase; also "start", "end", "back", 5
+    print(w.describe())
+
+How it works: the stepper copies the mesh, runs the real operation on the copy with an
+:class:`~halfedge_edu.ops.log.OperationLog`, and keeps the mesh as it was before. Step
+``k`` shows "before, plus the first k changes applied" (``log.replay``), so going back
+is as cheap as going forward and the pictures can never disagree with the operation.
+A change that creates an element is shown together with the lines that fill in its
+first pointers (``-1 -> ...``). In between, a face whose ``next`` loop is no longer a
+triangle is drawn in a "rewiring" colour, and an arrow sits in the face it belongs to
+before or after the operation, whichever matches its current ends.
+
+The mesh passed in is never changed; ``w.result`` is the mesh after the operation.
+An operation that is refused shows the edge and the reason instead of steps.
+"""
+
+from __future__ import annotations
+
+import html
+from collections import defaultdict
+
+import numpy as np
+
+from ..core.elements import Halfedge
+from .palette import preset as _preset
+from .scene import HalfedgeScene
+from .widgets import SceneWidget, _css, table_html
+
+# Stepper roles by the kind of element they colour.
+_CHANGED = {"halfedge": "changed", "vertex": "changed_vertex", "face": "changed_face"}
+_OLD = {"halfedge": "old_target", "vertex": "old_vertex", "face": "old_face"}
+_NEW = {"halfedge": "new_target", "vertex": "new_vertex", "face": "new_face"}
+_DOOMED = {"halfedge": "doomed", "vertex": "doomed_vertex", "face": "doomed_face"}
+_CREATED = {"halfedge": "created", "vertex": "created_vertex", "face": "created_face"}
+_NAMED = {"halfedge": "named", "vertex": "named_vertex", "face": "named_face"}
+# The kind of element a pointer field holds.
+_TARGET = {("halfedge", "next"): "halfedge", ("halfedge", "prev"): "halfedge",
+           ("halfedge", "vertex"): "vertex", ("halfedge", "face"): "face",
+           ("vertex", "halfedge"): "halfedge", ("face", "halfedge"): "halfedge"}
+
+
+def group_changes(changes) -> list[tuple[int, int]]:
+    """Cut a log's changes into steps: ``[(start, stop), ...]`` ranges of ``changes``.
+
+    Every change is its own step, except that creating an element takes along the
+    changes right after it that fill in that element's first values (``-1 -> x``,
+    ``None -> position``), and deleting an edge takes along its two halfedges.
+    """
+    groups, i, n = [], 0, len(changes)
+    while i < n:
+        change, j = changes[i], i + 1
+        if change.field in ("created", "deleted"):
+            family = {(change.kind, change.index)}
+            if change.kind == "edge":
+                family |= {("halfedge", 2 * change.index), ("halfedge", 2 * change.index + 1)}
+            while j < n and (changes[j].kind, changes[j].index) in family and (
+                changes[j].field == change.field
+                or (change.field == "created" and changes[j].old in (-1, None))
+            ):
+                j += 1
+        groups.append((i, j))
+        i = j
+    return groups
+
+
+def _padded(array: np.ndarray, length: int, fill) -> np.ndarray:
+    out = np.full((length,) + array.shape[1:], fill, dtype=array.dtype)
+    out[: len(array)] = array
+    return out
+
+
+class OperationStepper(SceneWidget):
+    """Shared machinery of the flip, split and collapse steppers (use those).
+
+    Args:
+        mesh: the mesh; it is copied, never changed.
+        edge: an edge index, an :class:`Edge`, or (collapse) a :class:`Halfedge`
+            whose origin is removed.
+        position: for split and collapse, where the new or merged vertex goes
+            (the midpoint by default).
+        mode, preset, rings, window_size: as for every widget.
+    """
+
+    operation = ""
+
+    def __init__(self, mesh, edge, *, position=None, mode: str | None = None, preset="default",
+                 rings: int = 2, window_size=None):
+        from ..ops.log import OperationLog
+
+        self.before = mesh.copy()
+        self.after = mesh.copy()
+        argument = self.after.halfedge(edge.index) if isinstance(edge, Halfedge) else int(edge)
+        self.check = self._can(self.after, argument)
+        self.log = OperationLog()
+        if self.check:
+            self._run(self.after, argument, position, self.log)
+        self.groups = group_changes(self.log.changes)
+        self._step = 0
+        self._names = self._element_names()
+        super().__init__(self.before.copy(), mode=mode, preset=preset, labels=None, rings=rings,
+                         window_size=window_size)
+
+    # -- what subclasses provide ---------------------------------------------------------
+
+    def _can(self, mesh, edge):
+        raise NotImplementedError
+
+    def _run(self, mesh, edge, position, log) -> None:
+        raise NotImplementedError
+
+    # -- public --------------------------------------------------------------------------
+
+    @property
+    def n_steps(self) -> int:
+        """How many steps after step 0 (the gathered elements)."""
+        return len(self.groups)
+
+    @property
+    def step_index(self) -> int:
+        """The step shown now: 0 (gathered) to ``n_steps`` (done)."""
+        return self._step
+
+    @property
+    def result(self):
+        """A copy of the mesh after the operation (the mesh as it was, if refused)."""
+        return self.after.copy()
+
+    @property
+    def state(self):
+        """The mesh as it is at the current step (usually not valid half way)."""
+        return self.scene.mesh
+
+    def go(self, target) -> int:
+        """Go to a step: "next" ("step"), "back", "start", "end", "phase" (the start of
+        the next phase), "phase back", or a step number. Returns the step shown."""
+        starts = self._phase_steps()
+        if isinstance(target, str):
+            name = target.strip().lower()
+            moves = {
+                "next": self._step + 1, "step": self._step + 1, "back": self._step - 1,
+                "start": 0, "end": self.n_steps,
+                "phase": next((s for s in starts if s > self._step), self.n_steps),
+                "phase back": max([s for s in starts if s < self._step], default=0),
+            }
+            if name not in moves:
+                raise ValueError(f"unknown move {target!r}: use {', '.join(repr(m) for m in moves)} or a step number")
+            target = moves[name]
+        target = int(target)
+        if not 0 <= target <= self.n_steps:
+            raise IndexError(f"there is no step {target}: steps run from 0 to {self.n_steps}")
+        self._step = target
+        self._say("")
+        self._changed()
+        return self._step
+
+    def step(self) -> int:
+        """One step forward (stays at the end)."""
+        return self.go(min(self._step + 1, self.n_steps))
+
+    def back(self) -> int:
+        """One step back (stays at the start)."""
+        return self.go(max(self._step - 1, 0))
+
+    # -- the scene -----------------------------------------------------------------------
+
+    def _element_names(self) -> dict[tuple[str, int], str]:
+        found: dict[tuple[str, int], list[str]] = defaultdict(list)
+        for name, (kind, index) in self.log.named.items():
+            found[(kind, index)].append(name)
+        return {key: "/".join(names) for key, names in found.items()}
+
+    def _touched_faces(self) -> np.ndarray:
+        faces = {index for kind, index in self.log.named.values() if kind == "face"}
+        faces |= {index for kind, index in self.log.created + self.log.deleted if kind == "face"}
+        n_before = self.before.n_halfedge_slots
+        for change in self.log.changes:
+            if change.kind == "face":
+                faces.add(change.index)
+            elif change.kind == "halfedge":
+                if change.field == "face":
+                    faces |= {f for f in (change.old, change.new) if f >= 0}
+                if change.index < n_before:
+                    faces.add(int(self.before.halfedge_face[change.index]))
+        if not self.check:
+            for kind, index in self.check.elements:
+                if kind == "edge":
+                    faces |= {int(self.before.halfedge_face[h]) for h in (2 * index, 2 * index + 1)}
+        faces.discard(-1)
+        return np.array(sorted(faces), dtype=np.int64)
+
+    def _operation_vertices(self) -> np.ndarray:
+        vertices = {index for kind, index in self.log.named.values() if kind == "vertex"}
+        for kind, index in self.check.elements:
+            if kind == "vertex":
+                vertices.add(index)
+            elif kind == "edge":
+                vertices |= {int(self.before.halfedge_vertex[2 * index]), int(self.before.halfedge_vertex[2 * index + 1])}
+        vertices = {v for v in vertices if v < self.before.n_vertex_slots}
+        return np.array(sorted(vertices), dtype=np.int64)
+
+    def _prepare_references(self) -> None:
+        """Before and after arrays padded to the same length, for placing arrows."""
+        n = self.after.n_halfedge_slots
+        self._reference = []
+        for mesh in (self.after, self.before):
+            self._reference.append((
+                _padded(mesh.halfedge_vertex, n, -1),
+                _padded(mesh.halfedge_prev, n, -1),
+                _padded(mesh.halfedge_face, n, -1),
+                _padded(~mesh.halfedge_deleted, n, False),
+            ))
+        self._after_next = _padded(self.after.halfedge_next, n, -1)
+        n_faces = self.after.n_face_slots
+        self._reference_faces = [
+            (_padded(mesh.face_vertices(), n_faces, -1), _padded(~mesh.face_deleted, n_faces, False))
+            for mesh in (self.after, self.before)
+        ]
+
+    def _arrow_corners(self, mesh, halfedges):
+        """Arrow ends from the current state; the side it sits on from before or after.
+
+        An arrow moves into its place after the operation once all its pointers
+        (ends, next, prev, face) have their final values; until then it stays where it
+        was before, as long as its ends are still those of before; in between (its ends
+        changed, its links not yet), it sits in its place after the operation.
+        """
+        halfedges = np.asarray(halfedges, dtype=np.int64)
+        origin = mesh.halfedge_vertex[halfedges]
+        tip = mesh.halfedge_vertex[halfedges ^ 1]
+        (a_origin, a_prev, a_face, a_live), (b_origin, b_prev, b_face, b_live) = self._reference
+        after_match = (a_live[halfedges] & (a_origin[halfedges] == origin) & (a_origin[halfedges ^ 1] == tip)
+                       & (a_prev[halfedges] == mesh.halfedge_prev[halfedges])
+                       & (self._after_next[halfedges] == mesh.halfedge_next[halfedges])
+                       & (a_face[halfedges] == mesh.halfedge_face[halfedges]))
+        before_match = b_live[halfedges] & (b_origin[halfedges] == origin) & (b_origin[halfedges ^ 1] == tip)
+        n_vertices = mesh.n_vertex_slots
+
+        def opposite_in(origin_of, prev_of, face_of):
+            face = face_of[halfedges]
+            side = np.where(face < 0, halfedges ^ 1, halfedges)
+            opposite = origin_of[np.maximum(prev_of[side], 0)]
+            return face, np.where((opposite >= 0) & (opposite < n_vertices), opposite, -1)
+
+        after_face, after_opposite = opposite_in(a_origin, a_prev, a_face)
+        before_face, before_opposite = opposite_in(b_origin, b_prev, b_face)
+        use_after = after_match | (~before_match & a_live[halfedges])
+        use_after &= (after_opposite >= 0) | (before_opposite < 0)
+        face = np.where(use_after, after_face, before_face)
+        opposite = np.where(use_after, after_opposite, before_opposite)
+        positions = mesh.positions
+        A, B = positions[origin], positions[tip]
+        third = np.where((opposite < 0)[:, None], A, positions[np.maximum(opposite, 0)])
+        third = np.where(((face < 0) & (opposite >= 0))[:, None], A + B - third, third)
+        return A, B, third
+
+    def _face_corners(self, faces):
+        """Corners for faces that are half rewired: their triangle after, else before."""
+        (a_corners, a_live), (b_corners, b_live) = self._reference_faces
+        faces = np.asarray(faces, dtype=np.int64)
+        inside = faces < len(a_live)
+        use_after = np.zeros(len(faces), dtype=bool)
+        use_after[inside] = a_live[faces[inside]]
+        corners = np.full((len(faces), 3), -1, dtype=np.int64)
+        corners[use_after] = a_corners[faces[use_after]]
+        from_before = ~use_after & (faces < len(b_live))
+        from_before[from_before] &= b_live[faces[from_before]]
+        corners[from_before] = b_corners[faces[from_before]]
+        return corners
+
+    def _make_scene(self, mesh, **options) -> HalfedgeScene:
+        """A scene of the mesh before, with the operation's faces kept apart."""
+        self._prepare_references()
+        scene = HalfedgeScene(mesh, preset=self.look, follow=False, local_faces=self._touched_faces(),
+                              **options)
+        scene.corners = self._arrow_corners
+        scene.face_corners = self._face_corners
+        vertices = self._operation_vertices()
+        if scene.windowed and len(vertices):
+            mark = scene._ring_mark(vertices, scene.rings)
+            outgoing = scene._outgoing_of(np.flatnonzero(mark))
+            window = outgoing[mark[self.before.halfedge_vertex[outgoing ^ 1]]]
+            created = np.arange(self.before.n_halfedge_slots, self.after.n_halfedge_slots)
+            scene.fixed_window = np.unique(np.concatenate([window, created]))
+        if len(vertices):
+            scene.look_at(vertices)
+        return scene
+
+    def _show(self) -> None:
+        state = self.before.copy()
+        if self._step:
+            self.log.replay(state, self.groups[self._step - 1][1])
+        self.scene.set_mesh(state, self._roles(), names=self._names)
+
+    def _roles(self) -> dict[str, list[int]]:
+        roles: dict[str, list[int]] = defaultdict(list)
+
+        def add(table, kind, index):
+            if kind == "edge":
+                roles[table["halfedge"]] += [2 * index, 2 * index + 1]
+            elif index is not None and index >= 0:
+                roles[table[kind]].append(int(index))
+
+        if not self.check:
+            for kind, index in self.check.elements:
+                if kind == "edge":
+                    roles["refused"] += [2 * index, 2 * index + 1]
+                elif kind == "vertex":
+                    roles["refused_vertex"].append(index)
+            return dict(roles)
+        done = self.groups[self._step - 1][1] if self._step else 0
+        for position, change in enumerate(self.log.changes):
+            if change.field == "created" and position < done:
+                add(_CREATED, change.kind, change.index)
+            elif change.field == "deleted" and position >= done:
+                add(_DOOMED, change.kind, change.index)
+        if self._step == 0:
+            for kind, index in self.log.named.values():
+                add(_NAMED, kind, index)
+            return dict(roles)
+        start, stop = self.groups[self._step - 1]
+        for change in self.log.changes[start:stop]:
+            if change.field in ("created", "deleted"):
+                continue
+            add(_CHANGED, change.kind, change.index)
+            target = _TARGET.get((change.kind, change.field))
+            if target is not None:
+                add(_OLD, target, change.old)
+                add(_NEW, target, change.new)
+        return dict(roles)
+
+    # -- text ----------------------------------------------------------------------------
+
+    def _phase_steps(self) -> list[int]:
+        """The step numbers at which a phase starts."""
+        starts = []
+        for position, _title in self.log.phases:
+            for k, (start, stop) in enumerate(self.groups, start=1):
+                if start <= position < stop:
+                    starts.append(k)
+                    break
+        return starts
+
+    def _phase_title(self) -> str:
+        if self._step == 0:
+            return "gather the elements"
+        start = self.groups[self._step - 1][0]
+        title = ""
+        for position, phase in self.log.phases:
+            if position <= start:
+                title = phase
+        return title
+
+    def _value(self, kind: str | None, value) -> str:
+        """A pointer value with the operation's name for it, e.g. ``16 (h2)``."""
+        if kind is None or not isinstance(value, (int, np.integer)) or value < 0:
+            if isinstance(value, tuple):
+                return "(" + ", ".join(f"{float(c):.4g}" for c in value) + ")"
+            return str(value)
+        name = self._names.get((kind, int(value)))
+        return f"{value} ({name})" if name else str(value)
+
+    def _change_text(self, change) -> str:
+        target = _TARGET.get((change.kind, change.field))
+        element = self._value(change.kind, change.index)
+        if change.field == "created":
+            return f"create {change.kind} {element}"
+        if change.field == "deleted":
+            return f"delete {change.kind} {element}"
+        return (f"{change.kind} {element} .{change.field}: "
+                f"{self._value(target, change.old)} -> {self._value(target, change.new)}")
+
+    def _group_text(self, k: int) -> list[str]:
+        start, stop = self.groups[k - 1]
+        return [self._change_text(change) for change in self.log.changes[start:stop]]
+
+    def _counts(self, mesh) -> str:
+        return f"{mesh.n_vertices} vertices, {mesh.n_edges} edges, {mesh.n_faces} faces"
+
+    def _heading(self) -> str:
+        return f"{self.operation} of edge {self.log.edge if self.check else self._edge_index()}"
+
+    def _edge_index(self) -> int:
+        for kind, index in self.check.elements:
+            if kind == "edge":
+                return index
+        return -1
+
+    def describe(self) -> str:
+        if not self.check:
+            return f"{self._heading()}: refused ({self.check.rule})\nreason: {self.check.reason}"
+        lines = [f"{self._heading()}: step {self._step} of {self.n_steps} ({self._phase_title()})"]
+        if self._step == 0:
+            lines.append("gathered: " + ", ".join(f"{name} = {kind} {index}"
+                                                  for name, (kind, index) in self.log.named.items()))
+            lines += self.log.notes
+        else:
+            lines += [f"now: {text}" for text in self._group_text(self._step)]
+        state = self.scene.mesh if hasattr(self, "scene") else self.before
+        lines.append(f"mesh: {self._counts(state)}")
+        return "\n".join(lines)
+
+    # -- panel ---------------------------------------------------------------------------
+
+    @property
+    def title(self) -> str:  # type: ignore[override]
+        return f"Edge {self.operation}: step by step"
+
+    def _controls(self) -> list:
+        import ipywidgets as widgets
+
+        if not self.check:
+            self.buttons = {}
+            return []
+        row = widgets.HBox([
+            self._button("start", "back to the gathered elements", lambda: self.go("start")),
+            self._button("back", "one change back", self.back),
+            self._button("step", "apply the next change", self.step),
+            self._button("phase", "to the start of the next phase", lambda: self.go("phase")),
+            self._button("end", "all changes applied", lambda: self.go("end")),
+        ])
+        self.buttons = {b.description: b for b in row.children}
+        return [row]
+
+    def _panel_html(self) -> str:
+        css = _css(self.look)
+        size = css["font"]
+        if not self.check:
+            return (f'<div style="font-size:{size}"><b>{html.escape(self._heading())}: refused</b> '
+                    f'(<code>{html.escape(str(self.check.rule))}</code>)<br>{html.escape(self.check.reason)}</div>')
+        top = (f'<div style="font-size:{size};margin:4px 0"><b>{html.escape(self._heading())}</b>: step '
+               f"{self._step} of {self.n_steps}<br><i>{html.escape(self._phase_title())}</i></div>")
+        if self._step == 0:
+            rows = [([name, f"{kind} {index}"], _NAMED[kind] if kind in _NAMED else None)
+                    for name, (kind, index) in self.log.named.items()]
+            notes = "".join(f'<div style="font-size:{size}">{html.escape(n)}</div>' for n in self.log.notes)
+            body = notes + table_html(rows, self.look, header=("name", "element"))
+        else:
+            rows, mark = [], None
+            current = self.groups[self._step - 1]
+            for k, (start, stop) in enumerate(self.groups, start=1):
+                for position in range(start, stop):
+                    change = self.log.changes[position]
+                    role = _CHANGED.get(change.kind) if k == self._step else None
+                    text = self._change_text(change)
+                    if k > self._step:
+                        text = "  " + text
+                    rows.append(([k, text], role))
+                    if (start, stop) == current and mark is None:
+                        mark = len(rows) - 1
+            body = table_html(rows, self.look, header=("step", "change (old -> new)"), mark_row=mark)
+            body = (f'<div style="max-height:{"420px" if self.look.name == "large" else "300px"};'
+                    f'overflow:auto">{body}</div>')
+        counts = (f'<div style="font-size:{size};margin-top:6px">before: {self._counts(self.before)}<br>'
+                  f"now: {self._counts(self.scene.mesh)}<br>after: {self._counts(self.after)}</div>")
+        return top + body + counts
+
+
+class FlipStepper(OperationStepper):
+    """Step through an edge flip (chapter 06): the quadrilateral's six halfedges, four
+    vertices and two faces, then each pointer the flip rewrites."""
+
+    operation = "flip"
+
+    def _can(self, mesh, edge):
+        from ..ops import can_flip
+
+        return can_flip(mesh, edge)
+
+    def _run(self, mesh, edge, position, log) -> None:
+        from ..ops import flip
+
+        flip(mesh, edge, log=log)
+
+
+class SplitStepper(OperationStepper):
+    """Step through an edge split (chapter 06): the new vertex m, the new edges and
+    faces, then each pointer that links them in."""
+
+    operation = "split"
+
+    def _can(self, mesh, edge):
+        from ..ops import can_split
+
+        return can_split(mesh, edge)
+
+    def _run(self, mesh, edge, position, log) -> None:
+        from ..ops import split
+
+        split(mesh, edge, position, log=log)
+
+
+class CollapseStepper(OperationStepper):
+    """Step through an edge collapse (chapter 07): vA survives, vB goes; the halfedges
+    around them are named h_AB, h_BA, h_A_L ... as in ``ops/collapse.py``."""
+
+    operation = "collapse"
+
+    def _can(self, mesh, edge):
+        from ..ops import can_collapse
+
+        return can_collapse(mesh, edge)
+
+    def _run(self, mesh, edge, position, log) -> None:
+        from ..ops import collapse
+
+        collapse(mesh, edge, position, log=log)

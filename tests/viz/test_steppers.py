@@ -1,0 +1,133 @@
+"""Operation steppers: step k is "before + the first k steps of the log", both ways."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from halfedge_edu.data import sample
+from halfedge_edu.ops import OperationLog, split
+from halfedge_edu.viz.steppers import FlipStepper, SplitStepper, group_changes
+
+ARRAYS = ("halfedge_next", "halfedge_prev", "halfedge_vertex", "halfedge_face", "vertex_halfedge", "face_halfedge")
+
+
+def _same_arrays(mesh, other) -> bool:
+    return all(np.array_equal(getattr(mesh, name), getattr(other, name)) for name in ARRAYS)
+
+
+@pytest.fixture
+def flip_stepper(closing):
+    widget = FlipStepper(sample("open_patch"), 12, mode="static")
+    closing(widget)
+    return widget
+
+
+def test_step_zero_shows_the_gathered_elements_by_name(flip_stepper):
+    text = flip_stepper.describe()
+    assert text.startswith("flip of edge 12: step 0 of 17 (gather the elements)\n")
+    assert "gathered: h0 = halfedge 24, h1 = halfedge 25" in text
+    assert set(flip_stepper.scene.roles) >= {"named", "named_vertex", "named_face"}
+
+
+def test_each_step_names_one_change_old_and_new(flip_stepper):
+    flip_stepper.step()
+    assert flip_stepper.describe().splitlines()[1] == "now: halfedge 24 (h0) .vertex: 7 (v0) -> 11 (v3)"
+    assert list(flip_stepper.scene.roles["changed"]) == [24]
+    assert list(flip_stepper.scene.roles["old_vertex"]) == [7]
+    assert list(flip_stepper.scene.roles["new_vertex"]) == [11]
+
+
+def test_last_step_is_the_mesh_after_the_operation(flip_stepper):
+    flip_stepper.go("end")
+    assert _same_arrays(flip_stepper.state, flip_stepper.result)
+
+
+def test_going_back_to_the_start_restores_the_mesh_before(flip_stepper):
+    flip_stepper.go("end")
+    flip_stepper.go("start")
+    assert _same_arrays(flip_stepper.state, flip_stepper.before)
+
+
+def test_the_mesh_passed_in_is_never_changed(closing):
+    mesh = sample("open_patch")
+    before = mesh.copy()
+    widget = FlipStepper(mesh, 12, mode="static")
+    closing(widget)
+    widget.go("end")
+    assert _same_arrays(mesh, before)
+
+
+def test_step_and_back_clamp_at_the_ends(flip_stepper):
+    assert flip_stepper.back() == 0
+    flip_stepper.go("end")
+    assert flip_stepper.step() == flip_stepper.n_steps
+
+
+def test_buttons_step_forward_and_back(flip_stepper):
+    flip_stepper.buttons["step"].click()
+    flip_stepper.buttons["step"].click()
+    flip_stepper.buttons["back"].click()
+    assert flip_stepper.step_index == 1
+
+
+def test_phase_jumps_to_the_start_of_the_next_phase(flip_stepper):
+    starts = flip_stepper._phase_steps()
+    assert flip_stepper.go("phase") == starts[0]
+    assert flip_stepper.go("phase") == starts[1]
+    assert flip_stepper.go("phase back") == starts[0]
+
+
+def test_bad_step_number_is_refused(flip_stepper):
+    with pytest.raises(IndexError, match="steps run from 0 to 17"):
+        flip_stepper.go(99)
+    with pytest.raises(ValueError, match="unknown move 'sideways'"):
+        flip_stepper.go("sideways")
+
+
+def test_refused_flip_shows_the_reason_instead_of_steps(closing):
+    mesh = sample("open_patch")
+    boundary_edge = int(np.flatnonzero(mesh.halfedge_face < 0)[0]) >> 1
+    widget = FlipStepper(mesh, boundary_edge, mode="static")
+    closing(widget)
+    assert widget.n_steps == 0
+    assert widget.describe().startswith(f"flip of edge {boundary_edge}: refused (boundary-edge)\nreason: ")
+    assert "refused" in widget.scene.roles
+
+
+def test_creating_an_element_is_one_step_with_its_first_values():
+    mesh = sample("open_patch")
+    log = OperationLog()
+    split(mesh, 12, log=log)
+    groups = group_changes(log.changes)
+    first = [log.changes[i] for i in range(*groups[0])]
+    assert [(c.kind, c.field) for c in first] == [("vertex", "created"), ("vertex", "position")]
+    edge = [log.changes[i] for i in range(*groups[1])]
+    assert [c.field for c in edge] == ["created", "created", "created", "vertex", "vertex"]
+    assert sum(stop - start for start, stop in groups) == len(log.changes)
+
+
+def test_split_stepper_ends_with_one_more_vertex_three_edges_two_faces(closing):
+    mesh = sample("open_patch")
+    widget = SplitStepper(mesh, 12, mode="static")
+    closing(widget)
+    widget.go("end")
+    state = widget.state
+    assert (state.n_vertices, state.n_edges, state.n_faces) == (mesh.n_vertices + 1, mesh.n_edges + 3, mesh.n_faces + 2)
+    state.validate()
+
+
+def test_half_way_states_draw_without_error(closing):
+    widget = SplitStepper(sample("open_patch"), 12, mode="static")
+    closing(widget)
+    for k in range(widget.n_steps + 1):
+        widget.go(k)
+        assert widget.screenshot().startswith(b"\x89PNG")
+
+
+def test_stepper_on_the_bunny_draws_only_near_the_edge(bunny, closing):
+    widget = FlipStepper(bunny, 5000, mode="static")
+    closing(widget)
+    widget.go("end")
+    assert len(widget.scene.drawn_halfedges) < 2000
+    assert {10000, 10001} <= set(widget.scene.drawn_halfedges.tolist())
