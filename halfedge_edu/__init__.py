@@ -23,6 +23,17 @@ from .core import (
     build_reference,
 )
 
+from .algorithms import (
+    bezier_curve,
+    bezier_surface,
+    de_casteljau,
+    face_normals,
+    loop_subdivide,
+    simplify,
+    simplify_sequential,
+    smooth,
+    vertex_normals,
+)
 from .core.manifold import ManifoldReport, manifold_report
 from .core.repair import RepairReport, repair_faces
 from .data import RawMesh, sample, samples
@@ -33,6 +44,8 @@ __version__ = "0.1.0"
 __all__ = [
     "Edge", "Face", "GarbageCollectMaps", "Halfedge", "HalfedgeMesh", "ManifoldReport",
     "MeshInputError", "MeshInvariantError", "MeshWarning", "RawMesh", "RepairReport",
-    "TopologyError", "Vertex", "build_reference", "load", "manifold_report", "read_obj",
-    "repair_faces", "sample", "samples", "save", "write_obj",
+    "TopologyError", "Vertex", "bezier_curve", "bezier_surface", "build_reference",
+    "de_casteljau", "face_normals", "load", "loop_subdivide", "manifold_report", "read_obj",
+    "repair_faces", "sample", "samples", "save", "simplify", "simplify_sequential", "smooth",
+    "vertex_normals", "write_obj",
 ]
