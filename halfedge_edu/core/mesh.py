@@ -20,7 +20,8 @@ put until :meth:`HalfedgeMesh.garbage_collect` compacts the arrays. The arrays h
 spare capacity at the end, so adding an element is constant work (amortized).
 
 The public arrays (``mesh.halfedge_next`` and friends) are *views* of the live slots;
-writing into them edits the mesh. Algorithms read them directly; students mostly use
+writing into them edits the mesh. Attention: after changing connectivity by hand, call
+``mesh.topology_changed()`` so cached one-rings and adjacency are rebuilt. Algorithms read them directly; students mostly use
 the handles (``mesh.halfedge(0).next.twin.vertex``).
 """
 
@@ -497,9 +498,15 @@ class HalfedgeMesh:
     # Growing and deleting (used by local operations)
     # ----------------------------------------------------------------------------------
 
-    def _touch(self) -> None:
-        """Record a change of connectivity (cached derived arrays become stale)."""
+    def topology_changed(self) -> None:
+        """Say that connectivity changed (cached one-rings, adjacency, loops become stale).
+
+        The operations in ``ops/`` call this themselves; call it after writing into the
+        pointer arrays by hand.
+        """
         self.topology_version += 1
+
+    _touch = topology_changed
 
     def add_vertex(self, position) -> int:
         """Append an isolated vertex and return its index.
