@@ -297,7 +297,7 @@ def check_flip(learner_flip: Callable) -> CheckResult:
             if status == "error":
                 return _failed("flip", checked, name, f"flipping edge {e}, " + _describe_error("flip", answer),
                                ("halfedge", 2 * e), before)
-            yours.topology_version += 1  # the learner wrote the arrays directly
+            yours.topology_changed()  # the learner wrote the arrays by hand
             problem = _flip_problem(before, yours, e)
             if problem is not None:
                 text, element = problem
@@ -420,7 +420,7 @@ def check_collapse(learner_collapse: Callable) -> CheckResult:
             if status == "error":
                 return _failed("collapse", checked, name, f"collapsing halfedge {h}, " + _describe_error("collapse", answer),
                                ("halfedge", h), before)
-            yours.topology_version += 1  # the learner wrote the arrays directly
+            yours.topology_changed()  # the learner wrote the arrays by hand
             problem = _collapse_problem(before, yours, h)
             if problem is not None:
                 text, element = problem

@@ -19,7 +19,7 @@ import numpy as np
 import pyvista as pv
 
 import halfedge_edu as hx
-from halfedge_edu.algorithms import face_normals, smooth, vertex_normals
+from halfedge_edu import face_normals, smooth, vertex_normals
 
 spot = hx.sample("spot")
 V, F = spot.to_arrays()
@@ -116,7 +116,7 @@ print("cube: loop == numpy:", np.allclose([face_normal_by_hand(f) for f in cube.
 print("spot: numpy == library:", np.allclose(face_normals_numpy(spot), face_normals(spot)))
 
 # %% [markdown]
-# `halfedge_edu.algorithms.face_normals` is the same computation, with one extra care:
+# `hx.face_normals` is the same computation, with one extra care:
 # a triangle of zero area gets a zero normal instead of a division by zero.
 
 # %% [markdown]
@@ -199,7 +199,7 @@ print("cube: loop == numpy:", np.allclose([vertex_normal_by_hand(v) for v in cub
 print("spot: numpy == library:", np.allclose(vertex_normals_numpy(spot), vertex_normals(spot)))
 
 # %% [markdown]
-# The library's `vertex_normals(mesh)` is area-weighted by default. It also offers
+# The library's `hx.vertex_normals(mesh)` is area-weighted by default. It also offers
 # `weighting="angle"`, where each face counts by its corner angle at the vertex; then
 # cutting a square into two triangles does not change anything, and vertex 1 of the
 # cube points symmetrically outwards again:
@@ -281,7 +281,7 @@ print("Gauss-Seidel, forwards == backwards:", np.allclose(smooth_once_in_place(s
 # A mesh loaded from another file format, or renumbered by `garbage_collect()`, would
 # smooth differently. That is why the course asks for Jacobi.
 #
-# The library's `smooth(mesh, iterations)` runs the same Jacobi step as one sparse
+# The library's `hx.smooth(mesh, iterations)` runs the same Jacobi step as one sparse
 # matrix product for all vertices, and returns a *new* mesh (the input is left alone):
 
 # %%
