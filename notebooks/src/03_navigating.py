@@ -241,13 +241,13 @@ print("halfedges in each hole:", [len(loop) for loop in bunny.boundary_loops()])
 # %% [markdown]
 # On a mesh this size the explorer draws only the arrows near the current halfedge and
 # follows it with the camera. Here it starts on the rim of the first hole, and walks
-# ten steps along it:
+# ten steps along it (`go` takes a chain of moves, read left to right like
+# `h.next.next...`, and draws once at the end):
 
 # %%
 hole_start = int(bunny.boundary_loops()[0][0])
 bunny_explorer = HalfedgeExplorer(bunny, halfedge=hole_start)
-for _ in range(10):
-    bunny_explorer.step()
+bunny_explorer.go(".".join(["next"] * 10))
 print(bunny_explorer.describe().splitlines()[0])
 bunny_explorer
 
