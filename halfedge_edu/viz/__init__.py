@@ -18,10 +18,10 @@ package itself (``import halfedge_edu``) never imports this module.
 from .palette import PRESETS, ROLES
 from .renderer import choose_mode
 from .scene import HalfedgeScene
-from .steppers import CollapseStepper, FlipStepper, SplitStepper
+from .steppers import CollapseAtlas, CollapseStepper, FlipStepper, SplitStepper
 from .widgets import HalfedgeExplorer, OneRingViewer
 
 __all__ = [
     "PRESETS", "ROLES", "choose_mode", "HalfedgeScene", "HalfedgeExplorer", "OneRingViewer",
-    "FlipStepper", "SplitStepper", "CollapseStepper",
+    "FlipStepper", "SplitStepper", "CollapseStepper", "CollapseAtlas",
 ]

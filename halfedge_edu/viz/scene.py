@@ -225,15 +225,20 @@ class HalfedgeScene:
         self.set_roles({} if roles is None else roles, names=names)
 
     def look_at(self, vertices, rings: int = 1) -> None:
-        """Point the camera at ``vertices`` and the ``rings`` rings of vertices around them."""
+        """Turn the camera toward ``vertices`` and fit them with ``rings`` rings around them.
+
+        A small mesh (at most ``LABEL_ALL_FACES`` faces) is shown whole, turned toward them.
+        """
         vertices = np.asarray(vertices, dtype=np.int64)
         normal = _unit(self._vertex_normals[vertices].sum(axis=0))
         if self._flat or not np.linalg.norm(normal) > 0:
             direction = self._view_direction()
-        elif self.windowed:
-            direction = normal
         else:
-            direction = _unit(1.5 * normal + _unit(VIEW_DIRECTION))
+            direction = normal
+        if self.mesh.n_faces <= LABEL_ALL_FACES:
+            self._aim_whole_mesh(direction)        # a small mesh is best seen whole
+            self._draw_labels(self._focus_vertices())
+            return
         around = np.flatnonzero(self._ring_mark(vertices, rings)) if rings else vertices
         centre = self.mesh.positions[vertices].mean(axis=0)
         # The ring around gives context; halfway out to it is enough to show it.
@@ -252,7 +257,8 @@ class HalfedgeScene:
 
         from PIL import Image
 
-        pixels = self.plotter.screenshot(None, return_img=True, window_size=list(self.window_size))
+        self.plotter.render()
+        pixels = self.plotter.screenshot(None, return_img=True)
         buffer = io.BytesIO()
         Image.fromarray(np.asarray(pixels)).save(buffer, format="png", optimize=False)
         data = buffer.getvalue()
@@ -319,7 +325,13 @@ class HalfedgeScene:
         self._live_faces = np.flatnonzero(~mesh.face_deleted)
         positions = np.array(mesh.positions)
         corners = mesh.face_vertices()[self._live_faces]                  # (F, 3)
-        self._live_corners = corners
+        # Faces around each vertex, in CSR form: faces[offsets[v]:offsets[v + 1]].
+        flat = corners.ravel()
+        order = np.argsort(flat, kind="stable")
+        offsets = np.searchsorted(flat[order], np.arange(mesh.n_vertex_slots + 1))
+        self._vertex_faces = (offsets, self._live_faces[order // 3])
+        self._face_first_corner = np.zeros(mesh.n_face_slots, dtype=np.int64)
+        self._face_first_corner[self._live_faces] = corners[:, 0]
         static = ~np.isin(self._live_faces, self._local_faces)
         surface = pv.PolyData.from_regular_faces(positions, corners[static])
         self._face_normals = np.zeros((mesh.n_face_slots, 3))
@@ -337,16 +349,16 @@ class HalfedgeScene:
 
         self._add(
             "surface", surface, color=look.surface, show_edges=not self.windowed,
-            edge_color=look.edge, line_width=look.edge_width, ambient=0.35, diffuse=0.6,
+            edge_color=look.edge, line_width=look.edge_width, ambient=0.5, diffuse=0.5,
             specular=0.0, smooth_shading=False,
         )
         placeholder = pv.PolyData(np.zeros((3, 3)), faces=[3, 0, 1, 2])
         placeholder.cell_data["rgb"] = np.zeros((1, 3), dtype=np.uint8)
         self._add("local_surface", placeholder.copy(), scalars="rgb", rgb=True, show_edges=True,
-                  edge_color=look.edge, line_width=look.edge_width, ambient=0.35, diffuse=0.6,
+                  edge_color=look.edge, line_width=look.edge_width, ambient=0.5, diffuse=0.5,
                   specular=0.0, show_scalar_bar=False)
         self._add("highlight_faces", placeholder.copy(), scalars="rgb", rgb=True,
-                  ambient=0.35, diffuse=0.6, specular=0.0, show_scalar_bar=False)
+                  ambient=0.5, diffuse=0.5, specular=0.0, show_scalar_bar=False)
         arrows = placeholder.copy()
         self._add("arrows", arrows, scalars="rgb", rgb=True, lighting=False, show_scalar_bar=False)
         if self.windowed:
@@ -362,6 +374,7 @@ class HalfedgeScene:
 
         self._arrow_halfedges = np.zeros(0, dtype=np.int64)
         self._local_drawn = (np.zeros(0, dtype=np.int64), np.zeros((0, 3), dtype=np.int64))
+        self._label_texts = {kind: [] for kind in _KINDS}
         self._geometry_dirty = True
         self._legend_key = None
 
@@ -696,6 +709,24 @@ class HalfedgeScene:
         world_per_pixel = 2.0 * depth * np.tan(np.radians(camera.view_angle / 2)) / self.window_size[1]
         return points + (pixels * world_per_pixel)[:, None] * (right + up)
 
+    def _vertex_in_sight(self, vertices: np.ndarray) -> np.ndarray:
+        """(k,) bool: one of the vertex's faces (as built) looks toward the camera, so
+        silhouette corners count; vertices of the local faces always do."""
+        offsets, faces = self._vertex_faces
+        known = vertices < len(offsets) - 1
+        seen = ~known
+        inside = vertices[known]
+        ring = _ranges(offsets[inside], offsets[inside + 1])                 # their faces
+        owner = np.repeat(np.arange(len(inside)), offsets[inside + 1] - offsets[inside])
+        around = faces[ring]
+        corner = self.mesh.positions[self._face_first_corner[around]]
+        front = self._facing(corner, self._face_normals[around])
+        hit = np.zeros(len(inside), dtype=bool)
+        hit[owner[front]] = True
+        seen[known] = hit
+        seen |= np.isin(vertices, self._local_drawn[1])
+        return seen
+
     def _label_choice(self) -> dict[str, str]:
         """For each kind, which elements get a label: "all", "near" or "highlighted"."""
         mesh, kinds = self.mesh, self.label_kinds
@@ -746,13 +777,7 @@ class HalfedgeScene:
 
         vertices = self._labelled("vertex", choice.get("vertex"), near)
         if len(vertices):
-            # A vertex is in sight when one of its faces is (silhouette corners count).
-            corners = self._live_corners
-            front = self._facing(positions[corners[:, 0]], self._face_normals[self._live_faces])
-            seen = np.zeros(mesh.n_vertex_slots, dtype=bool)
-            seen[corners[front].ravel()] = True
-            seen[self._local_drawn[1].ravel()] = True
-            vertices = vertices[seen[vertices]]
+            vertices = vertices[self._vertex_in_sight(vertices)]
             points = self._beside(positions[vertices], 0.45 * look.highlight_vertex_size)
             texts["vertex"] = (points, [self._label_text("vertex", v) for v in vertices])
         faces = self._labelled("face", choice.get("face"), near)
@@ -779,17 +804,32 @@ class HalfedgeScene:
             "halfedge": dict(text_color="#333333", shape=None, font_size=max(8, look.label_size - 1), bold=False,
                              justification_horizontal="center", justification_vertical="center"),
         }
+        import pyvista as pv
+
+        self._label_texts = {kind: list(texts.get(kind, ((), []))[1]) for kind in _KINDS}
         for kind in _KINDS:
             name = f"{kind}_labels"
             points, words = texts.get(kind, (np.zeros((0, 3)), []))
             if len(words) == 0:
                 if name in self._actors:
-                    self.plotter.remove_actor(self._actors.pop(name), render=False)
+                    self._actors[name].SetVisibility(False)
                 continue
+            data = pv.PolyData(np.asarray(points, dtype=float))
+            data.point_data["labels"] = np.array(words)
+            if name in self._actors:
+                # The label actor reads this dataset: refill it instead of a new actor.
+                self._data[name].copy_from(data)
+                self._actors[name].SetVisibility(True)
+                continue
+            self._data[name] = data
             self._actors[name] = self.plotter.add_point_labels(
-                points, words, name=name, show_points=False, always_visible=True,
+                data, "labels", name=name, show_points=False, always_visible=True,
                 margin=2, reset_camera=False, render=False, **styles[kind],
             )
+
+    def labels_shown(self) -> dict[str, list[str]]:
+        """The label texts drawn now, by kind: ``{"vertex": ["v0", ...], ...}``."""
+        return {kind: list(words) for kind, words in self._label_texts.items()}
 
     def _label_text(self, kind: str, index: int) -> str:
         plain = f"{_LABEL_PREFIX[kind]}{int(index)}"

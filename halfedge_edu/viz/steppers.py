@@ -182,6 +182,11 @@ class OperationStepper(SceneWidget):
         for change in self.log.changes:
             if change.kind == "face":
                 faces.add(change.index)
+            elif change.kind == "vertex" and change.field == "position":
+                # A vertex that moves drags every face around it along.
+                for mesh in (self.before, self.after):
+                    if change.index < mesh.n_vertex_slots and not mesh.vertex_deleted[change.index]:
+                        faces |= {f.index for f in mesh.vertex(change.index).faces()}
             elif change.kind == "halfedge":
                 if change.field == "face":
                     faces |= {f for f in (change.old, change.new) if f >= 0}
@@ -287,6 +292,11 @@ class OperationStepper(SceneWidget):
             window = outgoing[mark[self.before.halfedge_vertex[outgoing ^ 1]]]
             created = np.arange(self.before.n_halfedge_slots, self.after.n_halfedge_slots)
             scene.fixed_window = np.unique(np.concatenate([window, created]))
+        if not self.check:
+            # Face the refused edge itself; the other elements of the reason are lit up.
+            edge = self._edge_index()
+            if edge >= 0:
+                vertices = np.array([self.before.halfedge_vertex[2 * edge], self.before.halfedge_vertex[2 * edge + 1]])
         if len(vertices):
             scene.look_at(vertices)
         return scene
@@ -344,7 +354,7 @@ class OperationStepper(SceneWidget):
                 if start <= position < stop:
                     starts.append(k)
                     break
-        return starts
+        return sorted(set(starts))
 
     def _phase_title(self) -> str:
         if self._step == 0:
@@ -510,3 +520,201 @@ class CollapseStepper(OperationStepper):
         from ..ops import collapse
 
         collapse(mesh, edge, position, log=log)
+
+
+class CollapseAtlas:
+    """The collapse cases side by side, stepped together one phase at a time, and the
+    collapses the link condition refuses, each with its reason (chapters 07 and 08).
+
+    Args:
+        cases: ``(title, mesh, edge)`` of the allowed collapses to compare; by default
+            the removed vertex of degree 3 (the cube's edge 0) and of degree > 3 (the
+            single-collapse mesh's edge 0).
+        refused: ``(title, mesh, edge)`` of collapses that are refused; by default the
+            tetrahedron, the figure-8 strip and the lone triangle.
+        mode, preset: as for every widget. The refused cases are small still pictures.
+
+    ``atlas.step()`` (or ``go("phase")``) moves every case to the end of the next phase
+    of the collapse; ``go("start")``, ``go("end")``, ``go("back")`` or a phase number.
+    Each case is a :class:`CollapseStepper` (``atlas.steppers``) and can also be
+    stepped on its own.
+    """
+
+    title = "Edge collapse: the cases side by side"
+
+    def __init__(self, cases=None, refused=None, *, mode: str | None = None, preset="default"):
+        import ipywidgets as widgets
+
+        from ..data import sample
+        from .renderer import choose_mode
+
+        self.mode = choose_mode(mode)
+        self.look = _preset(preset)
+        large = self.look.name == "large"
+        if cases is None:
+            cases = [("removed vertex of degree 3", sample("cube"), 0),
+                     ("removed vertex of degree > 3", sample("single_collapse"), 0)]
+        if refused is None:
+            refused = [("tetrahedron", sample("tetrahedron"), 0), ("figure 8", sample("figure8"), 0),
+                       ("lone triangle", sample("lone_triangle"), 0)]
+        case_size = (600, 450) if large else (440, 330)
+        thumb_size = (400, 300) if large else (300, 225)
+        self.titles = [title for title, _, _ in cases]
+        self.steppers = [CollapseStepper(mesh, edge, mode=self.mode, preset=self.look, window_size=case_size)
+                         for _, mesh, edge in cases]
+        self.refused_titles = [title for title, _, _ in refused]
+        self.refused = [CollapseStepper(mesh, edge, mode="static", preset=self.look, window_size=thumb_size)
+                        for _, mesh, edge in refused]
+        self.phases = [title for _, title in self.steppers[0].log.phases] if self.steppers else []
+        self._phase = 0
+
+        css = _css(self.look)
+        self._status = widgets.HTML()
+        self._captions = [widgets.HTML(layout=widgets.Layout(width=f"{case_size[0]}px")) for _ in self.steppers]
+        buttons = widgets.HBox([
+            self._button("start", lambda: self.go("start")),
+            self._button("back", self.back),
+            self._button("phase", self.step),
+            self._button("end", lambda: self.go("end")),
+        ])
+        self.buttons = {b.description: b for b in buttons.children}
+        columns = widgets.HBox([
+            widgets.VBox([widgets.HTML(f'<b style="font-size:{css["font"]}">{html.escape(title)}</b>'),
+                          stepper.view.widget, caption])
+            for title, stepper, caption in zip(self.titles, self.steppers, self._captions)
+        ])
+        refusals = widgets.HBox([
+            widgets.VBox([widgets.HTML(f'<b style="font-size:{css["font"]}">{html.escape(title)}</b>'),
+                          stepper.view.widget,
+                          widgets.HTML(f'<div style="font-size:{css["font"]};width:{thumb_size[0]}px">'
+                                       f'<code>{html.escape(str(stepper.check.rule))}</code>: '
+                                       f"{html.escape(stepper.check.reason)}</div>")],
+                         layout=widgets.Layout(margin="0 12px 0 0"))
+            for title, stepper in zip(self.refused_titles, self.refused)
+        ])
+        heading = f'<b style="font-size:calc({css["font"]} * 1.25)">{html.escape(self.title)}</b>'
+        self.widget = widgets.VBox([
+            widgets.HTML(heading), buttons, self._status, columns,
+            widgets.HTML(f'<b style="font-size:calc({css["font"]} * 1.15)">Refused: the link condition and '
+                         f"the boundary rules</b>"),
+            refusals,
+        ])
+        self._refresh()
+
+    def _button(self, label: str, action):
+        import ipywidgets as widgets
+
+        css = _css(self.look)
+        button = widgets.Button(description=label,
+                                layout=widgets.Layout(height=css["button_height"], width=css["button_width"]))
+        button.style.font_size = css["font"]
+        button.style.font_weight = "bold"
+        button.on_click(lambda _: action())
+        return button
+
+    @property
+    def phase(self) -> int:
+        """0 (gathered) to ``len(self.phases)`` (done): every phase up to this one is applied."""
+        return self._phase
+
+    def _end_of_phase(self, stepper, phase: int) -> int:
+        """The step of ``stepper`` at which its phases up to ``phase`` are all applied."""
+        if phase == 0:
+            return 0
+        phases = stepper.log.phases
+        stop = phases[phase][0] if phase < len(phases) else len(stepper.log.changes)
+        return sum(1 for _, end in stepper.groups if end <= stop)
+
+    def go(self, target) -> int:
+        """Show every case at the end of a phase: "phase" (next), "back", "start", "end", or a number."""
+        last = len(self.phases)
+        if isinstance(target, str):
+            moves = {"phase": self._phase + 1, "next": self._phase + 1, "step": self._phase + 1,
+                     "back": self._phase - 1, "start": 0, "end": last}
+            if target not in moves:
+                raise ValueError(f"unknown move {target!r}: use {', '.join(repr(m) for m in moves)} or a phase number")
+            target = min(max(moves[target], 0), last)
+        target = int(target)
+        if not 0 <= target <= last:
+            raise IndexError(f"there is no phase {target}: phases run from 0 to {last}")
+        self._phase = target
+        for stepper in self.steppers:
+            stepper.go(self._end_of_phase(stepper, target))
+        self._refresh()
+        return self._phase
+
+    def step(self) -> int:
+        """Every case to the end of the next phase."""
+        return self.go("phase")
+
+    def back(self) -> int:
+        return self.go("back")
+
+    def _phase_title(self) -> str:
+        if self._phase == 0:
+            return "gather the elements"
+        return self.phases[self._phase - 1]
+
+    def _refresh(self) -> None:
+        size = _css(self.look)["font"]
+        self._status.value = (f'<div style="font-size:{size}">phase {self._phase} of {len(self.phases)}: '
+                              f"<i>{html.escape(self._phase_title())}</i></div>")
+        for caption, stepper in zip(self._captions, self.steppers):
+            state = stepper.state
+            notes = "".join(f"<div>{html.escape(n)}</div>" for n in stepper.log.notes)
+            caption.value = (f'<div style="font-size:{size}">{notes}<div>V - E + F = {state.n_vertices} - '
+                             f"{state.n_edges} + {state.n_faces} = {state.euler_characteristic}</div></div>")
+
+    def describe(self) -> str:
+        """Each case at the current phase, then each refused case with its reason."""
+        lines = [f"phase {self._phase} of {len(self.phases)}: {self._phase_title()}"]
+        for title, stepper in zip(self.titles, self.steppers):
+            state = stepper.state
+            lines.append(f"{title}: collapse of edge {stepper.log.edge}, step {stepper.step_index} of "
+                         f"{stepper.n_steps}; V - E + F = {state.n_vertices} - {state.n_edges} + "
+                         f"{state.n_faces} = {state.euler_characteristic}")
+            lines += [f"  {note}" for note in stepper.log.notes]
+        for title, stepper in zip(self.refused_titles, self.refused):
+            lines.append(f"refused, {title} ({stepper.check.rule}): {stepper.check.reason}")
+        return "\n".join(lines)
+
+    def screenshot(self, path=None) -> bytes:
+        """Every picture of the atlas in one PNG: the cases in a row, the refusals below."""
+        import io
+
+        from PIL import Image
+
+        def picture(stepper):
+            return Image.open(io.BytesIO(stepper.screenshot())).convert("RGB")
+
+        rows = [[picture(s) for s in self.steppers], [picture(s) for s in self.refused]]
+        rows = [row for row in rows if row]
+        width = max(sum(p.width for p in row) for row in rows)
+        sheet = Image.new("RGB", (width, sum(max(p.height for p in row) for row in rows)), "white")
+        y = 0
+        for row in rows:
+            x = 0
+            for p in row:
+                sheet.paste(p, (x, y))
+                x += p.width
+            y += max(p.height for p in row)
+        buffer = io.BytesIO()
+        sheet.save(buffer, format="png")
+        data = buffer.getvalue()
+        if path is not None:
+            with open(path, "wb") as file:
+                file.write(data)
+        return data
+
+    def close(self) -> None:
+        self.widget.close()
+        for stepper in self.steppers + self.refused:
+            stepper.close()
+
+    def _repr_mimebundle_(self, include=None, exclude=None):
+        import base64
+
+        bundle = self.widget._repr_mimebundle_(include=include, exclude=exclude)
+        bundle["text/plain"] = self.describe()
+        bundle["image/png"] = base64.b64encode(self.screenshot()).decode("ascii")
+        return bundle

@@ -105,16 +105,28 @@ def test_large_preset_makes_a_bigger_picture_with_thicker_arrows(closing):
     assert PRESETS["large"].label_size > PRESETS["default"].label_size
 
 
-def test_labels_on_a_tiny_mesh_name_every_element(cube_scene):
+def test_labels_on_a_tiny_mesh_name_every_element_in_sight(cube_scene):
     cube_scene.show_halfedge(0)
-    assert {"vertex_labels", "halfedge_labels", "face_labels"} <= set(cube_scene._actors)
+    shown = cube_scene.labels_shown()
+    assert "h0" in shown["halfedge"] and "f0" in shown["face"] and {"v0", "v4"} <= set(shown["vertex"])
+    assert len(shown["face"]) < cube_scene.mesh.n_faces          # the far side is not labelled
 
 
 def test_labels_can_be_turned_off(closing):
     scene = HalfedgeScene(sample("cube"), labels=None)
     closing(scene)
     scene.show_halfedge(0)
-    assert not {"vertex_labels", "halfedge_labels", "face_labels"} & set(scene._actors)
+    assert scene.labels_shown() == {"vertex": [], "halfedge": [], "face": []}
+
+
+def test_large_mesh_labels_only_the_highlight_and_nearby_vertices(bunny, closing):
+    scene = HalfedgeScene(bunny)
+    closing(scene)
+    scene.show_halfedge(1000)
+    shown = scene.labels_shown()
+    assert shown["halfedge"] and set(shown["halfedge"]) <= {"h1000", "h1001", f"h{bunny.halfedge_next[1000]}",
+                                                             f"h{bunny.halfedge_prev[1000]}"}
+    assert 3 <= len(shown["vertex"]) < 40
 
 
 def test_large_mesh_draws_arrows_only_near_the_highlight(bunny, closing):

@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
+import io
+
 import numpy as np
 import pytest
+from PIL import Image
 
 from halfedge_edu.data import sample
 from halfedge_edu.ops import OperationLog, split
-from halfedge_edu.viz.steppers import FlipStepper, SplitStepper, group_changes
+from halfedge_edu.viz.steppers import CollapseAtlas, CollapseStepper, FlipStepper, SplitStepper, group_changes
 
 ARRAYS = ("halfedge_next", "halfedge_prev", "halfedge_vertex", "halfedge_face", "vertex_halfedge", "face_halfedge")
 
@@ -131,3 +134,60 @@ def test_stepper_on_the_bunny_draws_only_near_the_edge(bunny, closing):
     widget.go("end")
     assert len(widget.scene.drawn_halfedges) < 2000
     assert {10000, 10001} <= set(widget.scene.drawn_halfedges.tolist())
+
+
+def test_collapse_stepper_of_the_cube_keeps_euler_and_names_vA_vB(closing):
+    widget = CollapseStepper(sample("cube"), 0, mode="static")
+    closing(widget)
+    assert "vB = vertex 0 is removed; vA = vertex 4 survives" in widget.describe()
+    widget.go("end")
+    state = widget.state
+    assert (state.n_vertices, state.n_edges, state.n_faces) == (7, 15, 10)
+    assert state.euler_characteristic == 2
+
+
+def test_collapse_that_breaks_the_link_condition_is_shown_refused(closing):
+    widget = CollapseStepper(sample("tetrahedron"), 0, mode="static")
+    closing(widget)
+    assert widget.describe().startswith("collapse of edge 0: refused (tetrahedron)")
+    assert widget.buttons == {}
+
+
+@pytest.fixture(scope="module")
+def atlas():
+    widget = CollapseAtlas(mode="static")
+    yield widget
+    widget.close()
+
+
+def test_atlas_starts_with_both_cases_gathered(atlas):
+    atlas.go("start")
+    assert [s.step_index for s in atlas.steppers] == [0, 0]
+    assert atlas.describe().splitlines()[0] == f"phase 0 of {len(atlas.phases)}: gather the elements"
+
+
+def test_atlas_steps_both_cases_through_the_same_phase(atlas):
+    atlas.go("start")
+    atlas.step()
+    atlas.step()
+    assert atlas.phase == 2
+    for stepper in atlas.steppers:              # exactly the changes of phases 1 and 2 applied
+        applied = stepper.groups[stepper.step_index - 1][1] if stepper.step_index else 0
+        assert applied == stepper.log.phases[2][0]
+
+
+def test_atlas_end_is_every_collapse_done(atlas):
+    atlas.go("end")
+    assert all(s.step_index == s.n_steps for s in atlas.steppers)
+    assert "V - E + F = 7 - 15 + 10 = 2" in atlas.describe()
+
+
+def test_atlas_lists_each_refusal_with_its_rule(atlas):
+    text = atlas.describe()
+    for rule in ("tetrahedron", "both-ends-on-boundary", "lone-triangle"):
+        assert f"({rule}):" in text
+
+
+def test_atlas_picture_holds_every_case(atlas):
+    picture = Image.open(io.BytesIO(atlas.screenshot()))
+    assert picture.width >= 2 * 440
