@@ -27,7 +27,7 @@ from PIL import Image as PILImage, ImageDraw, ImageFont
 
 import halfedge_edu as hx
 from halfedge_edu.ops import OperationLog, can_collapse, collapse
-from halfedge_edu.viz import CollapseStepper, HalfedgeScene
+from halfedge_edu.viz import CollapseAtlas, CollapseStepper, HalfedgeScene
 
 
 def named_picture(mesh, log, roles, size=(380, 290), camera=None):
@@ -203,6 +203,31 @@ stepper
 # %%
 stepper.step()
 print(stepper.describe())
+
+# %% [markdown]
+# ### Both cases side by side
+#
+# The atlas runs the two collapses of the first picture together, one *phase* at a
+# time, so you can compare what each phase does in each case. Below them are three
+# collapses that are refused, with the reason; they are the subject of chapter 08.
+
+# %%
+atlas = CollapseAtlas()
+atlas
+
+# %% [markdown]
+# Two phases in, the degree-3 case has made one change (the position of `vA`: no
+# halfedge moves), the degree-6 case four (the position and three halfedges that now
+# leave `vA`). The counts only change in the last phase, when the deletions happen,
+# and V − E + F does not change even then.
+
+# %%
+for _ in range(2):
+    atlas.step()
+print(atlas.describe().split("\nrefused")[0])
+print()
+atlas.go("end")
+print(atlas.describe())
 
 # %% [markdown]
 # ## 4. Which end, which edge: the result does not depend on it
