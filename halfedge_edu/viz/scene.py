@@ -125,8 +125,8 @@ class HalfedgeScene:
         self._legend_key: tuple | None = None
         self._actors: dict[str, object] = {}
         self._data: dict[str, object] = {}
+        self._camera_state = None
         self._build()
-        self._aim_whole_mesh()
         self._update()
 
     # ----------------------------------------------------------------------------------
@@ -537,6 +537,8 @@ class HalfedgeScene:
             self._draw_arrows(self._drawable(np.arange(mesh.n_halfedge_slots)))
             self._set_data("vertices", pv.PolyData(np.array(mesh.positions[~mesh.vertex_deleted])))
         self._geometry_dirty = False
+        if self._camera_state is None:
+            self._aim_whole_mesh()                 # first time: fit the mesh and its arrows
         self._color_arrows()
         self._draw_highlight_faces()
         self._draw_highlight_vertices()
@@ -613,7 +615,7 @@ class HalfedgeScene:
 
     def _legend_width(self) -> float:
         """Fraction of the image width the legend takes (0 without one)."""
-        return self.preset.legend_size[0] if self.legend else 0.0
+        return self.preset.legend_size[0] + 0.03 if self.legend else 0.0
 
     def _set_camera(self, focal: np.ndarray, direction: np.ndarray, radius: float,
                     points: np.ndarray | None = None) -> None:
@@ -640,7 +642,7 @@ class HalfedgeScene:
             focal = focal + right * 0.5 * (x.max() + x.min()) + up * 0.5 * (y.max() + y.min())
             offset = points - focal
             x, y, z = offset @ right, offset @ up, offset @ direction
-            distance = float(np.max(np.maximum(np.abs(x) / tan_horizontal, np.abs(y) / tan_vertical) * 1.12 + z))
+            distance = float(np.max(np.maximum(np.abs(x) / tan_horizontal, np.abs(y) / tan_vertical) * 1.15 + z))
         camera = self.plotter.camera
         camera.focal_point = tuple(focal)
         camera.position = tuple(focal + distance * direction)
