@@ -149,9 +149,13 @@ def unique_edges(faces: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.
     return edges, count, first // 3
 
 
-def csr(rows: np.ndarray, values: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Group ``values`` by ``rows`` into CSR ``(offsets (n + 1,), values sorted by row)``."""
-    order = np.argsort(rows, kind="stable")
+def csr(rows: np.ndarray, values: np.ndarray, n: int, *, stable: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    """Group ``values`` by ``rows`` into CSR ``(offsets (n + 1,), values sorted by row)``.
+
+    With ``stable=False`` the values within a row come in no particular order, and the
+    grouping is about five times faster (numpy's quicksort instead of its stable sort).
+    """
+    order = np.argsort(rows, kind="stable" if stable else None)
     offsets = np.zeros(n + 1, dtype=np.int64)
     np.cumsum(np.bincount(rows, minlength=n), out=offsets[1:])
     return offsets, values[order]
@@ -169,12 +173,14 @@ def expand(offsets: np.ndarray, values: np.ndarray, rows: np.ndarray) -> tuple[n
 # One round
 # ----------------------------------------------------------------------------------------
 
-def _topology_ok(n, all_edges, edges, boundary_edge, boundary_vertex, degree):
+def _topology_ok(n, all_edges, edges, boundary_edge, boundary_vertex, degree, neighbours=None):
     """Which candidate collapses the topology allows, and each one's opposite vertices.
 
     Returns ``(ok (k,), opposite_owner, opposite_vertex)``: candidate i is allowed where
     ``ok[i]``; its opposite vertices are ``opposite_vertex[opposite_owner == i]``. The
     geometric check (:func:`_no_turned_faces`) comes later, only for chosen edges.
+    ``neighbours``: the vertex adjacency as CSR ``(offsets, neighbours)``, if the caller
+    has it already (it is built from ``all_edges`` otherwise).
     """
     k = len(edges)
     a, b = edges[:, 0], edges[:, 1]
@@ -183,8 +189,10 @@ def _topology_ok(n, all_edges, edges, boundary_edge, boundary_vertex, degree):
     ok = ~(~boundary_edge & boundary_vertex[a] & boundary_vertex[b])
 
     # Link condition: common neighbours of a and b must be exactly the opposite vertices.
-    both = np.concatenate([all_edges, all_edges[:, ::-1]])      # every edge, both ways
-    nbr_offsets, nbr = csr(both[:, 0], both[:, 1], n)
+    if neighbours is None:
+        both = np.concatenate([all_edges, all_edges[:, ::-1]])  # every edge, both ways
+        neighbours = csr(both[:, 0], both[:, 1], n)
+    nbr_offsets, nbr = neighbours
     owner_a, around_a = expand(nbr_offsets, nbr, a)
     owner_b, around_b = expand(nbr_offsets, nbr, b)
     owner = np.concatenate([owner_a, owner_b])
