@@ -1,8 +1,8 @@
 """The command line: ``halfedge-edu COMMAND ...`` (also ``python -m halfedge_edu``).
 
 ``info`` and ``check`` read one mesh file and print plain text. ``subdivide``,
-``simplify``, ``smooth`` and ``convert`` read IN, run one algorithm and write OUT (the
-format picked by OUT's suffix), then print a one-line summary.
+``simplify``, ``smooth``, ``remesh`` and ``convert`` read IN, run one algorithm and
+write OUT (the format picked by OUT's suffix), then print a one-line summary.
 
 Promises, each tested in tests/test_cli.py:
 
@@ -22,6 +22,7 @@ The library is imported only once a subcommand runs, so ``--help`` is instant.
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import sys
 import warnings
@@ -93,7 +94,7 @@ def build_parser() -> argparse.ArgumentParser:
     """The argument parser with every registered subcommand."""
     parser = _Parser(
         prog=PROG,
-        description="Inspect, check, refine, simplify, smooth and convert triangle meshes as halfedge meshes.",
+        description="Inspect, check, refine, simplify, smooth, remesh and convert triangle meshes as halfedge meshes.",
         epilog=(
             "Exit status: 0 success; 1 a mesh breaks a halfedge invariant (`check` on its "
             "input; any other command on its own result, which is a bug: nothing is "
@@ -180,6 +181,22 @@ def build_parser() -> argparse.ArgumentParser:
         help="boundary vertices stay (fixed, the default) or move along their boundary loop",
     )
 
+    remesh = _add_transform(
+        commands, "remesh", run_remesh,
+        help="isotropic remeshing: edges of about one length, degrees near 6",
+        description=(
+            "Isotropic remeshing: split long edges, collapse short ones, flip towards "
+            "degree 6, smooth tangentially and project back onto the input surface."
+        ),
+    )
+    remesh.add_argument(
+        "--length", type=_positive_number, metavar="L",
+        help="the edge length to aim for (default: the input's mean edge length)",
+    )
+    remesh.add_argument(
+        "--iterations", type=_whole_number(0), default=5, metavar="N", help="how many rounds (default 5)"
+    )
+
     _add_transform(
         commands, "convert", run_convert, progress=False,
         help="write a mesh in another format (picked by OUT's suffix)",
@@ -240,6 +257,17 @@ def _ratio(text: str) -> float:
         raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
     if not 0 < value <= 1:
         raise argparse.ArgumentTypeError(f"must be in (0, 1], got {text}")
+    return value
+
+
+def _positive_number(text: str) -> float:
+    """An argparse type: a finite number > 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"must be a positive number, got {text}")
     return value
 
 
@@ -372,6 +400,17 @@ def run_smooth(args: argparse.Namespace) -> int:
         return smooth(
             mesh, args.iterations, weights=args.weights, boundary=args.boundary, progress=_progress(args)
         )
+
+    return _transform(args, algorithm)
+
+
+def run_remesh(args: argparse.Namespace) -> int:
+    """``remesh IN OUT [--length L] [--iterations N]``: isotropic remeshing."""
+
+    def algorithm(mesh):
+        from halfedge_edu.algorithms.remesh import remesh
+
+        return remesh(mesh, args.length, args.iterations, progress=_progress(args))
 
     return _transform(args, algorithm)
 

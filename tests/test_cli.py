@@ -1,4 +1,4 @@
-"""The command line: `halfedge-edu info|check|subdivide|simplify|smooth|convert` (halfedge_edu/cli.py).
+"""The command line: `halfedge-edu info|check|subdivide|simplify|smooth|remesh|convert` (halfedge_edu/cli.py).
 
 Most tests call ``main([...])`` in-process; a few run the real ``python -m
 halfedge_edu`` to check what a user sees. Bad input always means: exit status 2, one
@@ -22,7 +22,7 @@ from halfedge_edu.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
 
-ALL_COMMANDS = ("info", "check", "subdivide", "simplify", "smooth", "convert")
+ALL_COMMANDS = ("info", "check", "subdivide", "simplify", "smooth", "remesh", "convert")
 
 
 # ---------------------------------------------------------------- small OBJ files
@@ -354,6 +354,7 @@ WRITERS = {  # each command's arguments after IN OUT, for tests that run them al
     "subdivide": ["1"],
     "simplify": ["--faces", "4"],
     "smooth": ["--iterations", "2"],
+    "remesh": ["--iterations", "1"],
     "convert": [],
 }
 
@@ -515,6 +516,39 @@ def test_smooth_writes_what_smooth_returns(capsys, tmp_path, weights, boundary):
 def test_smooth_rejects_unknown_weights(capsys, tmp_path, cube):
     err = usage_error(capsys, "smooth", cube, tmp_path / "out.obj", "--weights", "mean")
     assert "'uniform', 'cotangent'" in err
+
+
+# ---------------------------------------------------------------- remesh
+
+def test_remesh_writes_what_remesh_returns(capsys, tmp_path, sphere):
+    from halfedge_edu.algorithms.remesh import remesh
+
+    out = tmp_path / "out.obj"
+    status, stdout, err = run(capsys, "remesh", sphere, out, "--length", 0.15, "--iterations", 2)
+    assert status == 0 and err == ""
+    expected_vertices, expected_faces = remesh(hx.load(sphere), 0.15, 2).to_arrays()
+    written = hx.read_obj(out)
+    assert len(expected_faces) > 320  # shorter edges than the input's: more faces
+    assert (written.vertices == expected_vertices).all() and (written.faces == expected_faces).all()
+    assert stdout == f"remesh: 320 -> {len(expected_faces)} faces, wrote {out}\n"
+
+
+def test_remesh_default_length_and_iterations(capsys, tmp_path):
+    from halfedge_edu.algorithms.remesh import remesh
+
+    source = sample_file(tmp_path, "open_patch")
+    out = tmp_path / "out.obj"
+    status, _, _ = run(capsys, "remesh", source, out)
+    assert status == 0
+    expected_vertices, _ = remesh(hx.load(source)).to_arrays()
+    assert (hx.read_obj(out).vertices == expected_vertices).all()
+
+
+@pytest.mark.parametrize("length", ["0", "-1", "inf", "nan", "long"])
+def test_remesh_rejects_a_length_that_is_not_positive(capsys, tmp_path, cube, length):
+    err = usage_error(capsys, "remesh", cube, tmp_path / "out.obj", "--length", length)
+    assert "--length" in err
+    assert not (tmp_path / "out.obj").exists()
 
 
 # ---------------------------------------------------------------- convert
