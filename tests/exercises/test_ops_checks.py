@@ -216,6 +216,13 @@ def test_unfinished_flip_says_not_written_yet():
     assert "not written yet" in result.message
 
 
+def test_a_blank_left_in_the_flip_says_not_written_yet():
+    def blank(mesh, e):
+        mesh.halfedge_vertex[2 * e] = ...
+
+    assert "not written yet" in check_flip(blank).message
+
+
 def test_a_learner_exception_is_reported_by_name():
     result = check_flip(lambda mesh, e: mesh.halfedge_next[10**6])
     assert "raised IndexError" in result.message
