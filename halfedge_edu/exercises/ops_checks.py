@@ -199,9 +199,11 @@ def _names_in_error(message: str, log: OperationLog) -> str:
 
 
 def _describe_error(name: str, error: Exception) -> str:
-    if isinstance(error, NotImplementedError) or "ellipsis" in str(error).lower():
+    if isinstance(error, NotImplementedError):
         return (f"your {name} is not written yet (it raised NotImplementedError). Replace the raise with "
                 f"your code and run the check again.")
+    if "ellipsis" in str(error).lower():
+        return f"your {name} still has a blank (...) in it. Fill it in and run the check again."
     return (f"your {name} raised {type(error).__name__}: {error}. Call it yourself on a copy of this mesh to "
             f"see the full traceback.")
 

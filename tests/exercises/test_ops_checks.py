@@ -216,11 +216,11 @@ def test_unfinished_flip_says_not_written_yet():
     assert "not written yet" in result.message
 
 
-def test_a_blank_left_in_the_flip_says_not_written_yet():
+def test_a_blank_left_in_the_flip_is_pointed_out():
     def blank(mesh, e):
         mesh.halfedge_vertex[2 * e] = ...
 
-    assert "not written yet" in check_flip(blank).message
+    assert "still has a blank (...)" in check_flip(blank).message
 
 
 def test_a_learner_exception_is_reported_by_name():
