@@ -356,6 +356,10 @@ def _flip_pass(vertices, faces, rng, max_crease_cos, selection_passes: int = 4):
 
     Edge ``a-b`` with faces ``[a, b, c]`` and ``[b, a, d]`` becomes ``c-d`` with faces
     ``[c, a, d]`` and ``[d, b, c]``: a and b lose an edge, c and d gain one.
+
+    The flips done together share no vertex, not merely no face: each gain is computed
+    as if its flip were alone, and two flips at one vertex could both take an edge from
+    it (leaving fewer than 3), or both create the same new edge ``c-d``.
     """
     n = len(vertices)
     table = _edge_table(faces, n)
@@ -600,8 +604,10 @@ def remesh(
         target_length: the edge length ``L`` to aim for; default: the input's mean edge length.
         iterations: how many rounds of split / collapse / flip / smooth / project.
         project: put the vertices back on the input surface after each smoothing (the
-            boundary ones on the input's boundary polyline). Without it, midpoints of
-            splits and tangential moves drift slightly inside curved regions.
+            boundary ones on the input's boundary polyline). Each vertex goes to the
+            nearest point of the few input triangles whose centroids are nearest (a
+            k-d tree), which is the true nearest point almost always. Without it,
+            midpoints of splits and tangential moves drift slightly inside curved regions.
         progress: show a progress bar (tqdm) over the iterations.
         return_history: also return the list of :class:`RemeshStep`
             ``(iteration, phase, mesh)`` that :func:`remesh_step_by_step` yields.

@@ -207,7 +207,7 @@ def test_history_starts_with_the_input_and_lists_every_phase_in_order(spot_histo
     spot, (result, history) = spot_history
     assert (history[0].iteration, history[0].phase) == (0, "input")
     assert history[0].mesh is not spot
-    expected = [(i, phase) for i in (1, 2, 3) for phase in ("split", "collapse", "flip", "smooth", "project")]
+    expected = [(i, phase) for i in (1, 2, 3) for phase in remesh_module.PHASES]
     assert [(step.iteration, step.phase) for step in history[1:]] == expected
     assert all(np.array_equal(x, y) for x, y in zip(history[-1].mesh.to_arrays(), result.to_arrays()))
 
