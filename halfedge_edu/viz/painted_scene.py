@@ -78,10 +78,12 @@ class PaintedScene:
             normal of a flat mesh, else an oblique view.
         vertex_labels: write vertex numbers beside the vertices ("auto": on meshes with
             at most ``LABEL_VERTICES`` vertices, only those facing the camera).
+        fit_points: (k, 3) more points the first view must take in (say, control points).
+        view_up: (3,) the direction that points up in the picture (y by default).
     """
 
     def __init__(self, mesh, *, preset: "str | Preset" = "default", plotter=None, window_size=None,
-                 view_direction=None, vertex_labels="auto"):
+                 view_direction=None, vertex_labels="auto", fit_points=None, view_up=None):
         import pyvista as pv
 
         self.mesh = mesh
@@ -97,13 +99,13 @@ class PaintedScene:
         self.layers: list[Layer] = []
         self._names: set[str] = set()
         self._legend: list[tuple[str, str, str]] = []
-        self._aim(mesh, view_direction)
+        self._aim(mesh, view_direction, fit_points, view_up)
 
     # -- public ----------------------------------------------------------------------------
 
     def paint(self, mesh=None, *, layers=(), edge_values=None, value_label: str = "",
               value_range=None, cmap: str = "viridis", base_edges: bool = True,
-              surface_opacity: float = 1.0) -> None:
+              surface_opacity: float = 1.0, smooth: bool = False) -> None:
         """Draw ``mesh`` (the scene's mesh if None) with ``layers`` on top.
 
         Args:
@@ -115,6 +117,7 @@ class PaintedScene:
             cmap: a matplotlib colour map name (the default, viridis, reads in grey too).
             base_edges: draw every edge not in a layer as a thin grey line.
             surface_opacity: below 1, the surface is see-through (to show points inside).
+            smooth: shade the surface smoothly (for sampled surfaces) instead of facet by facet.
         """
         import pyvista as pv
 
@@ -132,7 +135,7 @@ class PaintedScene:
         if len(corners):
             surface = pv.PolyData.from_regular_faces(positions, corners)
             add("surface", surface, color=look.surface, ambient=0.45, diffuse=0.55, specular=0.0,
-                smooth_shading=False, show_edges=False, opacity=float(surface_opacity))
+                smooth_shading=bool(smooth), show_edges=False, opacity=float(surface_opacity))
             # Push the faces back a little so lines lying on them are not hidden.
             mapper = self.plotter.actors["surface"].GetMapper()
             mapper.SetResolveCoincidentTopologyToPolygonOffset()
@@ -153,8 +156,8 @@ class PaintedScene:
             low, high = value_range if value_range is not None else (
                 (float(finite.min()), float(finite.max())) if len(finite) else (0.0, 1.0))
             add("edge_values", lines, scalars=value_label or "value", cmap=cmap, clim=(low, high),
-                line_width=2.5 * scale, lighting=False, nan_color="#B0B0B0",
-                scalar_bar_args=dict(title=value_label, vertical=False, n_labels=3, fmt="%.1f",
+                line_width=2.0 * scale, lighting=False, nan_color="#B0B0B0",
+                scalar_bar_args=dict(title=value_label, vertical=False, n_labels=2, fmt="%.1f",
                                      position_x=0.05, position_y=0.02, width=0.5, height=0.08,
                                      color="#000000", title_font_size=12 * int(scale) + 2,
                                      label_font_size=11 * int(scale) + 1))
@@ -232,8 +235,10 @@ class PaintedScene:
 
     # -- internals -------------------------------------------------------------------------
 
-    def _aim(self, mesh, view_direction) -> None:
+    def _aim(self, mesh, view_direction, fit_points=None, view_up=None) -> None:
         positions = mesh.positions[~mesh.vertex_deleted]
+        if fit_points is not None:
+            positions = np.concatenate([positions, np.asarray(fit_points, dtype=np.float64).reshape(-1, 3)])
         corners = mesh.face_vertices()[~mesh.face_deleted]
         a, b, c = (mesh.positions[corners[:, k]] for k in range(3))
         normals = _unit(np.cross(b - a, c - a))
@@ -246,7 +251,7 @@ class PaintedScene:
             direction = _unit(VIEW_DIRECTION)
         centre = 0.5 * (positions.min(axis=0) + positions.max(axis=0))
         radius = float(np.linalg.norm(positions - centre, axis=1).max()) or 1.0
-        up = np.array([0.0, 1.0, 0.0])
+        up = np.array([0.0, 1.0, 0.0]) if view_up is None else _unit(np.asarray(view_up, dtype=np.float64))
         if abs(direction @ up) > 0.95:
             up = np.array([0.0, 0.0, -1.0]) if direction[1] > 0 else np.array([0.0, 0.0, 1.0])
         up = _unit(up - (up @ direction) * direction)

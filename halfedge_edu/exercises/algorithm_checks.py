@@ -1,0 +1,467 @@
+"""Checks for the exercises of chapters 09, 10 and 12: Loop's rules, quadrics, de Casteljau.
+
+    from halfedge_edu.exercises.algorithm_checks import check_loop_rules
+    check_loop_rules(edge_point, vertex_point)     # chapter 09
+    check_plane_quadric(plane_quadric)             # chapter 10
+    check_optimal_point(optimal_point)             # chapter 10
+    check_de_casteljau(de_casteljau)               # chapter 12
+
+Each check calls the learner's function on a few small cases, compares every answer
+with the library (:func:`~halfedge_edu.algorithms.loop.loop_positions`,
+:func:`~halfedge_edu.algorithms.simplify.face_quadrics`, the queue's best point,
+:func:`~halfedge_edu.algorithms.bezier.de_casteljau`), and at the first difference says
+in words what is wrong: which element, what was expected and why, and, where the
+answer matches a common slip (a midpoint instead of an edge point, ``3/(8n)`` for a
+vertex of degree 3, a normal not scaled to length 1, ``t`` and ``1 - t`` swapped), which
+slip it is. The contracts:
+
+* ``edge_point(mesh, edge) -> (3,)`` and ``vertex_point(mesh, vertex) -> (3,)``: the
+  new position of one edge's edge point and of one old vertex, read from the old
+  mesh (``edge`` and ``vertex`` are handles); the mesh must not be changed.
+* ``plane_quadric(a, b, c) -> (4, 4)``: ``K = p p^T`` with ``p = [n, d]``, ``n`` the
+  unit normal of the triangle ``a b c`` and ``d = -n . a`` (no area weight).
+* ``optimal_point(Q, a, b) -> (3,)``: the point minimizing ``[x, 1] Q [x, 1]^T``, the
+  solution of ``A x = -q`` (``A = Q[:3, :3]``, ``q = Q[:3, 3]``), or the midpoint of
+  ``a`` and ``b`` when ``A`` is singular.
+* ``de_casteljau(points, t) -> list``: every level, from the control points (level 0)
+  to the single point on the curve (level n).
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+import numpy as np
+
+from halfedge_edu.algorithms.bezier import de_casteljau as _de_casteljau
+from halfedge_edu.algorithms.loop import loop_positions
+from halfedge_edu.algorithms.simplify import face_quadrics, optimal_points
+from halfedge_edu.core.mesh import HalfedgeMesh
+from halfedge_edu.data import sample
+
+from .checks import TIME_LIMIT, CheckResult, _failed, _run, _unfinished
+
+__all__ = ["check_loop_rules", "check_plane_quadric", "check_optimal_point", "check_de_casteljau",
+           "loop_cases", "warren_beta"]
+
+
+def _text(point) -> str:
+    return "(" + ", ".join(f"{float(c):.4g}" for c in np.asarray(point, dtype=np.float64).ravel()) + ")"
+
+
+def _as_point(value, size: int = 3) -> np.ndarray | None:
+    try:
+        array = np.asarray(value, dtype=np.float64).reshape(-1)
+    except (TypeError, ValueError):
+        return None
+    return array if array.shape == (size,) else None
+
+
+def _close(a, b) -> bool:
+    return bool(np.allclose(a, b, rtol=1e-7, atol=1e-9))
+
+
+def _all_good(exercise: str, checked: list[str], noun: str, praise: str) -> CheckResult:
+    """The congratulation: what agreed, on how many cases, and what it means."""
+    return CheckResult(exercise, True, f"All good! Your {exercise} matches the library on {len(checked)} {noun} "
+                       f"({', '.join(checked)}). {praise}", list(checked))
+
+
+def _trouble(status: str, answer, name: str) -> str | None:
+    """Words for a learner function that timed out or raised, else None."""
+    if status == "timeout":
+        return f"your {name} did not finish within {TIME_LIMIT:g} s: a loop probably never ends."
+    if status == "error":
+        if isinstance(answer, NotImplementedError) or "ellipsis" in str(answer).lower():
+            return f"{name} is not finished yet ({type(answer).__name__}: {answer}). Fill it in and check again."
+        return (f"your {name} raised {type(answer).__name__}: {answer}. Call it yourself on that case "
+                f"to see the full traceback.")
+    return None
+
+
+# --------------------------------------------------------------------------------------
+# Chapter 09: Loop's edge points and vertex points
+# --------------------------------------------------------------------------------------
+
+def warren_beta(n: int) -> float:
+    """Warren's weight of each neighbour of an interior vertex of degree ``n``."""
+    return 3.0 / 16.0 if n == 3 else 3.0 / (8.0 * n)
+
+
+def _jittered(mesh: HalfedgeMesh, seed: int, amount: float = 0.08) -> HalfedgeMesh:
+    """The same mesh with every vertex nudged (symmetric shapes can hide a wrong weight)."""
+    mesh = mesh.copy()
+    rng = np.random.default_rng(seed)
+    mesh.positions[:] += amount * rng.standard_normal(mesh.positions.shape)
+    return mesh
+
+
+def loop_cases() -> list[tuple[str, HalfedgeMesh]]:
+    """The meshes ``check_loop_rules`` uses, in order: degree 3, 4, 5-6, mixed, boundary."""
+    return [
+        ("tetrahedron (every vertex of degree 3)", _jittered(sample("tetrahedron"), 1)),
+        ("octahedron (degree 4)", _jittered(sample("octahedron"), 2)),
+        ("icosphere (degrees 5 and 6)", _jittered(sample("icosphere", subdivisions=1), 3, 0.03)),
+        ("cube (degrees 3 to 6)", _jittered(sample("cube"), 4)),
+        ("open patch (a boundary)", _jittered(sample("open_patch"), 5)),
+        ("strip (every vertex on the boundary)", _jittered(sample("strip"), 6)),
+    ]
+
+
+def _edge_story(mesh: HalfedgeMesh, e: int) -> tuple[int, int, int | None, int | None]:
+    """Ends a, b and opposite corners c (beside halfedge 2e) and d (beside 2e + 1); None on the boundary."""
+    h = mesh.halfedge(2 * e)
+    a, b = h.vertex.index, h.tip.index
+    c = None if h.face is None else h.prev.vertex.index
+    d = None if h.twin.face is None else h.twin.prev.vertex.index
+    return a, b, c, d
+
+
+def _edge_problem(mesh: HalfedgeMesh, e: int, yours: np.ndarray, wanted: np.ndarray) -> str:
+    P = mesh.positions
+    a, b, c, d = _edge_story(mesh, e)
+    where = f"edge {e} joins vertices {a} and {b}"
+    midpoint = 0.5 * (P[a] + P[b])
+    if c is None or d is None:
+        text = (f"{where} and lies on the boundary (only one triangle touches it), so its edge point is "
+                f"the midpoint (a + b) / 2 = {_text(wanted)}; yours is {_text(yours)}.")
+        one = c if c is not None else d
+        if _close(yours, 0.375 * (P[a] + P[b]) + 0.125 * P[one]) or _close(yours, 0.375 * (P[a] + P[b]) + 0.25 * P[one]):
+            text += (" You used the interior rule with the one opposite corner there is. On the boundary the "
+                     "inside must not count, so that the boundary is refined as a curve of its own.")
+        return text
+    text = (f"{where}; its two triangles have the opposite corners {c} and {d}, so the edge point is "
+            f"3/8 (a + b) + 1/8 (c + d) = {_text(wanted)}; yours is {_text(yours)}.")
+    if _close(yours, midpoint):
+        text += (" That is the midpoint. The edge point is pulled a little towards the two opposite corners "
+                 "(the 'wings'); that pull is what makes the limit surface smooth.")
+    elif _close(yours, 0.125 * (P[a] + P[b]) + 0.375 * (P[c] + P[d])):
+        text += " The weights are swapped: the edge's own ends get 3/8 each, the opposite corners 1/8."
+    elif _close(yours, 0.375 * (P[a] + P[b]) + 0.25 * P[c]) or _close(yours, 0.375 * (P[a] + P[b]) + 0.25 * P[d]):
+        text += (" Yours counts one opposite corner twice: c is opposite the edge in the face of h, d in the "
+                 "face of h.twin (h.prev.vertex and h.twin.prev.vertex).")
+    return text
+
+
+def _vertex_problem(mesh: HalfedgeMesh, v: int, yours: np.ndarray, wanted: np.ndarray) -> str:
+    P = mesh.positions
+    vertex = mesh.vertex(v)
+    ring = [u.index for u in vertex.neighbors()]
+    n = len(ring)
+    ring_sum = P[ring].sum(axis=0)
+    if vertex.is_boundary:
+        out = vertex.halfedge                       # the outgoing boundary halfedge
+        after, before = out.tip.index, out.prev.vertex.index
+        text = (f"vertex {v} is on the boundary; its neighbours along the boundary are {before} and {after}, so it "
+                f"moves to 3/4 v + 1/8 ({before} + {after}) = {_text(wanted)}; yours is {_text(yours)}.")
+        beta = warren_beta(n)
+        if _close(yours, (1 - n * beta) * P[v] + beta * ring_sum):
+            text += (" You used the interior rule over all its neighbours. A boundary vertex only listens to "
+                     "its two boundary neighbours, so the boundary stays a curve of its own.")
+        elif _close(yours, P[v]):
+            text += " The old boundary vertices move too (unless you pin them on purpose, which the course does not)."
+        return text
+    beta = warren_beta(n)
+    text = (f"vertex {v} is inside with degree n = {n} (neighbours {ring}); Warren's beta is "
+            f"{'3/16' if n == 3 else f'3/(8 * {n})'} = {beta:.6g}, so it moves to (1 - n beta) v + beta * "
+            f"(sum of the neighbours) = {_text(wanted)}; yours is {_text(yours)}.")
+    loop_beta = (5.0 / 8.0 - (3.0 / 8.0 + 0.25 * np.cos(2.0 * np.pi / n)) ** 2) / n
+    if n == 3 and _close(yours, (1 - 3 * (1.0 / 8.0)) * P[v] + (1.0 / 8.0) * ring_sum):
+        text += " You used 3/(8n) = 1/8, but for degree 3 Warren's rule has its own value, beta = 3/16."
+    elif _close(yours, (1 - n * loop_beta) * P[v] + loop_beta * ring_sum):
+        text += (f" That is Loop's original beta ({loop_beta:.6g}); the course uses Warren's simpler one "
+                 f"(3/16 for n = 3, 3/(8n) otherwise).")
+    elif _close(yours, P[v]):
+        text += " The old vertices move too: each becomes a weighted average of itself and its ring."
+    elif _close(yours, ring_sum / n):
+        text += " That is the mean of the neighbours (Laplacian smoothing); Loop keeps the largest share, 1 - n beta, for v itself."
+    elif _close(yours, beta * ring_sum):
+        text += " The vertex's own share, (1 - n beta) v, is missing."
+    elif _close(yours, (1 - beta) * P[v] + beta * ring_sum):
+        text += " The vertex's own weight is 1 - n beta (so that all weights add up to 1), not 1 - beta."
+    return text
+
+
+def check_loop_rules(edge_point: Callable | None = None, vertex_point: Callable | None = None) -> CheckResult:
+    """Compare the learner's Loop rules with ``loop_positions`` on six small meshes.
+
+    Args:
+        edge_point: ``edge_point(mesh, edge) -> (3,)`` the new vertex on ``edge``.
+        vertex_point: ``vertex_point(mesh, vertex) -> (3,)`` where old ``vertex`` moves.
+            Either may be None, to check only the other one.
+
+    Returns:
+        A :class:`CheckResult`; on the first difference it names the mesh and element,
+        the rule with its numbers, and a likely slip; ``result.show()`` draws the element.
+    """
+    functions = [(name, f) for name, f in (("edge_point", edge_point), ("vertex_point", vertex_point)) if f is not None]
+    label = " and ".join(name for name, _ in functions) or "Loop rules"
+    if not functions:
+        return _failed(label, [], None, "give check_loop_rules your edge_point, your vertex_point, or both.")
+    for name, function in functions:
+        unfinished = _unfinished(function, name)
+        if unfinished:
+            return _failed(label, [], None, unfinished)
+    checked: list[str] = []
+    for case, mesh in loop_cases():
+        vertex_points, edge_points = loop_positions(mesh)
+        before = mesh.positions.copy()
+        for name, function in functions:
+            elements = mesh.edges if name == "edge_point" else mesh.vertices
+            for element in elements:
+                status, answer = _run(function, mesh, element)
+                trouble = _trouble(status, answer, name)
+                kind = ("halfedge", 2 * element.index) if name == "edge_point" else ("vertex", element.index)
+                what = f"edge {element.index}" if name == "edge_point" else f"vertex {element.index}"
+                if trouble:
+                    return _failed(label, checked, case, f"on {what}, {trouble}", kind, mesh)
+                if not np.array_equal(mesh.positions, before):
+                    return _failed(label, checked, case,
+                                   f"your {name} changed mesh.positions (at {what}). Every new position must be "
+                                   f"computed from the old mesh, before anything moves: read the positions, never "
+                                   f"write them.", kind, mesh)
+                yours = _as_point(answer)
+                if yours is None:
+                    return _failed(label, checked, case, f"your {name} should return 3 numbers (a position), but for "
+                                   f"{what} it returned {answer!r:.80}.", kind, mesh)
+                wanted = edge_points[element.index] if name == "edge_point" else vertex_points[element.index]
+                if not _close(yours, wanted):
+                    explain = _edge_problem if name == "edge_point" else _vertex_problem
+                    return _failed(label, checked, case, explain(mesh, element.index, yours, wanted), kind, mesh)
+        checked.append(case.split(" (")[0])
+    return _all_good(label, checked, "meshes", "Together they are one level of Loop's positions; the connectivity is "
+                   "the 4-to-1 split you stepped through.")
+
+
+# --------------------------------------------------------------------------------------
+# Chapter 10: the plane quadric of a face, and the optimal point
+# --------------------------------------------------------------------------------------
+
+def _quadric_cases() -> list[tuple[str, np.ndarray]]:
+    """Triangles (3, 3) for ``check_plane_quadric``: easy planes first."""
+    return [
+        ("a triangle in the plane z = 0", np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=float)),
+        ("a triangle in the plane z = 2", np.array([[0, 0, 2], [2, 0, 2], [0, 3, 2]], dtype=float)),
+        ("a tilted triangle", np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)),
+        ("a tilted triangle away from the origin", np.array([[1.5, -0.5, 2.0], [2.5, 0.2, 1.1], [0.7, 1.3, 2.6]])),
+        ("a long thin triangle", np.array([[0, 0, 0], [10, 0.1, 0.3], [0, 0.05, 0.02]], dtype=float)),
+    ]
+
+
+def _plain_quadric(a, b, c) -> tuple[np.ndarray, np.ndarray, float]:
+    """``(K (4, 4), p (4,), area)`` of one triangle."""
+    cross = np.cross(b - a, c - a)
+    area = 0.5 * np.linalg.norm(cross)
+    quadric = face_quadrics(np.array([a, b, c]), np.array([[0, 1, 2]]))[0] / area
+    n = cross / np.linalg.norm(cross)
+    return quadric, np.append(n, -n @ a), area
+
+
+def check_plane_quadric(plane_quadric: Callable) -> CheckResult:
+    """Compare ``plane_quadric(a, b, c)`` with the library's face quadric (without its area weight).
+
+    Args:
+        plane_quadric: ``(a, b, c) -> (4, 4)``, ``K = p p^T`` with ``p = [n, d]``,
+            ``n`` the unit normal, ``d = -n . a``.
+    """
+    unfinished = _unfinished(plane_quadric, "plane_quadric")
+    if unfinished:
+        return _failed("plane_quadric", [], None, unfinished)
+    checked: list[str] = []
+    for case, triangle in _quadric_cases():
+        a, b, c = triangle.copy()
+        status, answer = _run(plane_quadric, a, b, c)
+        trouble = _trouble(status, answer, "plane_quadric")
+        if trouble:
+            return _failed("plane_quadric", checked, case, trouble)
+        try:
+            yours = np.asarray(answer, dtype=np.float64)
+        except (TypeError, ValueError):
+            yours = np.zeros(0)
+        if yours.shape != (4, 4):
+            return _failed("plane_quadric", checked, case, f"plane_quadric should return a 4 x 4 matrix, but yours "
+                           f"has shape {yours.shape}. Build p = [nx, ny, nz, d] and return np.outer(p, p).")
+        wanted, p, area = _plain_quadric(a, b, c)
+        if _close(yours, wanted):
+            checked.append(case)
+            continue
+        n, d = p[:3], p[3]
+        text = (f"the triangle {_text(a)}, {_text(b)}, {_text(c)} lies in the plane n . x + d = 0 with unit normal "
+                f"n = {_text(n)} and d = {d:.4g}, so K = p p^T with p = {_text(p)}.")
+        raw = np.cross(b - a, c - a)
+        if _close(yours, area * wanted):
+            text += (" Yours is K times the triangle's area. That is what the library stores (big faces count "
+                     "more), but the exercise asks for the plain K: leave the area out.")
+        elif _close(yours, (raw @ raw) * wanted) or _close(yours, np.linalg.norm(raw) * wanted):
+            text += (" Yours is K times a power of |(b - a) x (c - a)|: the normal must have length 1, or the "
+                     "'distance' is measured in the wrong unit. Divide the cross product by its length.")
+        elif _close(yours, np.outer(np.append(n, -d), np.append(n, -d))):
+            text += (" Your d has the wrong sign: d = -n . a, so that n . x + d is 0 for every point x of the "
+                     "plane (try x = a).")
+        elif _close(yours[:3, :3], wanted[:3, :3]) and np.allclose(yours[3], 0) and np.allclose(yours[:, 3], 0):
+            text += " The last row and column are zero: d is missing from p (it only vanishes when the plane passes through the origin)."
+        elif not np.allclose(yours, yours.T):
+            text += " Yours is not symmetric; p p^T always is. Use np.outer(p, p)."
+        else:
+            x = a + 2.0 * n
+            value = np.append(x, 1.0) @ yours @ np.append(x, 1.0)
+            text += (f" Test: the point a + 2n is 2 away from the plane, so [x, 1] K [x, 1]^T should be 4; "
+                     f"yours gives {value:.4g}.")
+        return _failed("plane_quadric", checked, case, text)
+    return _all_good("plane_quadric", checked, "triangles", "[x, 1] K [x, 1]^T is now the squared distance from x to the face's plane.")
+
+
+def _optimal_cases() -> list[tuple[str, np.ndarray, np.ndarray, np.ndarray, bool]]:
+    """``(name, Q, a, b, well_posed)`` for ``check_optimal_point``."""
+    def plane(n, point):
+        n = np.asarray(n, dtype=float) / np.linalg.norm(n)
+        p = np.append(n, -n @ np.asarray(point, dtype=float))
+        return np.outer(p, p)
+
+    corner = plane([1, 0, 0], [1, 0, 0]) + plane([0, 1, 0], [0, 2, 0]) + plane([0, 0, 1], [0, 0, 3])
+    tilted = plane([1, 1, 0], [1, 0, 0]) + plane([0, 1, 1], [0, 1, 1]) + 0.5 * plane([1, -1, 2], [0.5, 0.5, 0.2])
+    flat = 2.0 * plane([0, 0, 1], [0, 0, 0.5])
+    ridge = plane([1, 0, 1], [0, 0, 0]) + plane([-1, 0, 1], [0, 0, 0])
+    sphere = sample("icosphere", subdivisions=2)
+    mesh_q = face_quadrics(sphere.positions, sphere.face_vertices())
+    e = sphere.edge(17)
+    a_index, b_index = (v.index for v in e.vertices)
+    around = {f.index for f in sphere.vertex(a_index).faces()} | {f.index for f in sphere.vertex(b_index).faces()}
+    sphere_q = mesh_q[sorted(around)].sum(axis=0)
+    return [
+        ("the corner of a box (three planes x = 1, y = 2, z = 3)", corner, np.array([0.5, 2.5, 3.0]),
+         np.array([1.5, 1.5, 2.5]), True),
+        ("three tilted planes", tilted, np.array([0.0, 0.0, 0.0]), np.array([1.0, 1.0, 1.0]), True),
+        ("an edge of an icosphere (the quadrics of the faces around both ends)", sphere_q,
+         sphere.positions[a_index].copy(), sphere.positions[b_index].copy(), True),
+        ("a flat region (one plane z = 0.5: A is singular)", flat, np.array([0.0, 0.0, 0.5]),
+         np.array([1.0, 0.4, 0.5]), False),
+        ("a ridge (two planes meeting along the y axis: A is singular)", ridge, np.array([0.0, 0.0, 0.0]),
+         np.array([0.0, 2.0, 0.0]), False),
+    ]
+
+
+def check_optimal_point(optimal_point: Callable) -> CheckResult:
+    """Compare ``optimal_point(Q, a, b)`` with the solution of ``A x = -q`` (midpoint when singular).
+
+    Args:
+        optimal_point: ``(Q (4, 4), a (3,), b (3,)) -> (3,)``.
+    """
+    unfinished = _unfinished(optimal_point, "optimal_point")
+    if unfinished:
+        return _failed("optimal_point", [], None, unfinished)
+    checked: list[str] = []
+    for case, Q, a, b, well_posed in _optimal_cases():
+        status, answer = _run(optimal_point, Q.copy(), a.copy(), b.copy())
+        if status == "error" and isinstance(answer, np.linalg.LinAlgError):
+            return _failed("optimal_point", checked, case, f"np.linalg.solve raised LinAlgError ({answer}). A is "
+                           f"singular here: many points are equally good (a whole plane or line of them). Check "
+                           f"abs(np.linalg.det(A)) first and fall back to the midpoint (a + b) / 2 when it is tiny.")
+        trouble = _trouble(status, answer, "optimal_point")
+        if trouble:
+            return _failed("optimal_point", checked, case, trouble)
+        yours = _as_point(answer)
+        if yours is None:
+            return _failed("optimal_point", checked, case, f"optimal_point should return 3 numbers, but yours "
+                           f"returned {answer!r:.80}.")
+        midpoint = 0.5 * (a + b)
+        if well_posed:
+            wanted = np.linalg.solve(Q[:3, :3], -Q[:3, 3])
+        else:
+            wanted = midpoint
+        library = optimal_points(Q[None], a[None], b[None])[0][0]
+        if _close(yours, wanted):
+            checked.append(case.split(" (")[0])
+            continue
+        cost = lambda x: float(np.append(x, 1.0) @ Q @ np.append(x, 1.0))  # noqa: E731
+        text = f"the best point is {_text(wanted)} (cost {cost(wanted):.3g}); yours is {_text(yours)} (cost {cost(yours):.3g})."
+        if well_posed:
+            if _close(yours, midpoint):
+                text += (" That is the midpoint. Here A = Q[:3, :3] is invertible, so solve A x = -q (q = Q[:3, 3]) "
+                         "for the one point of least error; the midpoint is only the fallback.")
+            elif _close(yours, np.linalg.solve(Q[:3, :3], Q[:3, 3])):
+                text += " The sign is off: the gradient of [x, 1] Q [x, 1]^T is 2 (A x + q), zero at A x = -q."
+        else:
+            text += (" A is singular here (det(A) is 0: every point of a plane or a line costs the same), so the "
+                     "course takes the midpoint (a + b) / 2.")
+            if abs(cost(yours) - cost(wanted)) < 1e-9:
+                text += (" Yours costs as little, but it can lie far from the edge, and the new vertex would "
+                         "wander off; the midpoint keeps it in place.")
+            if not _close(library, midpoint):
+                text += f" (The library also tries the two ends, and here it picks {_text(library)}.)"
+        return _failed("optimal_point", checked, case, text)
+    return _all_good("optimal_point", checked, "quadrics", "That is the point each queue entry stores with its cost.")
+
+
+# --------------------------------------------------------------------------------------
+# Chapter 12: de Casteljau
+# --------------------------------------------------------------------------------------
+
+def _casteljau_cases() -> list[tuple[str, np.ndarray, float]]:
+    quadratic = np.array([[0.0, 0.0], [1.0, 2.0], [2.0, 0.0]])
+    cubic = np.array([[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]])
+    space = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 1.0], [1.0, 1.0, 2.0], [0.0, 2.0, 1.0], [1.0, 3.0, 0.0]])
+    return [
+        ("a line (degree 1) at t = 0.25", np.array([[0.0, 0.0], [4.0, 2.0]]), 0.25),
+        ("a quadratic at t = 0.5", quadratic, 0.5),
+        ("a cubic at t = 0.3", cubic, 0.3),
+        ("a cubic at t = 0", cubic, 0.0),
+        ("a cubic at t = 1", cubic, 1.0),
+        ("a degree 4 curve in 3D at t = 0.7", space, 0.7),
+    ]
+
+
+def check_de_casteljau(de_casteljau: Callable) -> CheckResult:
+    """Compare the learner's ``de_casteljau(points, t)`` (every level) with the library's.
+
+    Args:
+        de_casteljau: ``(points (n + 1, d), t) -> list`` of ``n + 1`` levels, level k
+            holding ``n + 1 - k`` points.
+    """
+    unfinished = _unfinished(de_casteljau, "de_casteljau")
+    if unfinished:
+        return _failed("de_casteljau", [], None, unfinished)
+    checked: list[str] = []
+    for case, points, t in _casteljau_cases():
+        given = points.copy()
+        status, answer = _run(de_casteljau, given, t)
+        trouble = _trouble(status, answer, "de_casteljau")
+        if trouble:
+            return _failed("de_casteljau", checked, case, trouble)
+        if not np.array_equal(given, points):
+            return _failed("de_casteljau", checked, case, "your de_casteljau changed the control points it was "
+                           "given. Build each level as a new array (or list) instead of overwriting the input.")
+        wanted = _de_casteljau(points, t)
+        n = len(points) - 1
+        try:
+            levels = [np.asarray(level, dtype=np.float64).reshape(-1, points.shape[1]) for level in answer]
+        except (TypeError, ValueError):
+            levels = None
+        if levels is None or (len(levels) and np.ndim(answer[0]) == 0):
+            return _failed("de_casteljau", checked, case, f"de_casteljau should return a list of levels (arrays of "
+                           f"points), but yours returned {answer!r:.80}.")
+        if len(levels) == n and n > 0 and all(len(levels[k]) == n - k for k in range(n)):
+            return _failed("de_casteljau", checked, case, f"a degree {n} curve has {n + 1} levels, but yours has {n}: "
+                           f"level 0, the control points themselves, is missing. Start the list with them.")
+        if len(levels) != n + 1:
+            return _failed("de_casteljau", checked, case, f"a degree {n} curve ({n + 1} control points) has "
+                           f"{n + 1} levels, from {n + 1} points down to 1, but yours has {len(levels)}.")
+        for k, (mine, right) in enumerate(zip(levels, wanted)):
+            if len(mine) != len(right):
+                return _failed("de_casteljau", checked, case, f"level {k} should have {len(right)} points (one fewer "
+                               f"than level {k - 1}), but yours has {len(mine)}." if k else
+                               f"level 0 should be the {len(right)} control points, but yours has {len(mine)} points.")
+            if not _close(mine, right):
+                i = int(np.flatnonzero(~np.isclose(mine, right).all(axis=1))[0])
+                text = (f"at t = {t:g}, point {i} of level {k} should be (1 - t) * level[{k - 1}][{i}] + t * "
+                        f"level[{k - 1}][{i + 1}] = {_text(right[i])}, but yours is {_text(mine[i])}."
+                        if k else f"level 0 should be the control points themselves; point {i} differs.")
+                swapped = _de_casteljau(points, 1.0 - t)
+                if k and _close(mine, swapped[k]):
+                    text += (" You swapped t and 1 - t: with (1 - t) P_i + t P_(i+1), t = 0 gives P_0 and the "
+                             "curve runs from P_0 to P_n as t goes from 0 to 1.")
+                elif k and _close(mine[i], 0.5 * (wanted[k - 1][i] + wanted[k - 1][i + 1])):
+                    text += " Yours is the midpoint: that is the construction at t = 0.5 only; use t."
+                return _failed("de_casteljau", checked, case, text)
+        checked.append(case)
+    return _all_good("de_casteljau", checked, "curves", "The last level is the curve's point; the levels are the construction lines.")

@@ -1,0 +1,141 @@
+"""The checks of chapters 09, 10 and 12 pass the reference answers and name common slips."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from halfedge_edu.algorithms.bezier import de_casteljau as library_de_casteljau
+from halfedge_edu.exercises.algorithm_checks import (
+    check_de_casteljau,
+    check_loop_rules,
+    check_optimal_point,
+    check_plane_quadric,
+    warren_beta,
+)
+
+
+def edge_point(mesh, edge):
+    h = edge.halfedge
+    a, b = h.vertex.position, h.tip.position
+    if edge.is_boundary:
+        return 0.5 * (a + b)
+    return 0.375 * (a + b) + 0.125 * (h.prev.vertex.position + h.twin.prev.vertex.position)
+
+
+def vertex_point(mesh, vertex):
+    v = vertex.position
+    if vertex.is_boundary:
+        h = vertex.halfedge
+        return 0.75 * v + 0.125 * (h.tip.position + h.prev.vertex.position)
+    ring = [u.position for u in vertex.neighbors()]
+    beta = warren_beta(len(ring))
+    return (1 - len(ring) * beta) * v + beta * np.sum(ring, axis=0)
+
+
+def plane_quadric(a, b, c):
+    n = np.cross(b - a, c - a)
+    n = n / np.linalg.norm(n)
+    p = np.append(n, -n @ a)
+    return np.outer(p, p)
+
+
+def optimal_point(Q, a, b):
+    A, q = Q[:3, :3], Q[:3, 3]
+    if abs(np.linalg.det(A)) < 1e-9:
+        return 0.5 * (a + b)
+    return np.linalg.solve(A, -q)
+
+
+def test_reference_answers_pass():
+    for result in (check_loop_rules(edge_point, vertex_point), check_plane_quadric(plane_quadric),
+                   check_optimal_point(optimal_point), check_de_casteljau(library_de_casteljau)):
+        assert result, result.message
+        assert result.message.startswith("All good!")
+
+
+def test_loop_midpoint_edge_point_is_named():
+    result = check_loop_rules(edge_point=lambda mesh, e: 0.5 * (e.halfedge.vertex.position + e.halfedge.tip.position))
+    assert not result and "That is the midpoint" in result.message
+    assert result.element == ("halfedge", 0)
+
+
+def test_loop_degree_three_beta_slip_is_named():
+    def naive(mesh, vertex):
+        ring = [u.position for u in vertex.neighbors()]
+        beta = 3 / (8 * len(ring))
+        return (1 - len(ring) * beta) * vertex.position + beta * np.sum(ring, axis=0)
+
+    result = check_loop_rules(vertex_point=naive)
+    assert "for degree 3 Warren's rule has its own value, beta = 3/16" in result.message
+
+
+def test_loop_interior_rule_on_the_boundary_is_named():
+    def everywhere(mesh, vertex):
+        ring = [u.position for u in vertex.neighbors()]
+        beta = warren_beta(len(ring))
+        return (1 - len(ring) * beta) * vertex.position + beta * np.sum(ring, axis=0)
+
+    result = check_loop_rules(edge_point, everywhere)
+    assert "On 'open patch (a boundary)'" in result.message and "interior rule" in result.message
+
+
+def test_loop_writing_positions_is_refused():
+    def moving(mesh, edge):
+        mesh.positions[0] = 0.0
+        return edge_point(mesh, edge)
+
+    assert "changed mesh.positions" in check_loop_rules(edge_point=moving).message
+
+
+def test_blanks_are_reported_before_running():
+    def unfinished(mesh, edge):
+        return ...
+
+    assert "still has blanks" in check_loop_rules(edge_point=unfinished).message
+
+
+def test_quadric_slips_are_named():
+    def unnormalized(a, b, c):
+        n = np.cross(b - a, c - a)
+        return np.outer(np.append(n, -n @ a), np.append(n, -n @ a))
+
+    def wrong_sign(a, b, c):
+        n = np.cross(b - a, c - a)
+        n = n / np.linalg.norm(n)
+        return np.outer(np.append(n, n @ a), np.append(n, n @ a))
+
+    def weighted(a, b, c):
+        return 0.5 * np.linalg.norm(np.cross(b - a, c - a)) * plane_quadric(a, b, c)
+
+    assert "length 1" in check_plane_quadric(unnormalized).message
+    assert "wrong sign" in check_plane_quadric(wrong_sign).message
+    assert "leave the area out" in check_plane_quadric(weighted).message
+
+
+def test_optimal_point_needs_the_solve_and_the_fallback():
+    assert "only the fallback" in check_optimal_point(lambda Q, a, b: 0.5 * (a + b)).message
+    solve_only = check_optimal_point(lambda Q, a, b: np.linalg.solve(Q[:3, :3], -Q[:3, 3]))
+    assert "LinAlgError" in solve_only.message and "midpoint" in solve_only.message
+    assert "sign is off" in check_optimal_point(lambda Q, a, b: np.linalg.solve(Q[:3, :3], Q[:3, 3])).message
+
+
+def test_de_casteljau_slips_are_named():
+    def swapped(points, t):
+        return library_de_casteljau(points, 1 - t)
+
+    assert "swapped t and 1 - t" in check_de_casteljau(swapped).message
+    assert "level 0, the control points themselves, is missing" in check_de_casteljau(
+        lambda points, t: library_de_casteljau(points, t)[1:]).message
+    assert "a list of levels" in check_de_casteljau(lambda points, t: library_de_casteljau(points, t)[-1][0]).message
+
+
+def test_a_learner_function_that_overwrites_the_control_points_is_told():
+    def in_place(points, t):
+        levels = [points.copy()]
+        while len(points) > 1:
+            points[:-1] = (1 - t) * points[:-1] + t * points[1:]
+            points = points[:-1]
+            levels.append(points.copy())
+        return levels
+
+    assert "changed the control points" in check_de_casteljau(in_place).message

@@ -1,0 +1,91 @@
+"""De Casteljau viewer and Bezier surface editor: driven from code, described in words."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from halfedge_edu.algorithms.bezier import bezier_surface_points
+from halfedge_edu.viz.bezier_widgets import BezierSurfaceEditor, DeCasteljauViewer
+
+CUBIC = [[0, 0], [1, 2], [3, 2], [4, 0]]
+
+
+def _grid():
+    u, v = np.meshgrid(np.arange(4.0), np.arange(4.0), indexing="ij")
+    grid = np.stack([u, v, np.zeros_like(u)], axis=-1)
+    grid[1:3, 1:3, 2] = 1.0
+    return grid
+
+
+def test_the_viewer_lists_every_level_and_the_point_on_the_curve():
+    viewer = DeCasteljauViewer(CUBIC, t=0.5)
+    assert viewer.describe().splitlines() == [
+        "degree 3 curve at t = 0.50: showing 3 of 3 levels",
+        "control points: (0, 0) (1, 2) (3, 2) (4, 0)",
+        "level 1: (0.5, 1) (2, 2) (3.5, 1)",
+        "level 2: (1.25, 1.5) (2.75, 1.5)",
+        "level 3: (2, 1.5)",
+        "point on the curve: C(0.50) = (2, 1.5)",
+    ]
+
+
+def test_levels_are_shown_one_at_a_time():
+    viewer = DeCasteljauViewer(CUBIC, t=0.25, levels=0)
+    assert viewer.describe().splitlines()[1:] == ["control points: (0, 0) (1, 2) (3, 2) (4, 0)"]
+    viewer.step()
+    assert viewer.describe().splitlines()[-1] == "level 1: (0.25, 0.5) (1.5, 2) (3.25, 1.5)"
+    viewer.back().back()
+    assert viewer.shown_levels == 0
+
+
+def test_the_t_slider_moves_the_point():
+    viewer = DeCasteljauViewer(CUBIC)
+    viewer.t_slider.value = 1.0
+    assert np.allclose(viewer.point, CUBIC[-1])
+    with pytest.raises(ValueError, match="between 0 and 1"):
+        viewer.set_t(1.5)
+    with pytest.raises(IndexError, match="levels run from 0 to 3"):
+        viewer.show_levels(4)
+
+
+def test_the_viewer_png_is_the_same_every_time():
+    first = DeCasteljauViewer(CUBIC, t=0.3).screenshot()
+    second = DeCasteljauViewer(CUBIC, t=0.3).screenshot()
+    assert first[:8] == b"\x89PNG\r\n\x1a\n" and first == second
+
+
+@pytest.fixture
+def editor(closing):
+    widget = BezierSurfaceEditor(_grid(), mode="static", resolution=9)
+    closing(widget)
+    return widget
+
+
+def test_the_surface_passes_through_the_corner_control_points(editor):
+    points = editor.surface.positions.reshape(9, 9, 3)
+    for i, j in [(0, 0), (0, 3), (3, 0), (3, 3)]:
+        assert np.allclose(points[-1 if i else 0, -1 if j else 0], editor.grid[i, j])
+
+
+def test_moving_an_interior_point_keeps_the_boundary_curves(editor):
+    rim_before = editor.surface.positions[editor.surface.vertex_is_boundary()].copy()
+    editor.move(1, 2, [1.0, 2.0, 3.0])
+    assert np.allclose(editor.surface.positions[editor.surface.vertex_is_boundary()], rim_before)
+    assert np.allclose(editor.surface.positions.reshape(9, 9, 3), bezier_surface_points(editor.grid, 9))
+    assert "moved: P[1][2]" in editor.describe()
+
+
+def test_the_sliders_select_and_move_the_point(editor):
+    editor.row_slider.value = 0
+    editor.column_slider.value = 2
+    assert editor.selected == (0, 2)
+    editor.position_sliders[2].value = 1.5
+    assert editor.grid[0, 2, 2] == 1.5
+    assert editor.describe().splitlines()[1] == "selected: P[0][2] at (0, 2, 1.5) (was (0, 2, 0))"
+    editor.reset()
+    assert editor.position_sliders[2].value == 0.0 and "moved: none" in editor.describe()
+
+
+def test_surface_point_is_de_casteljau_rows_then_column(editor):
+    assert np.allclose(editor.surface_point(0.5, 0.5), bezier_surface_points(editor.grid, 3)[1, 1])
