@@ -29,6 +29,8 @@ from .algorithms import (
     de_casteljau,
     face_normals,
     loop_subdivide,
+    quality_report,
+    remesh,
     simplify,
     simplify_sequential,
     smooth,
@@ -45,7 +47,7 @@ __all__ = [
     "Edge", "Face", "GarbageCollectMaps", "Halfedge", "HalfedgeMesh", "ManifoldReport",
     "MeshInputError", "MeshInvariantError", "MeshWarning", "RawMesh", "RepairReport",
     "TopologyError", "Vertex", "bezier_curve", "bezier_surface", "build_reference",
-    "de_casteljau", "face_normals", "load", "loop_subdivide", "manifold_report", "read_obj",
+    "de_casteljau", "face_normals", "load", "loop_subdivide", "manifold_report", "quality_report", "read_obj", "remesh",
     "repair_faces", "sample", "samples", "save", "simplify", "simplify_sequential", "smooth",
     "vertex_normals", "write_obj",
 ]
