@@ -98,6 +98,7 @@ class View:
             self.widget.value = self.scene.screenshot()
         else:
             self.scene.render()
-            update = getattr(self.widget, "update", None)
+            # trame's remote view sends a new frame on update(); a local view syncs itself.
+            update = getattr(getattr(self.widget, "viewer", None), "update", None)
             if callable(update):
                 update()
