@@ -89,7 +89,11 @@ class View:
                                         layout=widgets.Layout(width=f"{width}px", height=f"{height}px",
                                                               flex="0 0 auto"))
         else:
-            self.widget = scene.plotter.show(jupyter_backend="trame", return_viewer=True)
+            # A collapsed menu is one small button in the corner; the full toolbar would
+            # cover the top ~60 px of the view, where the highlighted halfedge may be.
+            self.widget = scene.plotter.show(
+                jupyter_backend="trame", return_viewer=True, jupyter_kwargs={"collapse_menu": True}
+            )
         self.update()
 
     def update(self) -> None:
