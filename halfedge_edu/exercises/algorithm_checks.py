@@ -63,7 +63,8 @@ def _close(a, b) -> bool:
 
 def _all_good(exercise: str, checked: list[str], noun: str, praise: str) -> CheckResult:
     """The congratulation: what agreed, on how many cases, and what it means."""
-    return CheckResult(exercise, True, f"All good! Your {exercise} matches the library on {len(checked)} {noun} "
+    verb = "match" if " and " in exercise else "matches"
+    return CheckResult(exercise, True, f"All good! Your {exercise} {verb} the library on {len(checked)} {noun} "
                        f"({', '.join(checked)}). {praise}", list(checked))
 
 

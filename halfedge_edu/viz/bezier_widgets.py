@@ -38,6 +38,7 @@ from .widgets import SceneWidget, _css
 LEVEL_COLORS = (BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, SKY_BLUE, "#8C6D31")
 CONTROL = "#7A7A7A"
 CURVE_POINT = VERMILLION
+SURFACE = "#E8B96A"
 
 
 def _point_text(point) -> str:
@@ -220,7 +221,7 @@ class BezierSurfaceEditor(SceneWidget):
     title = "Bezier surface: move a control point"
 
     def __init__(self, control_grid, *, selected=(1, 1), resolution: int = 24, mode: str | None = None,
-                 preset="default", window_size=None, view_direction=(1.0, -1.6, 1.5), view_up=(0.0, 0.0, 1.0)):
+                 preset="default", window_size=None, view_direction=(1.0, -1.8, 2.2), view_up=(0.0, 0.0, 1.0)):
         grid = np.array(control_grid, dtype=np.float64)
         if grid.ndim != 3 or grid.shape[2] != 3 or min(grid.shape[:2]) < 2:
             raise ValueError(f"control_grid must have shape (m + 1, n + 1, 3), got {grid.shape}")
@@ -310,7 +311,7 @@ class BezierSurfaceEditor(SceneWidget):
         along "up", so a point moved by the sliders stays in the picture."""
         points = self.grid.reshape(-1, 3)
         up = np.asarray(self._view_up if self._view_up is not None else (0.0, 1.0, 0.0), dtype=np.float64)
-        lift = 0.5 * (np.ptp(points, axis=0).max() or 1.0) * up / np.linalg.norm(up)
+        lift = 0.3 * (np.ptp(points, axis=0).max() or 1.0) * up / np.linalg.norm(up)
         return np.concatenate([points, points + lift, points - lift])
 
     def _show(self) -> None:
@@ -327,7 +328,8 @@ class BezierSurfaceEditor(SceneWidget):
             Layer(f"selected: P[{i}][{j}]", CURVE_POINT, "points", self.grid[i, j][None], 16.0),
         ]
         # A little see-through, so the parts of the net below the surface still show.
-        self.scene.paint(surface, layers=layers, base_edges=False, smooth=True, surface_opacity=0.8)
+        self.scene.paint(surface, layers=layers, base_edges=False, smooth=True, surface_opacity=0.8,
+                         surface_color=SURFACE)
 
     def _controls(self) -> list:
         import ipywidgets as widgets

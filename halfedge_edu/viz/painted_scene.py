@@ -105,7 +105,7 @@ class PaintedScene:
 
     def paint(self, mesh=None, *, layers=(), edge_values=None, value_label: str = "",
               value_range=None, cmap: str = "viridis", base_edges: bool = True,
-              surface_opacity: float = 1.0, smooth: bool = False) -> None:
+              surface_opacity: float = 1.0, smooth: bool = False, surface_color: str | None = None) -> None:
         """Draw ``mesh`` (the scene's mesh if None) with ``layers`` on top.
 
         Args:
@@ -118,6 +118,7 @@ class PaintedScene:
             base_edges: draw every edge not in a layer as a thin grey line.
             surface_opacity: below 1, the surface is see-through (to show points inside).
             smooth: shade the surface smoothly (for sampled surfaces) instead of facet by facet.
+            surface_color: ``"#RRGGBB"`` of the surface (the preset's by default).
         """
         import pyvista as pv
 
@@ -134,7 +135,7 @@ class PaintedScene:
         corners = mesh.face_vertices()[~mesh.face_deleted]                  # (F, 3)
         if len(corners):
             surface = pv.PolyData.from_regular_faces(positions, corners)
-            add("surface", surface, color=look.surface, ambient=0.45, diffuse=0.55, specular=0.0,
+            add("surface", surface, color=surface_color or look.surface, ambient=0.45, diffuse=0.55, specular=0.0,
                 smooth_shading=bool(smooth), show_edges=False, opacity=float(surface_opacity))
             # Push the faces back a little so lines lying on them are not hidden.
             mapper = self.plotter.actors["surface"].GetMapper()
