@@ -1,0 +1,482 @@
+# %% [markdown]
+# # 09 · Loop subdivision
+#
+# Chapters 06 to 08 changed a mesh one edge at a time. This chapter puts those local
+# operations to work on the whole mesh at once: every triangle becomes four, and the
+# vertices move a little, so that a coarse, faceted shape turns into a smooth one. The
+# method is Charles Loop's (1987), and it is one of the most used ideas in geometry
+# processing: film studios model characters as coarse meshes and let subdivision make
+# them smooth.
+#
+# **After this chapter you can**
+#
+# - say what the 4-to-1 split does and count its result: `V' = V + E`, `F' = 4F`;
+# - build the split from the operations you know: split every edge, then flip every
+#   new edge that joins an old vertex and a new one;
+# - state Loop's weights: `3/8, 3/8, 1/8, 1/8` for a new vertex on an edge, Warren's
+#   `beta` for an old vertex, and the rules on the boundary;
+# - explain why every new position is computed from the *old* mesh, before anything
+#   changes;
+# - write the two rules yourself and have `check_loop_rules` check them.
+
+# %%
+import matplotlib.pyplot as plt
+import numpy as np
+import pyvista as pv
+
+import halfedge_edu as hx
+from halfedge_edu.algorithms import loop_subdivide
+from halfedge_edu.algorithms.loop import loop_positions, loop_subdivide_by_operations
+from halfedge_edu.viz.loop_stepper import LoopStepper
+
+octahedron = hx.sample("octahedron")
+
+picture = pv.Plotter(off_screen=True, shape=(1, 4), window_size=(920, 250), border=False)
+for column in range(4):
+    level = loop_subdivide(octahedron, levels=column)
+    picture.subplot(0, column)
+    picture.add_mesh(level.to_pyvista(), color="#E8B96A", show_edges=True, edge_color="#6B5B45", line_width=1)
+    picture.add_text(f"{column} level{'s' if column != 1 else ''}: {level.n_faces} faces", font_size=9)
+picture.link_views()
+picture.camera_position = [(2.6, 2.0, 3.2), (0.0, 0.0, 0.0), (0.0, 1.0, 0.0)]
+picture.show()
+
+# %% [markdown]
+# An octahedron (8 triangles), then one, two and three levels of Loop subdivision. Each
+# level has four times the triangles of the one before, and the shape gets rounder.
+# It also gets smaller: the corners are pulled in, and nothing ever pushes them out.
+# After a few levels the mesh hardly changes any more; it approaches a smooth *limit
+# surface*.
+
+# %% [markdown]
+# ## The idea
+#
+# One level of Loop subdivision has two parts, and it pays to keep them apart.
+#
+# 1. **Connectivity.** Put a new vertex on every edge (an *edge point*) and join the
+#    three new vertices of every triangle: each triangle becomes four.
+# 2. **Positions.** Each new vertex goes to a weighted average of the old vertices
+#    near its edge; each old vertex moves to a weighted average of itself and its
+#    neighbours. **All of these averages are computed from the old mesh**, before any
+#    connectivity changes and before any vertex moves.
+#
+# The weights are chosen so that repeating the two steps converges to a smooth
+# surface. The rest of the chapter takes the parts one at a time.
+
+# %% [markdown]
+# ## 1. The 4-to-1 split, counted
+#
+# **Convention: the edge point of edge `e` becomes vertex `V + e`; the old vertices keep
+# their numbers `0 .. V-1`.**
+#
+# Every old edge gets one new vertex, so `V' = V + E`. Every triangle becomes four, so
+# `F' = 4F`. For the edges: each old edge is cut in two (`2E`), and each triangle gets
+# three new edges inside it (`3F`), so `E' = 2E + 3F`. Let us check these on a few
+# meshes, open and closed:
+
+# %%
+print(f"{'mesh':12s} {'V':>4s} {'E':>4s} {'F':>4s}   {'V+E':>5s} {'2E+3F':>6s} {'4F':>4s}   {'V1':>4s} {'E1':>4s} {'F1':>4s}  V-E+F")
+for name in ["tetrahedron", "octahedron", "cube", "open_patch", "strip"]:
+    mesh = hx.sample(name)
+    V, E, F = mesh.n_vertices, mesh.n_edges, mesh.n_faces
+    finer = loop_subdivide(mesh)
+    print(f"{name:12s} {V:4d} {E:4d} {F:4d}   {V + E:5d} {2 * E + 3 * F:6d} {4 * F:4d}   "
+          f"{finer.n_vertices:4d} {finer.n_edges:4d} {finer.n_faces:4d}  {mesh.euler_characteristic} -> {finer.euler_characteristic}")
+
+# %% [markdown]
+# The predicted columns and the measured ones agree on every line. The last column is
+# a bonus: `V' - E' + F' = (V + E) - (2E + 3F) + 4F = V - E + F`, so subdivision never
+# changes the Euler characteristic. A sphere stays a sphere, a disc stays a disc.
+
+# %% [markdown]
+# ## 2. The split built from operations you know
+#
+# **Convention (the course's route): split every old edge at its midpoint, then flip
+# every new edge that joins an old vertex and a new one.**
+#
+# Why does this give the 4-to-1 split? Splitting an edge puts a vertex on it and cuts
+# each neighbouring triangle in two with a new edge *across* the triangle, from the
+# new vertex to the opposite corner. Once every edge is split, each old triangle has
+# been cut into four pieces by those cross edges, but not into the right four: some
+# cross edges run from a new vertex to an old corner. Flipping exactly those turns
+# them into edges between two new vertices, and then every old triangle is a centre
+# triangle of three new vertices with three corner triangles around it.
+#
+# `loop_subdivide_by_operations` does exactly this with the `split` and `flip` of
+# chapter 06, and calls a function of ours after every step. Let us count the steps:
+
+# %%
+steps = []
+by_operations = loop_subdivide_by_operations(octahedron, on_step=lambda step: steps.append(step.phase))
+print({phase: steps.count(phase) for phase in ["split", "flip", "reposition"]})
+
+fast = loop_subdivide(octahedron)
+same_faces = {tuple(sorted(f)) for f in by_operations.to_arrays()[1].tolist()} == {tuple(sorted(f)) for f in fast.to_arrays()[1].tolist()}
+print("same triangles as loop_subdivide:", same_faces)
+print("same positions:", np.allclose(by_operations.positions, fast.positions))
+
+# %% [markdown]
+# Twelve splits (one per edge), eight flips (one per face) and one step that moves
+# every vertex. Why one flip per face? Each triangle gets three cross edges, one for
+# each of its sides as that side is split. The first split in a triangle draws its
+# cross edge to the opposite corner, an old vertex: that edge must be flipped. By the
+# time the second and third sides are split, the corner opposite them is the first
+# new vertex, so their cross edges already join two new vertices and stay. The result is the same mesh that `loop_subdivide` builds
+# directly from arrays in one go, only in a different order. The operation route is
+# the one to understand; the array route is the one to run on a large mesh.
+
+# %% [markdown]
+# ## 3. Try it: the Loop stepper
+#
+# Step through one level on the octahedron. Step 0 shows where every vertex *will*
+# go: small orange dots for the edge points (inside the see-through surface: the
+# octahedron shrinks) and a black line from each old vertex to its new place. Then
+# come the twelve splits, the eight flips and the final move.
+#
+# Watch the colours: **blue** dots are old vertices, **orange** dots new ones.
+# **Vermillion** edges run from an old vertex to a new one across a triangle: these
+# are the ones the flip phase turns around. **Green** edges join two new vertices:
+# the sides of the centre triangles. The element of the current step is **purple**.
+
+# %%
+stepper = LoopStepper(octahedron)
+stepper
+
+# %% [markdown]
+# The same moves from code. The first split, then the first flip:
+
+# %%
+stepper.go(1)
+print(stepper.describe())
+print()
+stepper.go("flip")
+print(stepper.describe())
+
+# %% [markdown]
+# Splitting edge 0 made vertex 6 and two cross edges, 13 and 14, to the corners 4 and 5
+# opposite the edge. This was the first split in both triangles, so both corners are
+# old vertices and both edges will be flipped. The first flip turns edge 13, from new
+# vertex 6 to old vertex 4, into an edge between new vertices 7 and 8: a side of a
+# centre triangle.
+#
+# Just before the flips, the vermillion edges are exactly the ones still to flip:
+
+# %%
+stepper.go(stepper.phase_start("flip") - 1)
+print("edges to flip:", len(stepper.edge_kinds()["to_flip"]), "(one per face)")
+stepper.go("end")
+print(stepper.describe())
+
+# %% [markdown]
+# ## 4. Where the vertices go: Loop's weights
+#
+# **Convention: an edge point is `3/8 (a + b) + 1/8 (c + d)`, with `a, b` the ends of
+# the edge and `c, d` the corners opposite it; an old vertex of degree `n` moves to
+# `(1 - n beta) v + beta (v_1 + ... + v_n)`, with Warren's `beta = 3/16` for `n = 3`
+# and `beta = 3/(8n)` otherwise.**
+#
+# The pictures are called *masks* or *stencils*: which old vertices a new position
+# listens to, and how much.
+
+# %%
+figure, (left, right) = plt.subplots(1, 2, figsize=(8.4, 3.4))
+a, b, c, d = np.array([[-1.0, 0], [1.0, 0], [0, 1.3], [0, -1.3]])
+for p, q in [(a, b), (a, c), (b, c), (a, d), (b, d)]:
+    left.plot(*np.array([p, q]).T, color="#555555", lw=1.5)
+for p, text in [(a, "a: 3/8"), (b, "b: 3/8"), (c, "c: 1/8"), (d, "d: 1/8")]:
+    left.plot(*p, "o", color="#0072B2", ms=9)
+    left.annotate(text, p, textcoords="offset points", xytext=(8, 6), fontsize=11)
+left.plot(0, 0, "o", color="#E69F00", ms=11)
+left.annotate("edge point", (0, 0), textcoords="offset points", xytext=(8, -14), fontsize=10)
+left.set_title("edge point (interior edge)")
+angles = np.linspace(0, 2 * np.pi, 7)[:-1]
+ring = np.stack([np.cos(angles), np.sin(angles)], axis=1)
+for k in range(6):
+    right.plot(*np.array([ring[k], ring[(k + 1) % 6]]).T, color="#555555", lw=1.5)
+    right.plot(*np.array([[0, 0], ring[k]]).T, color="#555555", lw=1.5)
+    right.plot(*ring[k], "o", color="#0072B2", ms=9)
+    right.annotate("beta", ring[k], textcoords="offset points", xytext=(6, 6), fontsize=11)
+right.plot(0, 0, "o", color="#0072B2", ms=11)
+right.annotate("1 - n beta", (0, 0), textcoords="offset points", xytext=(8, -16), fontsize=11)
+right.set_title("old vertex, degree n = 6: beta = 3/48 = 1/16")
+for axes in (left, right):
+    axes.set_aspect("equal")
+    axes.axis("off")
+plt.show()
+
+# %% [markdown]
+# An edge point is mostly the edge's midpoint (`3/8 + 3/8 = 3/4` of the weight), pulled a
+# little towards the two "wings" `c` and `d`. An old vertex keeps the largest share for
+# itself and takes a little from each neighbour. In both masks the weights add up to 1:
+# `3/8 + 3/8 + 1/8 + 1/8 = 1` and `(1 - n beta) + n beta = 1`. That matters: weights
+# that add up to 1 make the rule independent of where the origin is. Move the whole
+# mesh and the subdivided mesh moves with it.
+#
+# Here is Warren's `beta` for the degrees you will meet, and the share a vertex keeps:
+
+# %%
+for n in range(3, 9):
+    beta = 3 / 16 if n == 3 else 3 / (8 * n)
+    print(f"degree {n}: beta = {beta:.4f}, the vertex keeps 1 - n beta = {1 - n * beta:.4f}")
+
+# %% [markdown]
+# From degree 4 up, a vertex always keeps `5/8` and shares the other `3/8` evenly among
+# its neighbours. For `n = 3` the same formula would give `beta = 1/8`; Warren's special
+# value `3/16` comes from the analysis of which weights make the limit surface smooth at
+# such a vertex, and with it the vertex keeps only `7/16`. (Warren chose these values as a
+# simpler stand-in for Loop's own, which has a cosine in it; `loop_subdivide` has
+# `weights="loop"` if you want to compare. For `n = 6`, the common case, both give
+# `1/16`.)
+#
+# On the octahedron the numbers are easy enough to check by hand. Vertex 0 sits at
+# `(1, 0, 0)` with degree 4, so `beta = 3/32` and it keeps `1 - 4 * 3/32 = 5/8`; its four
+# neighbours `(0, ±1, 0)` and `(0, 0, ±1)` add up to zero. Edge 0 joins vertex 0 and
+# vertex 2 at `(0, 1, 0)`; its opposite corners are `(0, 0, 1)` and `(0, 0, -1)`, which
+# also cancel.
+
+# %%
+vertex_points, edge_points = loop_positions(octahedron)
+print("vertex 0:", octahedron.vertex(0).position, "->", vertex_points[0])
+print("edge 0 joins", [v.index for v in octahedron.edge(0).vertices], "-> edge point", edge_points[0])
+
+# %% [markdown]
+# Vertex 0 moves from 1 to 5/8 = 0.625, and the edge point lands at `3/8 (1, 1, 0)`,
+# inside the old edge's midpoint `(0.5, 0.5, 0)`: that is the shrinking you saw in the
+# first picture.
+
+# %% [markdown]
+# ## 5. Why "from the old mesh"?
+#
+# **Convention: compute every vertex point and every edge point first, from the old
+# positions and the old connectivity; change the connectivity and move the vertices
+# only afterwards.**
+#
+# Two things can go wrong if you do not. After the splits, the old vertices have new
+# neighbours (the edge points), so a vertex rule run then would average over the
+# wrong ring. And if you move the old vertices first, every edge point computed
+# afterwards is built from positions that have *already* been pulled in. Let us make
+# the second mistake on purpose:
+
+# %%
+hurried = octahedron.copy()
+vertex_points, edge_points = loop_positions(hurried)
+hurried.positions[:] = vertex_points                  # move the old vertices first ...
+_, late_edge_points = loop_positions(hurried)         # ... then compute the edge points
+print("edge point of edge 0, from the old mesh: ", edge_points[0])
+print("edge point of edge 0, after moving first:", late_edge_points[0])
+
+# %% [markdown]
+# The late edge point is pulled in twice: `0.234 = 5/8 * 0.375`. In this symmetric case
+# the surface just shrinks more; on a real mesh the mix of old and new positions
+# distorts the shape, and the result depends on the order you happened to visit the
+# vertices in. `loop_subdivide_by_operations` therefore starts with `loop_positions`
+# and ends with the move, exactly as the stepper shows.
+
+# %% [markdown]
+# ## 6. The boundary
+#
+# **Convention: on a boundary edge the edge point is the midpoint `(a + b) / 2`; a
+# boundary vertex moves to `3/4 v + 1/8 (b0 + b1)`, with `b0` and `b1` its two
+# neighbours along the boundary.**
+#
+# A boundary edge has only one triangle, so the interior rule's `c + d` does not exist.
+# The boundary rules use the boundary vertices *only*: the boundary is subdivided as a
+# curve of its own (these are the rules of a cubic B-spline curve). Two meshes that
+# share a boundary therefore still share it after subdivision, and nothing inside can
+# pull the boundary away.
+#
+# Here is the open patch of chapter 05 with a bump in the middle, before and after
+# three levels. Only the inside moves up; the square boundary becomes a rounded curve
+# in the floor.
+
+# %%
+bumped = hx.sample("open_patch")
+bumped.positions[[5, 6, 9, 10], 2] = 0.8               # lift the four interior vertices
+
+picture = pv.Plotter(off_screen=True, shape=(1, 2), window_size=(820, 300), border=False)
+for column, levels in enumerate([0, 3]):
+    mesh = loop_subdivide(bumped, levels=levels)
+    rim = mesh.halfedge_vertex[np.flatnonzero(mesh.halfedge_face < 0)]
+    picture.subplot(0, column)
+    picture.add_mesh(mesh.to_pyvista(), color="#E8B96A", show_edges=True, edge_color="#6B5B45", line_width=1)
+    picture.add_mesh(pv.PolyData(mesh.positions[rim]), color="#0072B2", point_size=9, render_points_as_spheres=True)
+    picture.add_text(f"{levels} levels", font_size=10)
+picture.link_views()
+picture.camera_position = [(4.6, -3.0, 4.2), (1.5, 1.5, 0.2), (0.0, 0.0, 1.0)]
+picture.show()
+
+# %% [markdown]
+# The blue dots are the boundary vertices. Do they depend on the inside? Lift the bump
+# twice as high and subdivide again: the boundary does not notice.
+
+# %%
+taller = bumped.copy()
+taller.positions[[5, 6, 9, 10], 2] = 1.6
+low, high = loop_subdivide(bumped, levels=3), loop_subdivide(taller, levels=3)
+rim = low.vertex_is_boundary()
+print("boundary vertices after 3 levels:", int(rim.sum()))
+print("boundary unchanged by the taller bump:", np.allclose(low.positions[rim], high.positions[rim]))
+print("inside changed:", not np.allclose(low.positions[~rim], high.positions[~rim]))
+print("corner vertex 0:", bumped.vertex(0).position, "->", low.vertex(0).position.round(4))
+
+# %% [markdown]
+# The corner `(0, 0, 0)` moves inside the square, to about `(0.164, 0.164, 0)` after three
+# levels: the B-spline rule rounds corners off. If you want to keep a corner sharp,
+# you need extra rules (creases and corners); Loop's basic scheme has none.
+
+# %% [markdown]
+# ## Check yourself
+#
+# Predict, then run: the counts of the cube after one and after two levels; where
+# vertex 0 of the octahedron and the edge point of its edge 0 go; Warren's `beta` for
+# degrees 3, 4 and 6; and the new position of corner vertex 0 of the flat open patch
+# (neighbours along the boundary: vertices 1 and 4).
+
+# %%
+cube = hx.sample("cube")
+for levels in (1, 2):
+    finer = loop_subdivide(cube, levels=levels)
+    print(f"cube, {levels} level(s): {finer.n_vertices} vertices, {finer.n_edges} edges, {finer.n_faces} faces")
+vertex_points, edge_points = loop_positions(octahedron)
+print("octahedron vertex 0 ->", vertex_points[0], " edge 0 ->", edge_points[0])
+print("beta for n = 3, 4, 6:", [3 / 16 if n == 3 else 3 / (8 * n) for n in (3, 4, 6)])
+patch = hx.sample("open_patch")
+print("open patch corner 0:", patch.vertex(0).position, "->", loop_positions(patch)[0][0])
+
+# %% [markdown]
+# The cube (8, 18, 12) becomes 8 + 18 = 26 vertices, 2·18 + 3·12 = 72 edges and 48
+# faces; a second level starts from those numbers: 26 + 72 = 98, 2·72 + 3·48 = 288,
+# 192. The open patch's corner: `3/4 (0, 0, 0) + 1/8 ((1, 0, 0) + (0, 1, 0))`.
+
+# %% [markdown]
+# ## Exercises
+#
+# **1. The two rules.** Write `edge_point(mesh, edge)`, the new vertex on one edge,
+# and `vertex_point(mesh, vertex)`, where one old vertex goes. Both read the old mesh
+# and must not change it. Fill in the blanks marked `...`. You need `h.prev`,
+# `h.twin`, `h.vertex`, `h.tip` and `.position`; `edge.is_boundary`,
+# `vertex.is_boundary` and `vertex.neighbors()` tell you which rule applies.
+#
+# `check_loop_rules` compares your functions with the library on six meshes
+# (degree 3, degree 4, degrees 5 and 6, a mix, a boundary, and a strip that is all
+# boundary, each with its vertices nudged so that symmetry cannot hide a wrong
+# weight), and explains the first difference.
+
+# %%
+def edge_point(mesh, edge):
+    h = edge.halfedge
+    a, b = h.vertex.position, h.tip.position
+    if edge.is_boundary:
+        return ...                         # 1. the boundary rule
+    c = h.prev.vertex.position             # the corner opposite the edge in h's triangle
+    d = ...                                # 2. the corner opposite the edge in the twin's triangle
+    return ...                             # 3. 3/8 of each end, 1/8 of each opposite corner
+
+
+def vertex_point(mesh, vertex):
+    v = vertex.position
+    if vertex.is_boundary:
+        h = vertex.halfedge                # a boundary vertex's halfedge runs along the boundary
+        after, before = h.tip.position, h.prev.vertex.position
+        return ...                         # 4. 3/4 of itself, 1/8 of each boundary neighbour
+    ring = [u.position for u in vertex.neighbors()]
+    n = len(ring)
+    beta = ...                             # 5. Warren's beta
+    return ...                             # 6. (1 - n beta) v + beta * (the sum of the ring)
+
+# %%
+from halfedge_edu.exercises.algorithm_checks import check_loop_rules
+
+check_loop_rules(edge_point, vertex_point)
+
+# %% [markdown]
+# ### What a mistake looks like
+#
+# Two classic slips: using the midpoint for every edge point, and using `3/(8n)` for
+# every degree, forgetting Warren's special value for `n = 3`.
+
+# %%
+def midpoint_only(mesh, edge):
+    h = edge.halfedge
+    return 0.5 * (h.vertex.position + h.tip.position)
+
+
+def no_special_case(mesh, vertex):
+    ring = [u.position for u in vertex.neighbors()]
+    n = len(ring)
+    beta = 3 / (8 * n)
+    return (1 - n * beta) * vertex.position + beta * np.sum(ring, axis=0)
+
+
+print(check_loop_rules(edge_point=midpoint_only))
+print()
+print(check_loop_rules(vertex_point=no_special_case))
+
+# %% [markdown]
+# **2. Think about it.** The octahedron shrinks with every level. Would a mesh shaped
+# like a saddle (curving up one way and down the other) also shrink everywhere? Where
+# does a vertex move when its neighbours lie in a plane around it, evenly spaced?
+#
+# **3. Counting.** A mesh has 1,000 faces and is closed. How many faces, edges and
+# vertices after three levels, if it has genus 0? (Hint: on a closed triangle mesh
+# `2E = 3F`.)
+
+# %% [markdown]
+# ### Answers
+#
+# **1.** The blanks are `0.5 * (a + b)`, `h.twin.prev.vertex.position`,
+# `0.375 * (a + b) + 0.125 * (c + d)`, `0.75 * v + 0.125 * (after + before)`,
+# `3 / 16 if n == 3 else 3 / (8 * n)` and `(1 - n * beta) * v + beta * np.sum(ring, axis=0)`:
+
+# %%
+def edge_point_answer(mesh, edge):
+    h = edge.halfedge
+    a, b = h.vertex.position, h.tip.position
+    if edge.is_boundary:
+        return 0.5 * (a + b)
+    c = h.prev.vertex.position
+    d = h.twin.prev.vertex.position
+    return 0.375 * (a + b) + 0.125 * (c + d)
+
+
+def vertex_point_answer(mesh, vertex):
+    v = vertex.position
+    if vertex.is_boundary:
+        h = vertex.halfedge
+        after, before = h.tip.position, h.prev.vertex.position
+        return 0.75 * v + 0.125 * (after + before)
+    ring = [u.position for u in vertex.neighbors()]
+    n = len(ring)
+    beta = 3 / 16 if n == 3 else 3 / (8 * n)
+    return (1 - n * beta) * v + beta * np.sum(ring, axis=0)
+
+
+check_loop_rules(edge_point_answer, vertex_point_answer)
+
+# %% [markdown]
+# **2.** No. A vertex moves towards the weighted average of its ring. On a convex
+# bump that average lies inside, so the surface shrinks there; on a saddle the ring
+# curves up on two sides and down on the other two, the average lies close to the
+# vertex, and the vertex hardly moves. A vertex whose neighbours are evenly spread in
+# a plane around it does not move at all: its ring's average is the vertex itself,
+# and `(1 - n beta) v + n beta v = v`.
+#
+# **3.** Each level multiplies the faces by 4: 64,000 faces. On a closed mesh
+# `E = 3F/2` = 96,000 edges, and with `V - E + F = 2` (genus 0), `V = 2 + 96,000 - 64,000`
+# = 32,002 vertices.
+
+# %% [markdown]
+# ## Summary
+#
+# - One level of Loop subdivision: a 4-to-1 split of every triangle, and new
+#   positions for all vertices. `V' = V + E`, `E' = 2E + 3F`, `F' = 4F`, and `V - E + F`
+#   is kept.
+# - The course builds the split from local operations: split every edge, then flip
+#   each new edge that joins an old vertex and a new one.
+# - Edge point: `3/8 (a + b) + 1/8 (c + d)`. Old vertex: `(1 - n beta) v + beta * sum`,
+#   `beta = 3/16` for `n = 3`, `3/(8n)` otherwise. Boundary: midpoints, and
+#   `3/4 v + 1/8 (b0 + b1)`.
+# - Every new position comes from the old mesh, computed before anything changes.
+#
+# Next, chapter 10 runs the other way: instead of adding triangles, it removes them
+# while keeping the shape, choosing each collapse by its error.
