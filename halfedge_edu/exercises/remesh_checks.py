@@ -1,0 +1,192 @@
+"""Check for the exercise of chapter 11: one step of tangential smoothing.
+
+    from halfedge_edu.exercises.remesh_checks import check_tangential_smoothing
+    check_tangential_smoothing(tangential_smoothing)
+
+The contract: ``tangential_smoothing(mesh) -> (n_vertex_slots, 3)`` new positions,
+computed from the old ones and returned (``mesh`` must not change):
+
+1. the centroid ``c`` of every vertex's neighbours, *all of them first*, from the old
+   positions (Jacobi);
+2. for every interior vertex ``p`` with unit area-weighted normal ``n``: the step
+   ``s = c - p`` without its normal part, ``p + s - (s . n) n``;
+3. boundary vertices stay where they are.
+
+The check compares the answer with the library's smoothing phase of
+:func:`~halfedge_edu.algorithms.remesh.remesh` on small meshes, and at the first vertex
+that differs says what the right position is and, where the answer matches a common
+slip (the normal part kept, centroids taken from positions already moved, a normal
+not of length 1 or not area-weighted, a boundary vertex moved), which slip it is.
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+import numpy as np
+
+from halfedge_edu.algorithms.normals import vertex_normals
+from halfedge_edu.algorithms.remesh import _tangential_smoothing
+from halfedge_edu.core.mesh import HalfedgeMesh
+from halfedge_edu.data import sample
+
+from .algorithm_checks import _all_good, _close, _text, _trouble
+from .checks import CheckResult, _failed, _run, _unfinished
+
+__all__ = ["check_tangential_smoothing", "smoothing_cases", "tangential_smoothing_reference"]
+
+
+def _bumpy(mesh: HalfedgeMesh, seed: int, amount: float) -> HalfedgeMesh:
+    """The same mesh with every vertex nudged (on a perfect shape some slips cancel out)."""
+    mesh = mesh.copy()
+    rng = np.random.default_rng(seed)
+    mesh.positions[:] += amount * rng.standard_normal(mesh.positions.shape)
+    return mesh
+
+
+def smoothing_cases() -> list[tuple[str, HalfedgeMesh]]:
+    """The meshes ``check_tangential_smoothing`` uses, in order."""
+    patch = sample("open_patch")
+    bumpy_patch = _bumpy(patch, 3, 0.05)
+    return [
+        ("octahedron (every vertex of degree 4)", _bumpy(sample("octahedron"), 1, 0.05)),
+        ("icosphere (degrees 5 and 6)", _bumpy(sample("icosphere", subdivisions=1), 2, 0.03)),
+        ("open patch (a boundary)", bumpy_patch),
+        ("cube (triangles of two sizes)", _bumpy(sample("cube"), 4, 0.04)),
+    ]
+
+
+def tangential_smoothing_reference(mesh: HalfedgeMesh) -> np.ndarray:
+    """One step of tangential smoothing, one vertex at a time (the exercise's answer).
+
+    Returns (n_vertex_slots, 3) new positions; ``mesh`` is only read.
+    """
+    P = mesh.positions
+    normals = vertex_normals(mesh)                                   # unit, area-weighted
+    centroids = np.zeros_like(P)
+    for v in mesh.vertices:                                          # all centroids first
+        centroids[v.index] = np.mean([P[u.index] for u in v.neighbors()], axis=0)
+    new = P.copy()
+    for v in mesh.vertices:
+        if v.is_boundary:
+            continue
+        step = centroids[v.index] - P[v.index]
+        n = normals[v.index]
+        new[v.index] = P[v.index] + step - (step @ n) * n
+    return new
+
+
+def _library(mesh: HalfedgeMesh) -> np.ndarray:
+    """The remesher's own smoothing phase (on the compact arrays of a mesh without garbage)."""
+    vertices, faces = mesh.to_arrays()
+    return _tangential_smoothing(vertices, faces)
+
+
+def _gauss_seidel(mesh: HalfedgeMesh) -> np.ndarray:
+    """The slip: vertices updated in index order, each centroid read from the positions so far."""
+    P = mesh.positions.copy()
+    normals = vertex_normals(mesh)
+    for v in mesh.vertices:
+        if v.is_boundary:
+            continue
+        step = np.mean([P[u.index] for u in v.neighbors()], axis=0) - P[v.index]
+        n = normals[v.index]
+        P[v.index] += step - (step @ n) * n
+    return P
+
+
+def _explain(mesh: HalfedgeMesh, v: int, yours: np.ndarray, wanted: np.ndarray) -> str:
+    """Words for the first vertex where the learner's position differs from the library's."""
+    P = mesh.positions
+    vertex = mesh.vertex(v)
+    ring = [u.index for u in vertex.neighbors()]
+    p = P[v]
+    if vertex.is_boundary:
+        text = (f"vertex {v} is on the boundary, so it stays at {_text(p)}; yours moved it to {_text(yours)}. "
+                f"Boundary vertices keep the outline of the surface: skip every vertex with v.is_boundary.")
+        return text
+    centroid = P[ring].mean(axis=0)
+    n = vertex_normals(mesh)[v]
+    step = centroid - p
+    text = (f"vertex {v} is inside, with neighbours {ring}. Their centroid is c = {_text(centroid)}; the unit "
+            f"normal is n = {_text(n)}; the step s = c - p has a normal part (s . n) n = {_text((step @ n) * n)}. "
+            f"Without it the vertex goes to p + s - (s . n) n = {_text(wanted)}; yours is {_text(yours)}.")
+    area_sum = np.zeros(3)
+    for f in vertex.faces():
+        a, b, c = (P[u.index] for u in f.vertices())
+        area_sum += np.cross(b - a, c - a)
+    uniform = vertex_normals(mesh, weighting="uniform")[v]
+    angle = vertex_normals(mesh, weighting="angle")[v]
+    if _close(yours, centroid):
+        text += (" Yours is the centroid itself: the normal part of the step was kept. That is plain Laplacian "
+                 "smoothing, which also moves vertices off the surface, so a curved mesh shrinks. Remove (s . n) n.")
+    elif _close(yours, p):
+        text += " Yours did not move the vertex at all. Every interior vertex takes its tangential step."
+    elif _close(yours, p + (step @ n) * n):
+        text += " Yours kept only the normal part of the step; it is the part to throw away."
+    elif _close(yours, p + step + (step @ n) * n):
+        text += " The sign of the normal part is flipped: subtract (s . n) n, do not add it."
+    elif _close(yours, p + step - (step @ area_sum) * area_sum):
+        text += (" Your normal is not of length 1: (s . n) n only removes the normal part when |n| = 1. "
+                 "Divide the summed face normals by their length.")
+    elif not _close(uniform, n) and _close(yours, p + step - (step @ uniform) * uniform):
+        text += (" Your normal gives every face the same weight. The course weights each face normal by the "
+                 "face's area (sum the un-normalized cross products, then normalize once), as "
+                 "hx.vertex_normals(mesh) does.")
+    elif not _close(angle, n) and _close(yours, p + step - (step @ angle) * angle):
+        text += (" Your normal weights the faces by their corner angles; the course uses area weights, as "
+                 "hx.vertex_normals(mesh) does.")
+    elif _close(yours, _gauss_seidel(mesh)[v]):
+        moved = [u for u in ring if u < v and not mesh.vertex(u).is_boundary]
+        text += (f" Your centroid used positions that had already moved this step (vertex {v}'s neighbours "
+                 f"{moved} were updated before it). Compute every centroid first, from the old positions, and "
+                 f"only then move the vertices.")
+    elif _close(yours, (p + P[ring].sum(axis=0)) / (len(ring) + 1)):
+        text += " Yours averages the vertex with its neighbours; the centroid is of the neighbours only."
+    return text
+
+
+def check_tangential_smoothing(tangential_smoothing: Callable) -> CheckResult:
+    """Compare the learner's ``tangential_smoothing(mesh)`` with the remesher's smoothing phase.
+
+    Args:
+        tangential_smoothing: ``(mesh) -> (n_vertex_slots, 3)`` the new positions; the
+            mesh must not change.
+
+    Returns:
+        A :class:`~halfedge_edu.exercises.checks.CheckResult`; at the first vertex that
+        differs it says what is wrong in words, and ``result.show()`` draws that vertex's
+        one-ring.
+    """
+    name = "tangential_smoothing"
+    unfinished = _unfinished(tangential_smoothing, name)
+    if unfinished:
+        return _failed(name, [], None, unfinished)
+    checked: list[str] = []
+    for case, mesh in smoothing_cases():
+        before = mesh.positions.copy()
+        status, answer = _run(tangential_smoothing, mesh)
+        trouble = _trouble(status, answer, name)
+        if trouble:
+            return _failed(name, checked, case, trouble)
+        if not np.array_equal(mesh.positions, before):
+            mesh.positions[:] = before
+            return _failed(name, checked, case, "your tangential_smoothing changed mesh.positions. Compute every "
+                           "centroid first, from the old positions, and return the new positions as a new array "
+                           "(new = P.copy(), then write into new).")
+        try:
+            yours = np.asarray(answer, dtype=np.float64)
+        except (TypeError, ValueError):
+            yours = np.zeros(0)
+        if yours.shape != before.shape:
+            return _failed(name, checked, case, f"tangential_smoothing should return one new position per vertex, "
+                           f"shape {before.shape}, but yours has shape {yours.shape}.")
+        wanted = _library(mesh)
+        wrong = np.flatnonzero(~np.isclose(yours, wanted, rtol=1e-7, atol=1e-9).all(axis=1))
+        if len(wrong) == 0:
+            checked.append(case.split(" (")[0])
+            continue
+        v = int(wrong[0])
+        return _failed(name, checked, case, _explain(mesh, v, yours[v], wanted[v]), ("vertex", v), mesh)
+    return _all_good(name, checked, "meshes", "That is the smoothing phase of the remesher: the vertices spread "
+                     "out evenly and the surface keeps its shape.")

@@ -1,0 +1,84 @@
+"""check_tangential_smoothing passes the reference answer and names the common slips."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from halfedge_edu.algorithms.normals import vertex_normals
+from halfedge_edu.exercises.remesh_checks import (
+    _library,
+    check_tangential_smoothing,
+    smoothing_cases,
+    tangential_smoothing_reference,
+)
+
+
+def smoothing(mesh, *, normal="area", keep_normal_part=False, jacobi=True, move_boundary=False, unit=True):
+    """A tangential smoothing step with one slip switched on by keyword."""
+    P = mesh.positions
+    if unit:
+        normals = vertex_normals(mesh, weighting=normal)
+    else:
+        normals = np.zeros_like(P)
+        for f in mesh.faces:
+            a, b, c = (P[v.index] for v in f.vertices())
+            for v in f.vertices():
+                normals[v.index] += np.cross(b - a, c - a)
+    new = P.copy()
+    source = P if jacobi else new
+    centroids = {v.index: np.mean([P[u.index] for u in v.neighbors()], axis=0) for v in mesh.vertices}
+    for v in mesh.vertices:
+        if v.is_boundary and not move_boundary:
+            continue
+        centroid = centroids[v.index] if jacobi else np.mean([source[u.index] for u in v.neighbors()], axis=0)
+        step = centroid - P[v.index]
+        n = normals[v.index]
+        new[v.index] = P[v.index] + (step if keep_normal_part else step - (step @ n) * n)
+    return new
+
+
+def test_the_reference_agrees_with_the_library_on_every_case():
+    for _, mesh in smoothing_cases():
+        assert np.allclose(tangential_smoothing_reference(mesh), _library(mesh), rtol=1e-7, atol=1e-9)
+
+
+def test_the_reference_answer_passes():
+    result = check_tangential_smoothing(tangential_smoothing_reference)
+    assert result, result.message
+    assert result.message.startswith("All good!") and len(result.checked) == 4
+
+
+@pytest.mark.parametrize("slip, words", [
+    (dict(keep_normal_part=True), "Yours is the centroid itself"),
+    (dict(jacobi=False), "Compute every centroid first"),
+    (dict(unit=False), "Your normal is not of length 1"),
+    (dict(normal="uniform"), "gives every face the same weight"),
+    (dict(move_boundary=True), "is on the boundary, so it stays"),
+])
+def test_each_slip_is_named(slip, words):
+    result = check_tangential_smoothing(lambda mesh: smoothing(mesh, **slip))
+    assert not result
+    assert words in result.message, result.message
+    assert result.element[0] == "vertex" and result.mesh is not None
+
+
+def test_changing_the_mesh_in_place_is_reported_and_undone():
+    def in_place(mesh):
+        mesh.positions[:] = smoothing(mesh)
+        return mesh.positions
+
+    result = check_tangential_smoothing(in_place)
+    assert not result and "changed mesh.positions" in result.message
+
+
+def test_blanks_are_reported_before_running():
+    def blank(mesh):
+        return ...
+
+    assert "still has blanks" in check_tangential_smoothing(blank).message
+
+
+def test_a_wrong_shape_is_reported():
+    result = check_tangential_smoothing(lambda mesh: mesh.positions[:3].copy())
+    assert not result and "shape" in result.message

@@ -1,0 +1,132 @@
+"""RemeshStepper: every snapshot is the real algorithm's state, described phase by phase."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from halfedge_edu.algorithms.remesh import PHASES, remesh
+from halfedge_edu.data import sample
+from halfedge_edu.viz.remesh_stepper import RemeshStepper, histogram_png, phase_quality
+
+L = 0.25
+
+
+@pytest.fixture(scope="module")
+def sphere():
+    return sample("icosphere", subdivisions=2)
+
+
+@pytest.fixture
+def stepper(closing, sphere):
+    widget = RemeshStepper(sphere, target_length=L, iterations=2, mode="static", window_size=(320, 240))
+    closing(widget)
+    return widget
+
+
+def test_snapshots_are_the_input_then_every_phase_of_every_iteration(stepper):
+    names = [(s.iteration, s.phase) for s in stepper.snapshots]
+    assert names == [(0, "input")] + [(i, p) for i in (1, 2) for p in PHASES]
+    assert stepper.n_steps == 2 * len(PHASES)
+
+
+def test_the_last_snapshot_is_what_remesh_returns(stepper, sphere):
+    reference = remesh(sphere, L, iterations=2)
+    result = stepper.result
+    assert (result.n_vertices, result.n_faces) == (reference.n_vertices, reference.n_faces)
+    assert np.allclose(result.to_arrays()[0], reference.to_arrays()[0])
+
+
+def test_step_zero_describes_the_input_with_its_quality(stepper):
+    lines = stepper.describe().splitlines()
+    assert lines[0].endswith("step 0 of 10, input")
+    assert "L = 0.25" in lines[0]
+    assert lines[-1].startswith("now: 162 vertices, 320 faces")
+
+
+def test_a_split_says_how_many_edges_were_long_and_none_is_left(stepper):
+    stepper.go((1, "split"))
+    text = stepper.describe()
+    assert "did: " in text and "edges were longer than 4/3 L" in text
+    assert stepper.quality.n_long == 0
+
+
+def test_no_edge_is_longer_than_four_thirds_L_after_a_collapse(stepper):
+    stepper.go("collapse")
+    assert stepper.phase == "collapse"
+    assert stepper.quality.lengths.max() <= 4 / 3 + 1e-9
+    assert "edges collapsed" in stepper.describe()
+
+
+def test_a_flip_keeps_the_counts_and_lowers_the_degree_deviation(stepper):
+    before = stepper.snapshots[stepper.index_of(1, "collapse")].quality
+    stepper.go((1, "flip"))
+    assert (stepper.quality.n_vertices, stepper.quality.n_faces) == (before.n_vertices, before.n_faces)
+    assert stepper.quality.degree_deviation <= before.degree_deviation
+    assert "edges flipped" in stepper.describe()
+
+
+def test_smoothing_moves_no_boundary_vertex(closing):
+    patch = remesh(sample("open_patch"), 0.4, iterations=0)
+    widget = RemeshStepper(patch, target_length=0.4, iterations=1, mode="static", window_size=(240, 200))
+    closing(widget)
+    before = widget.snapshots[widget.index_of(1, "flip")].mesh
+    widget.go((1, "smooth"))
+    after = widget.state
+    boundary = before.vertex_is_boundary()
+    assert boundary.any()
+    assert np.array_equal(after.positions[boundary], before.positions[boundary])
+    assert f"the {int(boundary.sum())} boundary vertices stayed put" in widget.describe()
+
+
+def test_go_by_phase_name_iteration_and_ends(stepper):
+    assert stepper.go("smooth") == stepper.index_of(1, "smooth")
+    assert stepper.go("iteration") == stepper.index_of(2, "smooth")
+    assert stepper.go("smooth") == stepper.index_of(1, "smooth")    # none later: back to the first
+    assert stepper.go("end") == stepper.n_steps
+    assert stepper.step() == stepper.n_steps
+    assert stepper.go("start") == 0 and stepper.back() == 0
+
+
+def test_unknown_moves_are_refused_in_words(stepper):
+    with pytest.raises(ValueError, match="unknown move"):
+        stepper.go("sideways")
+    with pytest.raises(ValueError, match="no phase 'flip' in iteration 3"):
+        stepper.go((3, "flip"))
+    with pytest.raises(IndexError, match="steps run from 0 to 10"):
+        stepper.go(11)
+
+
+def test_buttons_drive_the_same_moves(stepper):
+    stepper.buttons["step"].click()
+    assert (stepper.iteration, stepper.phase) == (1, "split")
+    stepper.buttons["iteration"].click()
+    assert (stepper.iteration, stepper.phase) == (2, "split")
+    stepper.buttons["end"].click()
+    assert stepper.step_index == stepper.n_steps
+
+
+def test_the_picture_marks_long_and_short_edges(stepper):
+    layers = {layer.label: layer for layer in stepper.scene.layers}
+    assert len(layers["longer than 4/3 L: to split"].items) == stepper.quality.n_long
+    assert len(layers["shorter than 4/5 L: to collapse"].items) == stepper.quality.n_short
+
+
+def test_the_static_view_and_the_display_carry_the_histograms(stepper):
+    png = stepper.screenshot()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    assert stepper._histograms.value[:8] == b"\x89PNG\r\n\x1a\n"
+    bundle = stepper._repr_mimebundle_()
+    assert bundle["text/plain"] == stepper.describe()
+
+
+def test_quality_counts_edges_against_the_target(sphere):
+    quality = phase_quality(sphere, target_length=1.0)
+    assert quality.n_edges == len(quality.lengths) == sphere.n_edges
+    assert quality.n_long == 0 and quality.n_short == sphere.n_edges
+    assert quality.degrees.tolist().count(5) == 12
+
+
+def test_histogram_png_draws_any_number_of_meshes(sphere):
+    png = histogram_png([sphere, sample("icosphere", subdivisions=1)], ["a", "b"], 0.3)
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
