@@ -44,7 +44,8 @@ picture.show()
 # %% [markdown]
 # An octahedron (8 triangles), then one, two and three levels of Loop subdivision. Each
 # level has four times the triangles of the one before, and the shape gets rounder.
-# It also gets smaller: the corners are pulled in, and nothing ever pushes them out.
+# It also gets smaller: on a convex shape like this one, every rule pulls vertices
+# inwards.
 # After a few levels the mesh hardly changes any more; it approaches a smooth *limit
 # surface*.
 
@@ -136,7 +137,8 @@ print("same positions:", np.allclose(by_operations.positions, fast.positions))
 # Watch the colours: **blue** dots are old vertices, **orange** dots new ones.
 # **Vermillion** edges run from an old vertex to a new one across a triangle: these
 # are the ones the flip phase turns around. **Green** edges join two new vertices:
-# the sides of the centre triangles. The element of the current step is **purple**.
+# the sides of the centre triangles. **Dark grey** edges are old edges and the halves
+# they were split into. The element of the current step is **purple**.
 
 # %%
 stepper = LoopStepper(octahedron)

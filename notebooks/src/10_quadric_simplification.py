@@ -280,10 +280,10 @@ Image(stepper.screenshot())
 
 # %% [markdown]
 # Read the costs down the run: the first collapse costs about `1e-7`, the last ones
-# nearly `1e-3`. The queue always takes the cheapest edge there is, and every collapse
-# makes the edges around it more expensive (their vertices now carry more planes), so
-# the cost creeps upwards. At the end every edge left is in the brightest colour: each
-# one would cost more than anything collapsed so far.
+# nearly `1e-3`. The queue always takes the cheapest edge there is, and a collapse
+# usually makes the edges around it more expensive (their vertices now carry more
+# planes), so the cost creeps upwards. At the end nearly every edge left is in the
+# brightest colour: it would cost at least as much as anything collapsed so far.
 #
 # Sometimes the head of the queue is *skipped*. In this run it happens once, near the
 # end, where the mesh is so coarse that the link condition of chapter 08 starts to bite:
@@ -314,8 +314,9 @@ for target in (200, 201):
 # %% [markdown]
 # The library has a second, faster implementation, `simplify`, which prices every
 # edge at once with numpy and collapses many cheap, well-separated edges per *round*.
-# The results are close to the queue's, and it is the one to use on large meshes (the
-# picture at the top used it, and so did `small`):
+# It follows the same rules and checks, though its order of collapses differs a little
+# from the queue's, and it is the one to use on large meshes (the picture at the top
+# used it, and so did `small`):
 
 # %%
 for target in (1500, 400, 100):
