@@ -89,3 +89,11 @@ def test_the_sliders_select_and_move_the_point(editor):
 
 def test_surface_point_is_de_casteljau_rows_then_column(editor):
     assert np.allclose(editor.surface_point(0.5, 0.5), bezier_surface_points(editor.grid, 3)[1, 1])
+
+
+def test_both_widgets_have_a_large_preset(closing):
+    viewer = DeCasteljauViewer(CUBIC, preset="large")
+    assert viewer.screenshot()[:4] == b"\x89PNG"
+    editor = BezierSurfaceEditor(_grid(), mode="static", preset="large", resolution=6)
+    closing(editor)
+    assert editor.scene.window_size == (1024, 768)

@@ -104,3 +104,11 @@ def test_the_picture_and_the_text_are_in_the_display_bundle(stepper):
     bundle = stepper._repr_mimebundle_()
     assert bundle["text/plain"] == stepper.describe()
     assert bundle["image/png"]
+
+
+def test_the_large_preset_for_a_projector(closing):
+    widget = LoopStepper(sample("tetrahedron"), mode="static", preset="large")
+    closing(widget)
+    widget.go("flip")
+    assert widget.scene.window_size == (1024, 768)
+    assert "font-size:20px" in widget._legend.value

@@ -104,3 +104,12 @@ def test_buttons_drive_the_same_moves(stepper):
 def test_the_heat_map_is_drawn_with_its_colour_bar(stepper):
     assert "edge_values" in stepper.scene.plotter.actors
     assert stepper.scene.plotter.scalar_bars
+
+
+def test_a_mesh_with_a_boundary_and_the_large_preset(closing):
+    widget = QEMStepper(_bumpy_patch(), 10, mode="static", preset="large")
+    closing(widget)
+    widget.go("end")
+    assert widget.state.n_faces == 10 and widget.state.n_boundary_loops == 1
+    assert widget.describe().splitlines()[-1] == "done: 10 faces (target 10)"
+    assert widget.scene.window_size == (1024, 768)
