@@ -139,14 +139,22 @@ def optimal_points(quadric: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[n
 # Connectivity from the face array (rebuilt each round: a few sorts)
 # ----------------------------------------------------------------------------------------
 
-def unique_edges(faces: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Edges of a face array: ``(edges (E, 2) low/high, face_count (E,), one_face (E,))``."""
+def unique_edges(faces: np.ndarray, n: int, *, with_faces: bool = True):
+    """Edges of a face array: ``(edges (E, 2) low/high, face_count (E,), one_face (E,))``.
+
+    With ``with_faces=False`` the third item is None, and the edges come from a plain
+    sort instead of the slower stable argsort that finding a face for each edge needs.
+    """
     tail = faces.reshape(-1).astype(np.int64)
     head = faces[:, [1, 2, 0]].reshape(-1).astype(np.int64)
     key = np.minimum(tail, head) * n + np.maximum(tail, head)
-    unique_key, first, count = np.unique(key, return_index=True, return_counts=True)
+    if with_faces:
+        unique_key, first, count = np.unique(key, return_index=True, return_counts=True)
+    else:
+        unique_key, count = np.unique(key, return_counts=True)
+        first = None
     edges = np.stack([unique_key // n, unique_key % n], axis=1)
-    return edges, count, first // 3
+    return edges, count, (None if first is None else first // 3)
 
 
 def csr(rows: np.ndarray, values: np.ndarray, n: int, *, stable: bool = True) -> tuple[np.ndarray, np.ndarray]:
@@ -191,7 +199,7 @@ def _topology_ok(n, all_edges, edges, boundary_edge, boundary_vertex, degree, ne
     # Link condition: common neighbours of a and b must be exactly the opposite vertices.
     if neighbours is None:
         both = np.concatenate([all_edges, all_edges[:, ::-1]])  # every edge, both ways
-        neighbours = csr(both[:, 0], both[:, 1], n)
+        neighbours = csr(both[:, 0], both[:, 1], n, stable=False)   # order within a row unused
     nbr_offsets, nbr = neighbours
     owner_a, around_a = expand(nbr_offsets, nbr, a)
     owner_b, around_b = expand(nbr_offsets, nbr, b)
@@ -414,13 +422,15 @@ def simplify(
         bq = boundary_quadrics(vertices, faces, edges[on_boundary], edge_face[on_boundary], boundary_weight)
         quadrics += accumulate(np.concatenate([bq, bq]), np.concatenate([edges[on_boundary, 0], edges[on_boundary, 1]]), n)
 
+    # Costs are area x distance^2 (length^4); below this they count as nothing.
+    cost_floor = 1e-12 * float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0))) ** 4
     bar = _progress_bar(progress, faces_before - target_faces)
     rounds = 0
     priced = _EdgePrices()
     moved = np.ones(n, dtype=bool)             # vertices whose price inputs changed
     while len(faces) > target_faces:
         rounds += 1
-        edges, count, _ = unique_edges(faces, n)
+        edges, count, _ = unique_edges(faces, n, with_faces=False)
         boundary_edge = count == 1
         boundary_vertex = np.zeros(n, dtype=bool)
         boundary_vertex[edges[boundary_edge].reshape(-1)] = True
@@ -442,12 +452,34 @@ def simplify(
         )
         if not valid.any():
             break
-        vertex_faces = csr(faces.reshape(-1), np.repeat(np.arange(len(faces)), 3), n)
+        vertex_faces = csr(faces.reshape(-1), np.repeat(np.arange(len(faces)), 3), n, stable=False)
 
         def no_turned_faces(indices: np.ndarray) -> np.ndarray:
             chosen_edges = candidates[indices]
-            return _no_turned_faces(vertices, faces, vertex_faces, points[chosen_edges],
-                                    keep[chosen_edges], remove[chosen_edges], max_normal_cos)
+            ok = _no_turned_faces(vertices, faces, vertex_faces, points[chosen_edges],
+                                  keep[chosen_edges], remove[chosen_edges], max_normal_cos)
+            # Where the best point turns a face over, an endpoint may not: in a flat
+            # region all three cost nothing, and moving onto a neighbour folds less
+            # often than moving to the middle of a long edge. Accept an endpoint only
+            # if it costs at most twice as much (or next to nothing).
+            for end in (keep, remove):
+                retry = chosen_edges[~ok]
+                if len(retry) == 0:
+                    break
+                option = vertices[end[retry]]
+                quadric = quadrics[keep[retry]] + quadrics[remove[retry]]
+                option_cost = quadric_cost(quadric, option)
+                cheap = option_cost <= 2.0 * cost[retry] + cost_floor
+                passes = np.zeros(len(retry), dtype=bool)
+                if cheap.any():
+                    passes[cheap] = _no_turned_faces(
+                        vertices, faces, vertex_faces, option[cheap], keep[retry[cheap]],
+                        remove[retry[cheap]], max_normal_cos)
+                points[retry[passes]] = option[passes]
+                cost[retry[passes]] = option_cost[passes]
+                still_bad = np.flatnonzero(~ok)
+                ok[still_bad[passes]] = True
+            return ok
 
         chosen_mask = _choose_round(edges, candidates, valid, opposite_owner, opposite_vertex, n, no_turned_faces)
         chosen = candidates[chosen_mask]
