@@ -120,11 +120,17 @@ class QuadricQueue:
 
     def peek(self, count: int) -> list[tuple[float, int]]:
         """The ``count`` cheapest current entries, without removing them."""
-        current = [
-            (cost, e) for cost, e, stamp in heapq.nsmallest(4 * count + 16, self.heap)
-            if not self.mesh.edge_deleted[e] and stamp == self.stamp[e]
-        ]
-        return current[:count]
+        # Stale entries may crowd the top of the heap, so look further until enough
+        # current ones turn up (or the whole heap has been seen).
+        scan = 4 * count + 16
+        while True:
+            current = [
+                (cost, e) for cost, e, stamp in heapq.nsmallest(scan, self.heap)
+                if not self.mesh.edge_deleted[e] and stamp == self.stamp[e]
+            ]
+            if len(current) >= count or scan >= len(self.heap):
+                return current[:count]
+            scan *= 4
 
 
 def _cost(quadric: np.ndarray, point: np.ndarray) -> float:

@@ -99,3 +99,18 @@ def test_same_quality_as_the_fast_rounds():
         errors.append(distance.mean())
     slow, fast = errors
     assert fast <= 2.0 * slow and slow <= 2.0 * fast
+
+
+def test_peek_finds_current_entries_behind_many_stale_ones():
+    mesh = hx.sample("icosphere")
+    queue = QuadricQueue(mesh.copy())
+    cheapest = [queue.pop() for _ in range(3)]
+    # Re-price the 40 cheapest remaining edges many times: the heap's top fills with stale entries.
+    for _ in range(30):
+        for _, e, _ in sorted(queue.heap)[:40]:
+            queue.push(e)
+    seen = queue.peek(5)
+    assert len(seen) == 5
+    assert all(queue.stamp[e] > 0 and not queue.mesh.edge_deleted[e] for _, e in seen)
+    assert [c for c, _ in seen] == sorted(c for c, _ in seen)
+    assert not {e for _, e in seen} & {e for _, e in cheapest}
