@@ -5,6 +5,10 @@
     check_one_ring(my_one_ring)    # chapter 03: walk around a vertex counter-clockwise
     check_flip(my_flip)            # chapter 06: flip an edge in place
     check_collapse(my_collapse)    # chapter 07: collapse an edge in place
+    check_loop_rules(edge_point, vertex_point)   # chapter 09: Loop's weights
+    check_plane_quadric(f), check_optimal_point(f)   # chapter 10: quadrics
+    check_tangential_smoothing(f)  # chapter 11: move only in the tangent plane
+    check_de_casteljau(f)          # chapter 12: de Casteljau's levels
 
 Each check runs the learner's function on several small meshes, compares it with the
 package's reference, and returns a :class:`CheckResult`: its text says what agreed or,
@@ -14,6 +18,12 @@ This package is for notebooks; ``import halfedge_edu`` does not load it.
 """
 
 from .checks import CheckResult, check_build, check_one_ring
+from .algorithm_checks import check_de_casteljau, check_loop_rules, check_optimal_point, check_plane_quadric
 from .ops_checks import check_collapse, check_flip
+from .remesh_checks import check_tangential_smoothing
 
-__all__ = ["CheckResult", "check_build", "check_collapse", "check_flip", "check_one_ring"]
+__all__ = [
+    "CheckResult", "check_build", "check_collapse", "check_de_casteljau", "check_flip",
+    "check_loop_rules", "check_one_ring", "check_optimal_point", "check_plane_quadric",
+    "check_tangential_smoothing",
+]

@@ -2,6 +2,8 @@
 
     from halfedge_edu.viz import HalfedgeScene, HalfedgeExplorer, OneRingViewer
     from halfedge_edu.viz import FlipStepper, SplitStepper, CollapseStepper, CollapseAtlas
+    from halfedge_edu.viz import LoopStepper, QEMStepper, RemeshStepper
+    from halfedge_edu.viz import DeCasteljauViewer, BezierSurfaceEditor
 
 - :class:`HalfedgeScene`: draw a mesh with its halfedges as arrows inside their faces,
   highlight elements by role (current, twin, next, prev, origin, tip, face, one-ring),
@@ -15,7 +17,11 @@ Nothing here imports pyvista or ipywidgets until a scene or widget is made, and 
 package itself (``import halfedge_edu``) never imports this module.
 """
 
+from .bezier_widgets import BezierSurfaceEditor, DeCasteljauViewer
+from .loop_stepper import LoopStepper
 from .palette import PRESETS, ROLES
+from .qem_stepper import QEMStepper
+from .remesh_stepper import RemeshStepper
 from .renderer import choose_mode
 from .scene import HalfedgeScene
 from .steppers import CollapseAtlas, CollapseStepper, FlipStepper, SplitStepper
@@ -23,5 +29,6 @@ from .widgets import HalfedgeExplorer, OneRingViewer
 
 __all__ = [
     "PRESETS", "ROLES", "choose_mode", "HalfedgeScene", "HalfedgeExplorer", "OneRingViewer",
-    "FlipStepper", "SplitStepper", "CollapseStepper", "CollapseAtlas",
+    "FlipStepper", "SplitStepper", "CollapseStepper", "CollapseAtlas", "LoopStepper",
+    "QEMStepper", "RemeshStepper", "DeCasteljauViewer", "BezierSurfaceEditor",
 ]
