@@ -20,25 +20,16 @@ of the faces. The ratio is our time over PyMeshLab's; the goal is at most 3x.
 from __future__ import annotations
 
 import argparse
-import time
 
 import numpy as np
 
 import halfedge_edu as hx
+from _common import hundred_k_inputs as inputs, surface_distance, timed
 from halfedge_edu.algorithms.remesh import quality_report, remesh
 
 ITERATIONS = 5
 
 
-def surface_distance(vertices_a, faces_a, vertices_b, faces_b) -> tuple[float, float]:
-    """Symmetric (mean, max) distance between two surfaces, measured at their vertices."""
-    import pyvista as pv
-
-    a = pv.PolyData.from_regular_faces(np.asarray(vertices_a, float), np.asarray(faces_a))
-    b = pv.PolyData.from_regular_faces(np.asarray(vertices_b, float), np.asarray(faces_b))
-    a_to_b = np.abs(a.compute_implicit_distance(b)["implicit_distance"])
-    b_to_a = np.abs(b.compute_implicit_distance(a)["implicit_distance"])
-    return 0.5 * (a_to_b.mean() + b_to_a.mean()), float(max(a_to_b.max(), b_to_a.max()))
 
 
 def run_ours(mesh, length):
@@ -57,21 +48,8 @@ def run_pymeshlab(vertices, faces, length):
     return result.vertex_matrix(), result.face_matrix()
 
 
-def timed(function, *args):
-    start = time.perf_counter()
-    result = function(*args)
-    return time.perf_counter() - start, result
 
 
-def inputs(quick: bool):
-    yield "bunny", hx.sample("bunny")
-    if not quick:
-        import trimesh
-
-        spot = hx.sample("spot").to_trimesh()
-        vertices, faces = trimesh.remesh.subdivide(spot.vertices, spot.faces)
-        vertices, faces = trimesh.remesh.subdivide(vertices, faces)
-        yield "spot, subdivided twice", hx.HalfedgeMesh.from_faces(vertices, faces)
 
 
 def describe(label, seconds, ratio, vertices, faces, reference, length):
