@@ -20,6 +20,7 @@ package itself (``import halfedge_edu``) never imports this module.
 from .bezier_widgets import BezierSurfaceEditor, DeCasteljauViewer
 from .loop_stepper import LoopStepper
 from .palette import PRESETS, ROLES
+from .pictures import side_by_side
 from .qem_stepper import QEMStepper
 from .remesh_stepper import RemeshStepper
 from .renderer import choose_mode
@@ -30,5 +31,5 @@ from .widgets import HalfedgeExplorer, OneRingViewer
 __all__ = [
     "PRESETS", "ROLES", "choose_mode", "HalfedgeScene", "HalfedgeExplorer", "OneRingViewer",
     "FlipStepper", "SplitStepper", "CollapseStepper", "CollapseAtlas", "LoopStepper",
-    "QEMStepper", "RemeshStepper", "DeCasteljauViewer", "BezierSurfaceEditor",
+    "QEMStepper", "RemeshStepper", "DeCasteljauViewer", "BezierSurfaceEditor", "side_by_side",
 ]

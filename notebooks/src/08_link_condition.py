@@ -23,11 +23,12 @@ import io
 import numpy as np
 import pyvista as pv
 from IPython.display import Image
-from PIL import Image as PILImage, ImageDraw, ImageFont
+from PIL import Image as PILImage
 
 import halfedge_edu as hx
 from halfedge_edu.ops import can_collapse, collapse, link_condition, link_of_edge, link_of_vertex
 from halfedge_edu.ops.link import BOUNDARY
+from halfedge_edu.viz import side_by_side
 
 LINK_A, LINK_B, SHARED, EXTRA = "#E69F00", "#56B4E9", "#009E73", "#D55E00"   # Okabe-Ito colours
 
@@ -93,20 +94,6 @@ def link_png(mesh, e, view=None, size=(320, 300)):
     buffer = io.BytesIO()
     PILImage.fromarray(png).save(buffer, format="png")
     return buffer.getvalue()
-
-
-def side_by_side(pngs, titles):
-    """Paste PNG pictures into one row, each with a title above it."""
-    pictures = [PILImage.open(io.BytesIO(png)).convert("RGB") for png in pngs]
-    row = PILImage.new("RGB", (sum(p.width for p in pictures), max(p.height for p in pictures) + 26), "white")
-    x = 0
-    for picture, title in zip(pictures, titles):
-        row.paste(picture, (x, 26))
-        ImageDraw.Draw(row).text((x + 10, 4), title, fill="black", font=ImageFont.load_default(size=15))
-        x += picture.width
-    buffer = io.BytesIO()
-    row.save(buffer, format="png")
-    return Image(buffer.getvalue())
 
 
 examples = [("single_collapse", 0, (0, 0, 1)), ("cube", 1, VIEWS["cube"]), ("tetrahedron", 0, VIEWS["tetrahedron"])]

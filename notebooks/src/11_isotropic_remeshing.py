@@ -28,11 +28,12 @@ import io
 import numpy as np
 import pyvista as pv
 from IPython.display import Image
-from PIL import Image as PILImage, ImageDraw, ImageFont
+from PIL import Image as PILImage
 
 import halfedge_edu as hx
 from halfedge_edu.algorithms.remesh import PHASES, closest_points_on_segments, remesh_step_by_step
 from halfedge_edu.viz.remesh_stepper import RemeshStepper, histogram_png, phase_quality
+from halfedge_edu.viz import side_by_side
 
 SPOT_VIEW = (2.6, 0.8, -2.3)        # from Spot toward the camera: the cow seen from the front left
 
@@ -55,20 +56,6 @@ def mesh_png(mesh, size=(380, 320), view=SPOT_VIEW, boundary_colour=None, zoom=1
     buffer = io.BytesIO()
     PILImage.fromarray(png).save(buffer, format="png")
     return buffer.getvalue()
-
-
-def side_by_side(pngs, titles):
-    """Paste PNG pictures into one row, each with a title above it."""
-    pictures = [PILImage.open(io.BytesIO(png)).convert("RGB") for png in pngs]
-    row = PILImage.new("RGB", (sum(p.width for p in pictures), max(p.height for p in pictures) + 26), "white")
-    x = 0
-    for picture, title in zip(pictures, titles):
-        row.paste(picture, (x, 26))
-        ImageDraw.Draw(row).text((x + 10, 4), title, fill="black", font=ImageFont.load_default(size=15))
-        x += picture.width
-    buffer = io.BytesIO()
-    row.save(buffer, format="png")
-    return Image(buffer.getvalue())
 
 
 spot = hx.sample("spot")

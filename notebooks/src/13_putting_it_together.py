@@ -24,12 +24,13 @@ import io
 import numpy as np
 import pyvista as pv
 from IPython.display import Image
-from PIL import Image as PILImage, ImageDraw, ImageFont
+from PIL import Image as PILImage
 from scipy.spatial import cKDTree
 
 import halfedge_edu as hx
 from halfedge_edu.algorithms.remesh import closest_points_on_triangles
 from halfedge_edu.viz.remesh_stepper import RemeshStepper, histogram_png, phase_quality
+from halfedge_edu.viz import side_by_side
 
 R, r = 1.0, 0.35                                   # the torus: distance to the tube's centre, tube radius
 
@@ -67,20 +68,6 @@ def mesh_png(mesh, size=(300, 240), view=(0.3, -1.0, 0.9), zoom=1.4):
     buffer = io.BytesIO()
     PILImage.fromarray(png).save(buffer, format="png")
     return buffer.getvalue()
-
-
-def side_by_side(pngs, titles):
-    """Paste PNG pictures into one row, each with a title above it."""
-    pictures = [PILImage.open(io.BytesIO(png)).convert("RGB") for png in pngs]
-    row = PILImage.new("RGB", (sum(p.width for p in pictures), max(p.height for p in pictures) + 26), "white")
-    x = 0
-    for picture, title in zip(pictures, titles):
-        row.paste(picture, (x, 26))
-        ImageDraw.Draw(row).text((x + 10, 4), title, fill="black", font=ImageFont.load_default(size=14))
-        x += picture.width
-    buffer = io.BytesIO()
-    row.save(buffer, format="png")
-    return Image(buffer.getvalue())
 
 
 def collapse_shortest(mesh, count):
