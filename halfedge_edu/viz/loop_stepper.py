@@ -36,7 +36,7 @@ import numpy as np
 from ..algorithms.loop import LoopStep, loop_positions, loop_subdivide_by_operations
 from .painted_scene import Layer, PaintedScene, legend_html
 from .palette import BLACK, BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, VERMILLION
-from .widgets import SceneWidget, _css
+from .widgets import StepperWidget, _css
 
 #: The largest mesh (in edges) the stepper accepts: it keeps one copy per step.
 MAX_EDGES = 600
@@ -57,7 +57,7 @@ class _Record:
     ends_before: tuple[int, int] | None = None   # a flipped edge's ends before the flip
 
 
-class LoopStepper(SceneWidget):
+class LoopStepper(StepperWidget):
     """Loop subdivision, one split or flip at a time, with old and new elements coloured.
 
     Args:
@@ -114,10 +114,6 @@ class LoopStepper(SceneWidget):
         return len(self.records) - 1
 
     @property
-    def step_index(self) -> int:
-        return self._step
-
-    @property
     def phase(self) -> str:
         """The current step's phase: "positions", "split", "flip" or "reposition"."""
         return self.records[self._step].phase
@@ -139,41 +135,17 @@ class LoopStepper(SceneWidget):
                 return k
         raise ValueError(f"unknown phase {phase!r}: use one of {', '.join(PHASES)}")
 
-    def go(self, target) -> int:
-        """Go to a step: a number, "next", "back", "start", "end", a phase name
-        ("split", "flip", "reposition": its first step), "phase" (the next phase's
-        start) or "phase back". Returns the step shown."""
-        if isinstance(target, str):
-            name = target.strip().lower()
-            starts = [self.phase_start(p) for p in PHASES]
-            moves = {
-                "next": self._step + 1, "step": self._step + 1, "back": self._step - 1,
-                "start": 0, "end": self.n_steps,
-                "phase": next((s for s in starts if s > self._step), self.n_steps),
-                "phase back": max([s for s in starts if s < self._step], default=0),
-            }
-            if name in PHASES:
-                target = self.phase_start(name)
-            elif name in moves:
-                target = moves[name]
-            else:
-                raise ValueError(f"unknown move {target!r}: use a step number, a phase "
-                                 f"({', '.join(PHASES)}) or one of {', '.join(repr(m) for m in moves)}")
-        target = int(target)
-        if not 0 <= target <= self.n_steps:
-            raise IndexError(f"there is no step {target}: steps run from 0 to {self.n_steps}")
-        self._step = target
-        self._say("")
-        self._changed()
-        return self._step
+    _moves_help = f"a step number, a phase ({', '.join(PHASES)})"
 
-    def step(self) -> int:
-        """One step forward (stays at the end)."""
-        return self.go(min(self._step + 1, self.n_steps))
+    def _named_moves(self) -> dict[str, int]:
+        """Also "phase" (the next phase's start) and "phase back"."""
+        return {**super()._named_moves(), **self._phase_moves([self.phase_start(p) for p in PHASES])}
 
-    def back(self) -> int:
-        """One step back (stays at the start)."""
-        return self.go(max(self._step - 1, 0))
+    def _resolve(self, target) -> int | None:
+        """A phase name ("split", "flip", "reposition") goes to its first step."""
+        if isinstance(target, str) and target.strip().lower() in PHASES:
+            return self.phase_start(target.strip().lower())
+        return None
 
     def edge_kinds(self, mesh=None) -> dict[str, np.ndarray]:
         """The live edges of ``mesh`` (the current state by default) sorted by kind:

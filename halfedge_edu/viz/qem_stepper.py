@@ -34,7 +34,7 @@ from ..algorithms.simplify import optimal_points, quadric_cost
 from ..algorithms.simplify_queue import CollapseStep, QuadricQueue, simplify_sequential, turns_a_face
 from .painted_scene import Layer, PaintedScene, legend_html
 from .palette import BLACK, REDDISH_PURPLE, VERMILLION
-from .widgets import SceneWidget, _css
+from .widgets import StepperWidget, _css
 
 NEXT_EDGE, QUEUED, LAST_COLLAPSE = VERMILLION, REDDISH_PURPLE, BLACK
 
@@ -69,7 +69,7 @@ def edge_costs(mesh, quadrics: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return all_costs, all_points
 
 
-class QEMStepper(SceneWidget):
+class QEMStepper(StepperWidget):
     """Quadric error simplification, collapse by collapse, then in jumps.
 
     Args:
@@ -119,10 +119,6 @@ class QEMStepper(SceneWidget):
         return len(self.steps)
 
     @property
-    def step_index(self) -> int:
-        return self._step
-
-    @property
     def state(self):
         """A copy of the mesh after the first ``step_index`` collapses (not compacted)."""
         return self._state.copy()
@@ -144,34 +140,10 @@ class QEMStepper(SceneWidget):
             return list(self.initial_candidates)
         return list(self.steps[self._step - 1].next_candidates)
 
-    def go(self, target) -> int:
-        """Go to a step: a number of collapses, "next", "back", "start" or "end".
-        Returns the step shown."""
-        if isinstance(target, str):
-            moves = {"next": self._step + 1, "step": self._step + 1, "back": self._step - 1,
-                     "start": 0, "end": self.n_steps}
-            name = target.strip().lower()
-            if name not in moves:
-                raise ValueError(f"unknown move {target!r}: use a step number or one of "
-                                 f"{', '.join(repr(m) for m in moves)}")
-            target = moves[name]
-        target = int(target)
-        if not 0 <= target <= self.n_steps:
-            raise IndexError(f"there is no step {target}: steps run from 0 to {self.n_steps}")
-        self._step = target
-        self._state, self._quadrics = self._replayed(target)
+    def _show_step(self, step: int) -> None:
+        """Replay the first ``step`` collapses and re-price the edges."""
+        self._state, self._quadrics = self._replayed(step)
         self.costs = edge_costs(self._state, self._quadrics)[0]
-        self._say("")
-        self._changed()
-        return self._step
-
-    def step(self) -> int:
-        """One collapse forward (stays at the end)."""
-        return self.go(min(self._step + 1, self.n_steps))
-
-    def back(self) -> int:
-        """One collapse back (stays at the start)."""
-        return self.go(max(self._step - 1, 0))
 
     def jump(self, collapses: int) -> int:
         """Move ``collapses`` steps at once (negative: back), stopping at either end."""

@@ -29,7 +29,7 @@ import numpy as np
 from ..algorithms.remesh import COLLAPSE_BELOW, SPLIT_ABOVE, quality_report, remesh_step_by_step
 from .painted_scene import Layer, PaintedScene, legend_html
 from .palette import BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, VERMILLION
-from .widgets import SceneWidget, _css
+from .widgets import StepperWidget, _css
 
 TOO_LONG, TOO_SHORT, OFF_DEGREE = VERMILLION, BLUE, REDDISH_PURPLE
 #: Colours of the histograms' outlines after the first (grey, filled) entry.
@@ -191,7 +191,7 @@ class _Snapshot:
     quality: PhaseQuality
 
 
-class RemeshStepper(SceneWidget):
+class RemeshStepper(StepperWidget):
     """Isotropic remeshing, one phase at a time, with histograms of the quality.
 
     Args:
@@ -246,10 +246,6 @@ class RemeshStepper(SceneWidget):
         return len(self.snapshots) - 1
 
     @property
-    def step_index(self) -> int:
-        return self._step
-
-    @property
     def iteration(self) -> int:
         return self.snapshots[self._step].iteration
 
@@ -281,42 +277,24 @@ class RemeshStepper(SceneWidget):
         raise ValueError(f"there is no phase {phase!r} in iteration {iteration}: iterations run from 1 to "
                          f"{self.iterations}, phases are {', '.join(phases)}")
 
-    def go(self, target) -> int:
-        """Go to a step: a number, ``(iteration, phase)``, a phase name (its next
-        occurrence, or its first if none comes later), "next", "back", "start", "end"
-        or "iteration" (the same phase one iteration on). Returns the step shown."""
+    _moves_help = "a step number, (iteration, phase), a phase name"
+
+    def _named_moves(self) -> dict[str, int]:
+        """Also "iteration": the same phase one iteration on."""
+        same_phase_next = [k for k, s in enumerate(self.snapshots)
+                           if s.phase == self.phase and s.iteration == self.iteration + 1]
+        return {**super()._named_moves(),
+                "iteration": same_phase_next[0] if same_phase_next else self.n_steps}
+
+    def _resolve(self, target) -> int | None:
+        """``(iteration, phase)``, or a phase name: its next occurrence (else its first)."""
         if isinstance(target, tuple):
-            target = self.index_of(*target)
-        elif isinstance(target, str):
-            name = target.strip().lower()
-            later = [k for k, s in enumerate(self.snapshots) if s.phase == name]
-            same_phase_next = [k for k, s in enumerate(self.snapshots)
-                               if s.phase == self.phase and s.iteration == self.iteration + 1]
-            moves = {"next": self._step + 1, "step": self._step + 1, "back": self._step - 1,
-                     "start": 0, "end": self.n_steps,
-                     "iteration": same_phase_next[0] if same_phase_next else self.n_steps}
+            return self.index_of(*target)
+        if isinstance(target, str):
+            later = [k for k, s in enumerate(self.snapshots) if s.phase == target.strip().lower()]
             if later:
-                target = next((k for k in later if k > self._step), later[0])
-            elif name in moves:
-                target = moves[name]
-            else:
-                raise ValueError(f"unknown move {target!r}: use a step number, (iteration, phase), a phase name "
-                                 f"or one of {', '.join(repr(m) for m in moves)}")
-        target = int(target)
-        if not 0 <= target <= self.n_steps:
-            raise IndexError(f"there is no step {target}: steps run from 0 to {self.n_steps}")
-        self._step = target
-        self._say("")
-        self._changed()
-        return self._step
-
-    def step(self) -> int:
-        """One phase forward (stays at the end)."""
-        return self.go(min(self._step + 1, self.n_steps))
-
-    def back(self) -> int:
-        """One phase back (stays at the start)."""
-        return self.go(max(self._step - 1, 0))
+                return next((k for k in later if k > self._step), later[0])
+        return None
 
     def describe(self) -> str:
         """The current phase in words and numbers (deterministic, for nbval and for reading)."""

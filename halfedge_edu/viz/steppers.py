@@ -30,7 +30,7 @@ import numpy as np
 from ..core.elements import Halfedge
 from .palette import preset as _preset
 from .scene import HalfedgeScene
-from .widgets import SceneWidget, _css, table_html
+from .widgets import StepperWidget, _css, table_html
 
 # Stepper roles by the kind of element they colour.
 _CHANGED = {"halfedge": "changed", "vertex": "changed_vertex", "face": "changed_face"}
@@ -75,7 +75,7 @@ def _padded(array: np.ndarray, length: int, fill) -> np.ndarray:
     return out
 
 
-class OperationStepper(SceneWidget):
+class OperationStepper(StepperWidget):
     """Shared machinery of the flip, split and collapse steppers (use those).
 
     Args:
@@ -122,11 +122,6 @@ class OperationStepper(SceneWidget):
         return len(self.groups)
 
     @property
-    def step_index(self) -> int:
-        """The step shown now: 0 (gathered) to ``n_steps`` (done)."""
-        return self._step
-
-    @property
     def result(self):
         """A copy of the mesh after the operation (the mesh as it was, if refused)."""
         return self.after.copy()
@@ -136,36 +131,9 @@ class OperationStepper(SceneWidget):
         """The mesh as it is at the current step (usually not valid half way)."""
         return self.scene.mesh
 
-    def go(self, target) -> int:
-        """Go to a step: "next" ("step"), "back", "start", "end", "phase" (the start of
-        the next phase), "phase back", or a step number. Returns the step shown."""
-        starts = self._phase_steps()
-        if isinstance(target, str):
-            name = target.strip().lower()
-            moves = {
-                "next": self._step + 1, "step": self._step + 1, "back": self._step - 1,
-                "start": 0, "end": self.n_steps,
-                "phase": next((s for s in starts if s > self._step), self.n_steps),
-                "phase back": max([s for s in starts if s < self._step], default=0),
-            }
-            if name not in moves:
-                raise ValueError(f"unknown move {target!r}: use {', '.join(repr(m) for m in moves)} or a step number")
-            target = moves[name]
-        target = int(target)
-        if not 0 <= target <= self.n_steps:
-            raise IndexError(f"there is no step {target}: steps run from 0 to {self.n_steps}")
-        self._step = target
-        self._say("")
-        self._changed()
-        return self._step
-
-    def step(self) -> int:
-        """One step forward (stays at the end)."""
-        return self.go(min(self._step + 1, self.n_steps))
-
-    def back(self) -> int:
-        """One step back (stays at the start)."""
-        return self.go(max(self._step - 1, 0))
+    def _named_moves(self) -> dict[str, int]:
+        """Also "phase" (the start of the next phase) and "phase back"."""
+        return {**super()._named_moves(), **self._phase_moves(self._phase_steps())}
 
     # -- the scene -----------------------------------------------------------------------
 

@@ -180,6 +180,74 @@ class SceneWidget:
         return bundle
 
 
+class StepperWidget(SceneWidget):
+    """A widget that shows one of the steps 0 .. ``n_steps`` of something.
+
+    What every stepper shares: ``step_index``, ``go(target)`` with named moves,
+    ``step()`` and ``back()``. A subclass defines ``n_steps`` and may add named moves
+    (``_named_moves``), accept other kinds of target such as a phase name
+    (``_resolve``), and bring its state to a step (``_show_step``).
+    """
+
+    _step = 0
+    _moves_help = "a step number"
+
+    @property
+    def n_steps(self) -> int:
+        raise NotImplementedError
+
+    @property
+    def step_index(self) -> int:
+        """The step shown now: 0 (the start) to ``n_steps`` (the end)."""
+        return self._step
+
+    def _named_moves(self) -> dict[str, int]:
+        """Move name -> step. Subclasses extend it (e.g. with :meth:`_phase_moves`)."""
+        return {"next": self._step + 1, "step": self._step + 1, "back": self._step - 1,
+                "start": 0, "end": self.n_steps}
+
+    def _phase_moves(self, starts: list[int]) -> dict[str, int]:
+        """"phase" and "phase back": the next / previous of the given phase starts."""
+        return {"phase": next((s for s in starts if s > self._step), self.n_steps),
+                "phase back": max([s for s in starts if s < self._step], default=0)}
+
+    def _resolve(self, target) -> int | None:
+        """A step for a target the named moves do not cover, or None."""
+        return None
+
+    def _show_step(self, step: int) -> None:
+        """Bring the widget's state to ``step`` (called before it is drawn)."""
+
+    def go(self, target) -> int:
+        """Go to a step (a number or a named move; see the class). Returns the step shown."""
+        resolved = self._resolve(target)
+        if resolved is not None:
+            target = resolved
+        elif isinstance(target, str):
+            moves = self._named_moves()
+            name = target.strip().lower()
+            if name not in moves:
+                raise ValueError(f"unknown move {target!r}: use {self._moves_help} or one of "
+                                 f"{', '.join(repr(m) for m in moves)}")
+            target = moves[name]
+        target = int(target)
+        if not 0 <= target <= self.n_steps:
+            raise IndexError(f"there is no step {target}: steps run from 0 to {self.n_steps}")
+        self._step = target
+        self._show_step(target)
+        self._say("")
+        self._changed()
+        return self._step
+
+    def step(self) -> int:
+        """One step forward (stays at the end)."""
+        return self.go(min(self._step + 1, self.n_steps))
+
+    def back(self) -> int:
+        """One step back (stays at the start)."""
+        return self.go(max(self._step - 1, 0))
+
+
 class HalfedgeExplorer(SceneWidget):
     """Walk a mesh one pointer at a time: next, prev, twin, or jump to a halfedge.
 
