@@ -132,8 +132,11 @@ def test_explorer_next_and_twin_move_the_arrow_in_the_live_3d_view(lab, browser_
         page.close()
 
 
-def _drive_chapter03(page, lab, shots: Path, console: list[str]) -> None:
-    page.goto(lab.open_url(NOTEBOOK), timeout=120_000)
+def open_and_run_all(page, lab, notebook: str) -> None:
+    """Open ``notebook`` in the Lab, clear its stored outputs, run every cell, and
+    fail if any cell raised. Clearing first means stored (static) outputs cannot pass
+    for live ones."""
+    page.goto(lab.open_url(notebook), timeout=120_000)
     # The notebook is open and its kernel is up.
     page.wait_for_function(
         """() => {
@@ -145,7 +148,6 @@ def _drive_chapter03(page, lab, shots: Path, console: list[str]) -> None:
         }""",
         polling=500, timeout=120_000,
     )
-    # Start from a clean notebook, so the stored (static) outputs cannot pass for live ones.
     page.evaluate("() => window.jupyterapp.commands.execute('notebook:clear-all-cell-outputs')")
     page.evaluate("() => { window.jupyterapp.commands.execute('notebook:run-all-cells'); }")
     page.wait_for_function(
@@ -165,6 +167,10 @@ def _drive_chapter03(page, lab, shots: Path, console: list[str]) -> None:
             .map(o => o.ename + ': ' + o.evalue)"""
     )
     assert not errors, f"cells raised: {errors}"
+
+
+def _drive_chapter03(page, lab, shots: Path, console: list[str]) -> None:
+    open_and_run_all(page, lab, NOTEBOOK)
 
     explorer = ExplorerInLab(page, shots)
     explorer.output.scroll_into_view_if_needed(timeout=30_000)

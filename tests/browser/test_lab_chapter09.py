@@ -19,10 +19,10 @@ from tests.browser.test_lab_chapter03 import (
     MIN_CHANGED_SHARE,
     MIN_COLOURS,
     MIN_STD,
-    RUN_ALL_TIMEOUT,
     as_array,
     changed_share,
     drawn,
+    open_and_run_all,
     wait_for,
 )
 
@@ -84,36 +84,7 @@ def test_loop_stepper_buttons_redraw_the_live_3d_view(lab, browser_context, scre
 
 
 def _drive(page, lab, shots: Path) -> None:
-    page.goto(lab.open_url(NOTEBOOK), timeout=120_000)
-    page.wait_for_function(
-        """() => {
-            const app = window.jupyterapp;
-            const panel = app && app.shell.currentWidget;
-            const kernel = panel && panel.sessionContext && panel.sessionContext.session
-                && panel.sessionContext.session.kernel;
-            return kernel && kernel.status === 'idle' && panel.context.isReady;
-        }""",
-        polling=500, timeout=120_000,
-    )
-    page.evaluate("() => window.jupyterapp.commands.execute('notebook:clear-all-cell-outputs')")
-    page.evaluate("() => { window.jupyterapp.commands.execute('notebook:run-all-cells'); }")
-    page.wait_for_function(
-        """() => {
-            const panel = window.jupyterapp.shell.currentWidget;
-            const kernel = panel.sessionContext.session.kernel;
-            const cells = panel.content.widgets.filter(c => c.model.type === 'code');
-            return kernel.status === 'idle' && cells.every(c => c.model.executionCount !== null);
-        }""",
-        polling=500, timeout=RUN_ALL_TIMEOUT * 1000,
-    )
-    errors = page.evaluate(
-        """() => window.jupyterapp.shell.currentWidget.content.widgets
-            .filter(c => c.model.type === 'code')
-            .flatMap(c => c.model.outputs.toJSON())
-            .filter(o => o.output_type === 'error')
-            .map(o => o.ename + ': ' + o.evalue)"""
-    )
-    assert not errors, f"cells raised: {errors}"
+    open_and_run_all(page, lab, NOTEBOOK)
 
     stepper = StepperInLab(page)
     stepper.output.scroll_into_view_if_needed(timeout=30_000)
