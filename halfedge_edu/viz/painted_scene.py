@@ -28,16 +28,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .palette import Preset, preset as _preset
+from .pictures import png_bytes
+from .screen import beside, unit
 
 #: From the object toward the camera, for meshes that are not flat (as HalfedgeScene).
 VIEW_DIRECTION = np.array([0.75, 0.85, 1.3])
 #: Vertex labels are drawn when the mesh has at most this many vertices.
 LABEL_VERTICES = 60
 
-
-def _unit(vectors: np.ndarray) -> np.ndarray:
-    length = np.linalg.norm(vectors, axis=-1, keepdims=True)
-    return vectors / np.maximum(length, 1e-300)
 
 
 @dataclass
@@ -217,18 +215,10 @@ class PaintedScene:
 
     def screenshot(self, path=None) -> bytes:
         """Render and return the picture as PNG bytes; also write it to ``path`` if given."""
-        import io
-
         from PIL import Image
 
         pixels = self.plotter.screenshot(None, return_img=True, window_size=list(self.window_size))
-        buffer = io.BytesIO()
-        Image.fromarray(np.asarray(pixels)).save(buffer, format="png", optimize=False)
-        data = buffer.getvalue()
-        if path is not None:
-            with open(path, "wb") as file:
-                file.write(data)
-        return data
+        return png_bytes(Image.fromarray(np.asarray(pixels)), path)
 
     def close(self) -> None:
         """Free the render window."""
@@ -242,20 +232,20 @@ class PaintedScene:
             positions = np.concatenate([positions, np.asarray(fit_points, dtype=np.float64).reshape(-1, 3)])
         corners = mesh.face_vertices()[~mesh.face_deleted]
         a, b, c = (mesh.positions[corners[:, k]] for k in range(3))
-        normals = _unit(np.cross(b - a, c - a))
+        normals = unit(np.cross(b - a, c - a))
         mean_normal = normals.mean(axis=0) if len(normals) else np.zeros(3)
         if view_direction is not None:
-            direction = _unit(np.asarray(view_direction, dtype=np.float64))
+            direction = unit(np.asarray(view_direction, dtype=np.float64))
         elif np.linalg.norm(mean_normal) > 0.9:
-            direction = _unit(mean_normal)
+            direction = unit(mean_normal)
         else:
-            direction = _unit(VIEW_DIRECTION)
+            direction = unit(VIEW_DIRECTION)
         centre = 0.5 * (positions.min(axis=0) + positions.max(axis=0))
         radius = float(np.linalg.norm(positions - centre, axis=1).max()) or 1.0
-        up = np.array([0.0, 1.0, 0.0]) if view_up is None else _unit(np.asarray(view_up, dtype=np.float64))
+        up = np.array([0.0, 1.0, 0.0]) if view_up is None else unit(np.asarray(view_up, dtype=np.float64))
         if abs(direction @ up) > 0.95:
             up = np.array([0.0, 0.0, -1.0]) if direction[1] > 0 else np.array([0.0, 0.0, 1.0])
-        up = _unit(up - (up @ direction) * direction)
+        up = unit(up - (up @ direction) * direction)
         width, height = self.window_size
         half_angle = np.radians(15.0) * min(1.0, width / height)
         distance = radius / np.sin(half_angle) * 1.1
@@ -283,18 +273,8 @@ class PaintedScene:
         shown = live[seen[live]]
         if len(shown) == 0:
             return None
-        return self._beside(positions[shown], 0.6 * self.preset.highlight_vertex_size), [str(int(v)) for v in shown]
+        return beside(self.plotter, self.window_size, positions[shown], 0.6 * self.preset.highlight_vertex_size), [str(int(v)) for v in shown]
 
-    def _beside(self, points: np.ndarray, pixels: float) -> np.ndarray:
-        """``points`` moved ``pixels`` up and right on screen (labels beside their dots)."""
-        camera = self.plotter.camera
-        eye = np.array(camera.position)
-        forward = _unit(np.array(camera.focal_point) - eye)
-        up = _unit(np.array(camera.up))
-        right = np.cross(forward, up)
-        depth = (points - eye) @ forward                                   # (k,)
-        world_per_pixel = 2.0 * depth * np.tan(np.radians(camera.view_angle / 2)) / self.window_size[1]
-        return points + (pixels * world_per_pixel)[:, None] * (right + up)
 
 
 def _lines(points: np.ndarray, pairs: np.ndarray):

@@ -32,6 +32,15 @@ def side_by_side(pngs: list[bytes], titles: list[str], *, font_size: int = 15):
         row.paste(picture, (x, title_height))
         ImageDraw.Draw(row).text((x + 10, 4), title, fill="black", font=font)
         x += picture.width
+    return Image(png_bytes(row))
+
+
+def png_bytes(image, path=None) -> bytes:
+    """A PIL image encoded as PNG bytes; also written to ``path`` if one is given."""
     buffer = io.BytesIO()
-    row.save(buffer, format="png")
-    return Image(buffer.getvalue())
+    image.save(buffer, format="png")
+    data = buffer.getvalue()
+    if path is not None:
+        with open(path, "wb") as file:
+            file.write(data)
+    return data

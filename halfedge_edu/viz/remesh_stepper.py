@@ -29,6 +29,7 @@ import numpy as np
 from ..algorithms.remesh import COLLAPSE_BELOW, SPLIT_ABOVE, quality_report, remesh_step_by_step
 from .painted_scene import Layer, PaintedScene, legend_html
 from .palette import BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, VERMILLION
+from .pictures import png_bytes
 from .widgets import StepperWidget, _css
 
 TOO_LONG, TOO_SHORT, OFF_DEGREE = VERMILLION, BLUE, REDDISH_PURPLE
@@ -379,13 +380,7 @@ class RemeshStepper(StepperWidget):
         sheet = Image.new("RGB", (max(view.width, charts.width), view.height + charts.height), "white")
         sheet.paste(view, (0, 0))
         sheet.paste(charts, (0, view.height))
-        buffer = io.BytesIO()
-        sheet.save(buffer, format="png")
-        data = buffer.getvalue()
-        if path is not None:
-            with open(path, "wb") as file:
-                file.write(data)
-        return data
+        return png_bytes(sheet, path)
 
     # -- panel ---------------------------------------------------------------------------
 

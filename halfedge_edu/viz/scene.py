@@ -25,6 +25,8 @@ import numpy as np
 
 from . import arrows as _arrows
 from .palette import ROLES, Preset, preset as _preset, rgb
+from .pictures import png_bytes
+from .screen import beside, unit
 
 #: Halfedge counts above this draw arrows only near the highlight.
 MAX_ARROWS = 3000
@@ -41,10 +43,6 @@ VIEW_DIRECTION = np.array([0.75, 0.85, 1.3])
 _KINDS = ("vertex", "halfedge", "face")
 _LABEL_PREFIX = {"vertex": "v", "halfedge": "h", "face": "f"}
 
-
-def _unit(vectors: np.ndarray) -> np.ndarray:
-    length = np.linalg.norm(vectors, axis=-1, keepdims=True)
-    return vectors / np.maximum(length, 1e-300)
 
 
 def _legend_arrow():
@@ -230,7 +228,7 @@ class HalfedgeScene:
         A small mesh (at most ``LABEL_ALL_FACES`` faces) is shown whole, turned toward them.
         """
         vertices = np.asarray(vertices, dtype=np.int64)
-        normal = _unit(self._vertex_normals[vertices].sum(axis=0))
+        normal = unit(self._vertex_normals[vertices].sum(axis=0))
         if self._flat or not np.linalg.norm(normal) > 0:
             direction = self._view_direction()
         else:
@@ -253,19 +251,11 @@ class HalfedgeScene:
 
     def screenshot(self, path=None) -> bytes:
         """Render and return the picture as PNG bytes; also write it to ``path`` if given."""
-        import io
-
         from PIL import Image
 
         self.plotter.render()
         pixels = self.plotter.screenshot(None, return_img=True)
-        buffer = io.BytesIO()
-        Image.fromarray(np.asarray(pixels)).save(buffer, format="png", optimize=False)
-        data = buffer.getvalue()
-        if path is not None:
-            with open(path, "wb") as file:
-                file.write(data)
-        return data
+        return png_bytes(Image.fromarray(np.asarray(pixels)), path)
 
     def describe(self) -> str:
         """The mesh and the highlight in plain, deterministic text."""
@@ -336,12 +326,12 @@ class HalfedgeScene:
         surface = pv.PolyData.from_regular_faces(positions, corners[static])
         self._face_normals = np.zeros((mesh.n_face_slots, 3))
         a, b, c = (positions[corners[:, i]] for i in range(3))
-        self._face_normals[self._live_faces] = _unit(np.cross(b - a, c - a))
+        self._face_normals[self._live_faces] = unit(np.cross(b - a, c - a))
         vertex_normals = np.zeros((mesh.n_vertex_slots, 3))
         area_normals = np.cross(b - a, c - a)
         for i in range(3):
             np.add.at(vertex_normals, corners[:, i], area_normals)
-        self._vertex_normals = _unit(vertex_normals)
+        self._vertex_normals = unit(vertex_normals)
         mean_normal = self._face_normals[self._live_faces].mean(axis=0) if len(self._live_faces) else np.zeros(3)
         self._flat = bool(np.linalg.norm(mean_normal) > 0.9)
         self._center = positions[~mesh.vertex_deleted].mean(axis=0)
@@ -426,7 +416,7 @@ class HalfedgeScene:
         drawn = (corners >= 0).all(axis=1)
         faces, corners, valid = faces[drawn], corners[drawn], valid[drawn]
         points = mesh.positions[corners]                                   # (k, 3, 3)
-        self._face_normals[faces] = _unit(np.cross(points[:, 1] - points[:, 0], points[:, 2] - points[:, 0]))
+        self._face_normals[faces] = unit(np.cross(points[:, 1] - points[:, 0], points[:, 2] - points[:, 0]))
         data = pv.PolyData.from_regular_faces(points.reshape(-1, 3), np.arange(3 * len(faces)).reshape(-1, 3))
         data.cell_data["rgb"] = np.where(valid[:, None], rgb(look.surface), rgb(look.rewiring_face)).astype(np.uint8)
         self._set_data("local_surface", data)
@@ -610,8 +600,8 @@ class HalfedgeScene:
         normals = self._face_normals[self._live_faces]
         mean = normals.mean(axis=0) if len(normals) else np.zeros(3)
         if np.linalg.norm(mean) > 0.9:
-            return _unit(mean)
-        return _unit(VIEW_DIRECTION)
+            return unit(mean)
+        return unit(VIEW_DIRECTION)
 
     def _legend_width(self) -> float:
         """Fraction of the image width the legend takes (0 without one)."""
@@ -624,11 +614,11 @@ class HalfedgeScene:
 
         With a legend on the right, the picture is shifted left so the two do not overlap.
         """
-        direction = _unit(direction)
+        direction = unit(direction)
         up = np.array([0.0, 1.0, 0.0])
         if abs(direction @ up) > 0.95:
             up = np.array([0.0, 0.0, -1.0]) if direction[1] > 0 else np.array([0.0, 0.0, 1.0])
-        up = _unit(up - (up @ direction) * direction)
+        up = unit(up - (up @ direction) * direction)
         right = np.cross(up, direction)
         width, height = self.window_size
         free = 1.0 - self._legend_width()
@@ -670,9 +660,9 @@ class HalfedgeScene:
         if faces:
             faces = np.concatenate(faces)
             faces = faces[(faces >= 0) & (faces < self.mesh.n_face_slots)]
-            normal = _unit(self._face_normals[faces].sum(axis=0))
+            normal = unit(self._face_normals[faces].sum(axis=0))
         else:
-            normal = _unit(self._vertex_normals[focus].sum(axis=0))
+            normal = unit(self._vertex_normals[focus].sum(axis=0))
         if not np.linalg.norm(normal) > 0:
             return
         if follow == "auto":
@@ -683,7 +673,7 @@ class HalfedgeScene:
             if not follow and (facing < 0.3 or (facing < 0.8 and off_axis > 0.6)):
                 # The highlight is seen edge-on or from behind: swing round to face it,
                 # still looking at the whole mesh, a little from the side.
-                self._aim_whole_mesh(_unit(1.5 * normal + _unit(VIEW_DIRECTION)))
+                self._aim_whole_mesh(unit(1.5 * normal + unit(VIEW_DIRECTION)))
                 return
         if follow:
             positions = self.mesh.positions[focus]
@@ -700,16 +690,6 @@ class HalfedgeScene:
         position = np.array(self.plotter.camera.position)
         return ((position - points) * normals).sum(axis=1) > 0
 
-    def _beside(self, points: np.ndarray, pixels: float) -> np.ndarray:
-        """``points`` moved ``pixels`` up and right on screen (labels beside vertex dots)."""
-        camera = self.plotter.camera
-        eye = np.array(camera.position)
-        forward = _unit(np.array(camera.focal_point) - eye)
-        up = _unit(np.array(camera.up))
-        right = np.cross(forward, up)
-        depth = (points - eye) @ forward                                   # (k,)
-        world_per_pixel = 2.0 * depth * np.tan(np.radians(camera.view_angle / 2)) / self.window_size[1]
-        return points + (pixels * world_per_pixel)[:, None] * (right + up)
 
     def _vertex_in_sight(self, vertices: np.ndarray) -> np.ndarray:
         """(k,) bool: one of the vertex's faces (as built) looks toward the camera, so
@@ -780,7 +760,7 @@ class HalfedgeScene:
         vertices = self._labelled("vertex", choice.get("vertex"), near)
         if len(vertices):
             vertices = vertices[self._vertex_in_sight(vertices)]
-            points = self._beside(positions[vertices], 0.45 * look.highlight_vertex_size)
+            points = beside(self.plotter, self.window_size, positions[vertices], 0.45 * look.highlight_vertex_size)
             texts["vertex"] = (points, [self._label_text("vertex", v) for v in vertices])
         faces = self._labelled("face", choice.get("face"), near)
         if len(faces):

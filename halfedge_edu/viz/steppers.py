@@ -30,6 +30,7 @@ import numpy as np
 from ..core.elements import Halfedge
 from .palette import preset as _preset
 from .scene import HalfedgeScene
+from .pictures import png_bytes
 from .widgets import StepperWidget, _css, table_html
 
 # Stepper roles by the kind of element they colour.
@@ -666,13 +667,7 @@ class CollapseAtlas:
                 sheet.paste(p, (x, y))
                 x += p.width
             y += max(p.height for p in row)
-        buffer = io.BytesIO()
-        sheet.save(buffer, format="png")
-        data = buffer.getvalue()
-        if path is not None:
-            with open(path, "wb") as file:
-                file.write(data)
-        return data
+        return png_bytes(sheet, path)
 
     def close(self) -> None:
         self.widget.close()
