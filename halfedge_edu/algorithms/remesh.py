@@ -315,8 +315,16 @@ def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Re
         turned[indices[~ok]] = True
         return ok
 
+    def topology_ok(indices: np.ndarray):
+        # Checked above for every candidate (the placement needed it); hand back the picked.
+        picked = np.zeros(len(candidates), dtype=bool)
+        picked[indices] = True
+        mine = picked[opposite_owner]
+        return valid[indices], opposite_owner[mine], opposite_vertex[mine]
+
     if valid.any():
-        chosen = _choose_round(edges, candidates, valid, opposite_owner, opposite_vertex, n, no_turned_faces)
+        chosen = _choose_round(edges, candidates, valid, n, topology_ok, no_turned_faces,
+                               known_opposites=(opposite_owner, opposite_vertex))
     else:
         chosen = np.zeros(len(candidates), dtype=bool)
     refused_keys = np.concatenate([table.keys[short[stale]], table.keys[candidates[~valid | turned]]])

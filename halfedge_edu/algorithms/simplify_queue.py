@@ -28,7 +28,7 @@ import numpy as np
 
 from ..core.errors import MeshWarning
 from ..core.mesh import HalfedgeMesh
-from .simplify import accumulate, boundary_quadrics, face_quadrics
+from .simplify import PULL_TO_MIDPOINT, REFINEMENT_STEPS, accumulate, boundary_quadrics, face_quadrics
 
 
 @dataclass
@@ -72,7 +72,7 @@ class QuadricQueue:
         corners = mesh.face_vertices()[~mesh.face_deleted]                   # (m, 3)
         positions = mesh.positions
         n = mesh.n_vertex_slots
-        self.quadrics = accumulate(np.repeat(face_quadrics(positions, corners), 3, axis=0), corners.reshape(-1), n)
+        self.quadrics = accumulate(face_quadrics(positions, corners), corners, n)
         boundary_h = np.flatnonzero((mesh.halfedge_face == -1) & ~mesh.halfedge_deleted)
         if len(boundary_h):
             # A boundary halfedge's twin is the interior halfedge of the same edge.
@@ -81,7 +81,7 @@ class QuadricQueue:
             face_rows = np.full(mesh.n_face_slots, -1)
             face_rows[np.flatnonzero(~mesh.face_deleted)] = np.arange(len(corners))
             bq = boundary_quadrics(positions, corners, ends, face_rows[faces_beside], boundary_weight)
-            self.quadrics += accumulate(np.concatenate([bq, bq]), ends.T.reshape(-1), n)
+            self.quadrics += accumulate(bq, ends, n)                     # each to both ends
         self.stamp = np.zeros(mesh.n_edge_slots, dtype=np.int64)
         self.point = np.zeros((mesh.n_edge_slots, 3))
         self.heap: list[tuple[float, int, int]] = []     # (cost, edge, stamp when pushed)
@@ -140,16 +140,24 @@ def _cost(quadric: np.ndarray, point: np.ndarray) -> float:
 
 
 def _best_point(quadric: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """The minimizer of the quadric, or the best of midpoint, a, b when that is ill-posed.
+    """The point minimizing the quadric, with a pull towards the edge's midpoint.
 
-    The same rule as :func:`halfedge_edu.algorithms.simplify.optimal_points`, for one edge.
+    Solves ``(A + eps I) x = -q + eps m`` with ``eps = PULL_TO_MIDPOINT * trace(A)``, then
+    takes the pull back out ``REFINEMENT_STEPS`` times: the plain ``A x = -q`` where the
+    planes pin the point down, the midpoint (or the point of a crease nearest it) where
+    they do not. The same rule as :func:`halfedge_edu.algorithms.simplify.optimal_points`,
+    for one edge.
     """
     A, q = quadric[:3, :3], quadric[:3, 3]
-    scale = np.abs(A).max()
-    if abs(np.linalg.det(A)) > 1e-9 * max(scale, 1e-300) ** 3:
-        return np.linalg.solve(A, -q)
-    options = (0.5 * (a + b), a, b)
-    return min(options, key=lambda option: _cost(quadric, option)).copy()
+    midpoint = 0.5 * (a + b)
+    eps = PULL_TO_MIDPOINT * np.trace(A)
+    if eps <= 0:                       # no planes at all (zero-area faces)
+        return midpoint
+    pulled = A + eps * np.eye(3)
+    x = np.linalg.solve(pulled, -q + eps * midpoint)
+    for _ in range(REFINEMENT_STEPS):
+        x = x + np.linalg.solve(pulled, -q - A @ x)
+    return x
 
 
 def _normal(p0: np.ndarray, p1: np.ndarray, p2: np.ndarray) -> np.ndarray:

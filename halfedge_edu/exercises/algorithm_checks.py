@@ -389,7 +389,8 @@ def check_optimal_point(optimal_point: Callable) -> CheckResult:
                 text += (" Yours costs as little, but it can lie far from the edge, and the new vertex would "
                          "wander off; the midpoint keeps it in place.")
             if not _close(library, midpoint):
-                text += f" (The library also tries the two ends, and here it picks {_text(library)}.)"
+                text += (f" (The library picks {_text(library)}: of the points that cost least, the one "
+                         f"nearest the midpoint.)")
         return _failed("optimal_point", checked, case, text)
     return _all_good("optimal_point", checked, "quadrics", "That is the point each queue entry stores with its cost.")
 

@@ -43,8 +43,9 @@ def edge_costs(mesh, quadrics: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The queue's price of every edge, for all edges at once.
 
     The same rule as :meth:`QuadricQueue.price`: the best point of ``Q_a + Q_b`` (the
-    3x3 solve, or the best of midpoint and ends when it is ill-posed), except that an
-    interior edge with exactly one end on the boundary collapses onto that end.
+    3x3 solve, pulled towards the midpoint where the planes leave it undecided: see
+    :func:`~halfedge_edu.algorithms.simplify.optimal_points`), except that an interior
+    edge with exactly one end on the boundary collapses onto that end.
 
     Returns:
         ``(costs (n_edge_slots,), points (n_edge_slots, 3))``; NaN for deleted edges.
@@ -148,6 +149,17 @@ class QEMStepper(StepperWidget):
     def jump(self, collapses: int) -> int:
         """Move ``collapses`` steps at once (negative: back), stopping at either end."""
         return self.go(min(max(self._step + int(collapses), 0), self.n_steps))
+
+    def skipped_steps(self) -> list[int]:
+        """The steps at which the queue's cheapest entry is skipped, not collapsed.
+
+        At step ``k`` (``k`` collapses done) the head of the queue is the first of
+        :attr:`candidates`; where the collapse that follows is another edge, the head was
+        refused. ``go(k)`` and then ``describe()`` say why.
+        """
+        heads = [self.initial_candidates] + [step.next_candidates for step in self.steps[:-1]]
+        return [k for k, (queued, step) in enumerate(zip(heads, self.steps))
+                if queued and queued[0][1] != step.edge]
 
     def refusal(self, edge: int) -> str | None:
         """Why the queue would skip ``edge`` now, or None if it may be collapsed."""

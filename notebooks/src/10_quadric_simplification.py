@@ -29,7 +29,7 @@ from IPython.display import Image
 
 import halfedge_edu as hx
 from halfedge_edu.algorithms import simplify
-from halfedge_edu.algorithms.simplify import face_quadrics, quadric_cost
+from halfedge_edu.algorithms.simplify import face_quadrics, optimal_points, quadric_cost
 from halfedge_edu.algorithms.simplify_queue import QuadricQueue, simplify_sequential, turns_a_face
 from halfedge_edu.viz.qem_stepper import QEMStepper
 
@@ -167,8 +167,7 @@ print("queue's price of edge 0:", cube_queue.price(0)[0], cube_queue.price(0)[1]
 # Now a flat region. Every face around an interior edge of the open patch lies in the
 # plane `z = 0`, so `A` has rank 1: every point of that plane costs 0, and `A x = -q`
 # has no single solution (`np.linalg.solve` would raise `LinAlgError`). The course
-# takes the midpoint; the library also tries the two ends and keeps the cheapest,
-# preferring the midpoint on a tie.
+# takes the midpoint, and so does the library here.
 
 # %%
 patch = hx.sample("open_patch")
@@ -178,6 +177,36 @@ A = (patch_queue.quadrics[5] + patch_queue.quadrics[6])[:3, :3]
 print("rank of A:", np.linalg.matrix_rank(A), " det(A) is 0:", abs(np.linalg.det(A)) < 1e-12)
 cost, point = patch_queue.price(edge.index)
 print("vertices 5 and 6 at", patch.vertex(5).position, patch.vertex(6).position, "-> point", point, "cost", cost)
+
+# %% [markdown]
+# *Nearly* flat is the harder case. Three planes a twentieth of a degree apart can be
+# solved, but they meet far from the edge, and a vertex moved there would fold every
+# triangle around it:
+
+# %%
+def plane(normal, point):
+    normal = np.asarray(normal, dtype=float) / np.linalg.norm(normal)
+    p = np.append(normal, -normal @ point)
+    return np.outer(p, p)
+
+
+tilt = np.radians(0.05)
+Q_nearly_flat = (plane([0, 0, 1], [0, 0, 0]) + plane([np.sin(tilt), 0, np.cos(tilt)], [0, 0, 0.01])
+                 + plane([0, np.sin(tilt), np.cos(tilt)], [0, 0, -0.01]))
+A, q = Q_nearly_flat[:3, :3], Q_nearly_flat[:3, 3]
+ends = np.array([[0.0, 0, 0]]), np.array([[1.0, 0, 0]])
+print("edge from (0, 0, 0) to (1, 0, 0)")
+print("exact solution of A x = -q:", np.linalg.solve(A, -q).round(2))
+print("the library's point:       ", optimal_points(Q_nearly_flat[None], *ends)[0][0].round(3))
+
+# %% [markdown]
+# So the library adds a small pull towards the midpoint `m`: it minimizes the cost
+# plus `eps |x - m|^2`, with `eps` ten-thousandth of `A`'s trace, by solving
+# `(A + eps I) x = -q + eps m`. Then it takes the pull back out twice,
+# `x += (A + eps I)^-1 (-q - A x)`, which leaves the exact answer wherever the planes
+# really decide it (the cube's edge above, any corner) and the midpoint wherever they
+# do not (a flat region, or planes a fraction of a degree apart). Along a crease it
+# gives the point of the crease line nearest the midpoint.
 
 # %% [markdown]
 # ## 4. The priority queue
@@ -279,24 +308,37 @@ print(stepper.describe())
 Image(stepper.screenshot())
 
 # %% [markdown]
-# Read the costs down the run: the first collapse costs about `1e-7`, the last ones
+# Read the costs down the run: the first collapse costs less than `1e-7`, the last ones
 # nearly `1e-3`. The queue always takes the cheapest edge there is, and a collapse
 # usually makes the edges around it more expensive (their vertices now carry more
 # planes), so the cost creeps upwards. At the end nearly every edge left is in the
 # brightest colour: it would cost at least as much as anything collapsed so far.
 #
-# Sometimes the head of the queue is *skipped*. In this run it happens once, near the
-# end, where the mesh is so coarse that the link condition of chapter 08 starts to bite:
+# Sometimes the head of the queue is *skipped*. `skipped_steps()` lists where:
 
 # %%
-stepper.go(348)
+skipped = stepper.skipped_steps()
+print("the queue's cheapest edge is skipped after collapse", ", ".join(str(k) for k in skipped))
+stepper.go(skipped[0])
 print(stepper.describe())
 
 # %% [markdown]
-# Edge 823 was the cheapest, but its ends share a third neighbour, so collapsing it
-# would pinch the surface. The queue drops the entry and pops the next one. A skipped
-# edge is not lost for good: if a later collapse next to it changes its ring, it is
-# re-priced and pushed again.
+# The cheapest edge would turn a face over: its best point lies beyond the fan of
+# triangles around one of its ends, so one of them would flip upside down. The queue
+# drops the entry and pops the next one. Near the end, where the mesh is coarse, the
+# link condition of chapter 08 starts to bite too:
+
+# %%
+for k in skipped:                          # the first skip that the link condition causes
+    stepper.go(k)
+    if "not allowed" in stepper.describe():
+        break
+print(stepper.describe())
+
+# %% [markdown]
+# Here the ends of the cheapest edge share a third neighbour, so collapsing it would
+# pinch the surface. Either way, a skipped edge is not lost for good: if a later
+# collapse next to it changes its ring, it is re-priced and pushed again.
 
 # %% [markdown]
 # ## 6. The target is a face count
@@ -433,9 +475,9 @@ print()
 print(check_optimal_point(optimal_point_answer))
 
 # %% [markdown]
-# (A fixed `1e-9` is fine for these small cases; the library compares `det(A)` with the
-# size of `A`'s entries, so that a mesh measured in millimetres is treated like the
-# same mesh in metres.)
+# (A fixed `1e-9` is fine for these small cases. The library needs no threshold at all:
+# its pull `eps` is a fraction of `A`'s trace, so a mesh measured in millimetres is
+# treated like the same mesh in metres, and `A + eps I` can always be solved.)
 #
 # **3.** A stale entry carries an old cost and an old best point. Collapsing it would
 # use a point computed for vertices that have since moved or merged, and its cost
@@ -459,7 +501,8 @@ print(check_optimal_point(optimal_point_answer))
 # - A vertex's `Q` is the sum of its faces' quadrics; a collapse of `a b` to `x` costs
 #   `[x, 1] (Q_a + Q_b) [x, 1]^T`, and the survivor keeps `Q_a + Q_b`.
 # - The best `x` solves `A x = -q`; when `A` is singular (flat or straight regions), take
-#   the midpoint.
+#   the midpoint. The library adds a small pull towards the midpoint, so that nearly
+#   flat regions do not send the point far off the edge.
 # - The queue: pop the cheapest edge first; skip it if the collapse is not allowed;
 #   collapse; re-price and re-insert the edges around the new vertex (stamps mark the
 #   old entries stale); stop at the target face count.

@@ -110,7 +110,8 @@ for iteration, phase, mesh in history:
 # - The split removes every long edge, and creates many short ones (the halves).
 # - The collapse removes most short edges, and still no edge is long.
 # - The flip halves the degree error without touching a single vertex position.
-# - The smoothing raises the smallest angles more than any other phase.
+# - Over both iterations, the smoothing raises the smallest angles more than any other
+#   phase (the first collapse comes close).
 #
 # The sections below take the phases one at a time.
 
@@ -199,8 +200,9 @@ flipped.flip(best)
 print("degrees after flipping it:           ", {k: flipped.vertex(v.index).degree for k, v in names.items()})
 
 # %% [markdown]
-# Two vertices of degree 7 and two of degree 5 become four of degree 6: a gain of 4,
-# the most a single flip can give. The library computes the gain of every edge at
+# The flip takes one edge from `a` and `b` and gives one to `c` and `d`. Here each of
+# the four moves one step towards 6 (the two 7s become 6, the 5 becomes 6, the 4
+# becomes 5): a gain of 4, the most a single flip can give. The library computes the gain of every edge at
 # once, and flips a set of improving edges that share no vertex together (two flips at
 # one vertex could otherwise both take an edge from it), repeating until nothing
 # improves. It also refuses flips across a sharp crease and flips that would fold a

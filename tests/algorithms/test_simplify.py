@@ -6,6 +6,8 @@ import warnings
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 import halfedge_edu as hx
 from halfedge_edu.algorithms.simplify import (
@@ -14,7 +16,17 @@ from halfedge_edu.algorithms.simplify import (
     optimal_points,
     quadric_cost,
     simplify,
+    solve_symmetric_3x3,
 )
+from halfedge_edu.algorithms.simplify_queue import _best_point
+from tests import strategies as shapes
+
+
+def plane_quadric(normal, point) -> np.ndarray:
+    """(4, 4) quadric of the plane through ``point`` with normal ``normal`` (any length)."""
+    normal = np.asarray(normal, dtype=float) / np.linalg.norm(normal)
+    p = np.append(normal, -normal @ np.asarray(point, dtype=float))
+    return np.outer(p, p)
 
 
 def test_face_quadric_measures_area_times_squared_distance_to_the_plane():
@@ -37,14 +49,96 @@ def test_optimal_point_of_a_cube_corner_is_the_corner():
     assert cost[0] == pytest.approx(0.0, abs=1e-12)
 
 
-def test_flat_region_falls_back_to_the_cheapest_of_ends_and_midpoint():
+def test_flat_region_keeps_the_midpoint():
     # One plane only: the 3x3 system is singular, any point on the plane is optimal.
     vertices = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0]])
     quadric = accumulate(np.repeat(face_quadrics(vertices, np.array([[0, 1, 2]])), 3, axis=0), np.array([0, 1, 2]), 3)
     a, b = vertices[[0]], vertices[[1]]
     point, cost = optimal_points(quadric[[0]] + quadric[[1]], a, b)
-    assert any(np.allclose(point[0], option) for option in (a[0], b[0], 0.5 * (a[0] + b[0])))
+    assert np.allclose(point[0], 0.5 * (a[0] + b[0]))
     assert cost[0] == pytest.approx(0.0, abs=1e-15)
+
+
+def test_an_edge_off_a_plane_moves_onto_it_at_the_nearest_point():
+    # Plane z = 0, edge from (0, 0, 1) to (2, 0, 1): every point of the plane costs
+    # nothing; the one nearest the midpoint (1, 0, 1) is (1, 0, 0).
+    point, cost = optimal_points(plane_quadric([0, 0, 1], [0, 0, 0])[None],
+                                 np.array([[0.0, 0, 1]]), np.array([[2.0, 0, 1]]))
+    assert np.allclose(point[0], [1, 0, 0])
+    assert cost[0] == pytest.approx(0.0, abs=1e-12)
+
+
+@pytest.mark.parametrize(("degrees", "to_crease"), [(2.0, 0.95), (5.0, 0.999)])
+def test_a_crease_pulls_the_point_onto_its_line(degrees, to_crease):
+    # Two planes through the y axis, tilted by +-degrees/2: their crease is the y axis.
+    # The edge runs parallel to it at x = 1; its midpoint is (1, 0.5, 0).
+    half = np.radians(degrees) / 2
+    quadric = (plane_quadric([np.sin(half), 0, np.cos(half)], [0, 0, 0])
+               + plane_quadric([-np.sin(half), 0, np.cos(half)], [0, 0, 0]))
+    point, _ = optimal_points(quadric[None], np.array([[1.0, 0, 0]]), np.array([[1.0, 1, 0]]))
+    assert point[0][0] <= 1.0 - to_crease          # moved (almost) all the way to x = 0
+    assert point[0][1] == pytest.approx(0.5)       # along the crease it stays at the midpoint
+
+
+def test_planes_that_meet_far_away_keep_the_point_near_the_edge():
+    # Three nearly parallel planes (0.05 degrees apart), 0.01 apart near the edge, meet
+    # about ten units away. The exact solution of A x = -q lies there, and moving a
+    # vertex there would fold its faces: the point may go at most 1% of the way.
+    tilt = np.radians(0.05)
+    quadric = (plane_quadric([0, 0, 1], [0, 0, 0])
+               + plane_quadric([np.sin(tilt), 0, np.cos(tilt)], [0, 0, 0.01])
+               + plane_quadric([0, np.sin(tilt), np.cos(tilt)], [0, 0, -0.01]))
+    exact = np.linalg.solve(quadric[:3, :3], -quadric[:3, 3])
+    midpoint = np.array([0.5, 0, 0])
+    assert np.linalg.norm(exact - midpoint) > 10
+    point, cost = optimal_points(quadric[None], np.array([[0.0, 0, 0]]), np.array([[1.0, 0, 0]]))
+    assert np.linalg.norm(point[0] - midpoint) < 0.01 * np.linalg.norm(exact - midpoint)
+    assert cost[0] <= quadric_cost(quadric[None], midpoint[None])[0]
+
+
+@st.composite
+def quadrics_and_edges(draw):
+    """A sum of 1-5 random plane quadrics (area weights 0.1-10) and an edge near them."""
+    rng = np.random.default_rng(draw(st.integers(0, 2**32 - 1)))
+    n_planes = draw(st.integers(1, 5))
+    quadric = sum(rng.uniform(0.1, 10) * plane_quadric(rng.normal(size=3), rng.normal(size=3))
+                  for _ in range(n_planes))
+    return quadric, rng.normal(size=3), rng.normal(size=3)
+
+
+@given(quadrics_and_edges())
+def test_the_point_never_costs_more_than_the_midpoint(drawn):
+    quadric, a, b = drawn
+    point, cost = optimal_points(quadric[None], a[None], b[None])
+    midpoint_cost = quadric_cost(quadric[None], (0.5 * (a + b))[None])[0]
+    assert cost[0] <= midpoint_cost * (1 + 1e-9) + 1e-12
+    assert cost[0] == pytest.approx(quadric_cost(quadric[None], point)[0], abs=1e-12)
+
+
+@given(quadrics_and_edges())
+def test_the_queue_prices_an_edge_like_the_rounds(drawn):
+    quadric, a, b = drawn
+    assert np.allclose(_best_point(quadric, a, b), optimal_points(quadric[None], a[None], b[None])[0][0],
+                       rtol=1e-7, atol=1e-9)
+
+
+def test_solve_symmetric_3x3_matches_numpy():
+    rng = np.random.default_rng(7)
+    m = rng.normal(size=(50, 3, 3))
+    matrices = m @ m.transpose(0, 2, 1) + 0.1 * np.eye(3)          # symmetric, invertible
+    rhs = rng.normal(size=(50, 3))
+    assert np.allclose(solve_symmetric_3x3(matrices, rhs), np.linalg.solve(matrices, rhs[:, :, None])[:, :, 0])
+
+
+def test_accumulate_gives_each_face_quadric_to_its_three_corners():
+    vertices, faces = hx.sample("spot").to_arrays()
+    per_face = face_quadrics(vertices, faces)
+    by_corner = accumulate(per_face, faces, len(vertices))
+    one_by_one = np.zeros((len(vertices), 4, 4))
+    for quadric, corners in zip(per_face, faces):
+        one_by_one[corners] += quadric
+    assert np.allclose(by_corner, one_by_one)
+    assert np.allclose(accumulate(np.repeat(per_face, 3, axis=0), faces.reshape(-1), len(vertices)), one_by_one)
 
 
 @pytest.mark.parametrize("fraction", [0.5, 0.1])
@@ -137,3 +231,35 @@ def test_progress_bar_does_not_change_the_result():
         loud = simplify(mesh, 800, progress=True)
     assert np.array_equal(quiet.to_arrays()[1], loud.to_arrays()[1])
     assert np.allclose(quiet.to_arrays()[0], loud.to_arrays()[0])
+
+
+@given(case=shapes.cases(), fraction=st.sampled_from([0.8, 0.5, 0.2]))
+def test_any_mesh_stays_valid_with_its_genus_and_boundary_loops(case, fraction):
+    mesh = hx.HalfedgeMesh.from_faces(case.vertices, case.faces)
+    target = max(1, int(fraction * mesh.n_faces))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result, report = simplify(mesh, target, return_report=True)
+    result.validate()
+    assert (result.genus, result.n_boundary_loops) == (case.genus, case.n_boundary_loops)
+    assert result.n_faces == report.faces_after <= mesh.n_faces
+    said_so = any(issubclass(w.category, hx.MeshWarning) for w in caught)
+    if report.reached_target:
+        assert target - 1 <= result.n_faces <= target and not said_so
+    else:
+        assert result.n_faces > target and said_so
+
+
+def test_a_nearly_flat_mesh_keeps_its_shape():
+    # Spot cut into four by midpoint subdivision: the same surface, with large flat
+    # regions and creases of a degree or two between Spot's own faces. Halving the
+    # faces must keep every vertex on that surface: on the planes and on the creases.
+    import trimesh
+
+    spot = hx.sample("spot").to_trimesh()
+    vertices, faces = trimesh.remesh.subdivide(spot.vertices, spot.faces)
+    mesh = hx.HalfedgeMesh.from_faces(vertices, faces)
+    result = simplify(mesh, 2 * len(spot.faces))
+    result.validate()
+    _, distance, _ = trimesh.proximity.closest_point(spot, result.to_arrays()[0])
+    assert distance.max() < 1e-5 * np.linalg.norm(spot.extents)

@@ -78,6 +78,21 @@ def test_describe_lists_the_queue_head_and_what_was_re_pushed(stepper):
     assert lines[-1].startswith("next: edge ")
 
 
+def test_skipped_steps_are_the_steps_whose_description_lists_a_skip(small_spot, closing):
+    # Down to 100 faces the queue refuses its head a few times (here near the end).
+    widget = QEMStepper(small_spot, 100, mode="static", checkpoint_every=8)
+    closing(widget)
+    skipped = widget.skipped_steps()
+    assert skipped
+    # Each skip, the steps on either side of it, and a spread of the others.
+    looked_at = sorted({0, widget.n_steps - 1, *range(0, widget.n_steps, 25),
+                        *(k + d for k in skipped for d in (-1, 0, 1))})
+    for k in looked_at:
+        widget.go(k)
+        lines = widget.describe().splitlines()
+        assert any(line.startswith("skip: edge") for line in lines) == (k in skipped), k
+
+
 def test_quadrics_are_merged_as_the_run_merged_them(stepper, small_spot):
     stepper.go(10)
     last = stepper.steps[9]
