@@ -124,17 +124,24 @@ PULL_TO_MIDPOINT = 1e-4
 REFINEMENT_STEPS = 2
 
 
-def solve_symmetric_3x3(matrix: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-    """(k, 3) solutions of k symmetric 3x3 systems ``matrix[i] x = rhs[i]``, by the adjugate.
+# A symmetric 3x3 matrix has six distinct entries. The functions below keep them as six
+# 1-D arrays ``(m00, m11, m22, m01, m02, m12)``, one entry of k matrices each: whole-array
+# arithmetic on contiguous rows is several times faster than on (k, 3, 3) slices, and
+# numpy's batched ``np.linalg.solve`` calls LAPACK once per matrix, which for 3x3
+# systems is slower still.
 
-    ``x = adj(M) r / det(M)``, written out entry by entry. numpy's batched
-    ``np.linalg.solve`` calls LAPACK once per matrix, which for 3x3 systems is about six
-    times slower than these few whole-array multiplications. The caller makes sure
-    every ``matrix[i]`` is invertible.
+def _symmetric_entries(matrix: np.ndarray) -> tuple[np.ndarray, ...]:
+    """The six distinct entries ``(m00, m11, m22, m01, m02, m12)`` of (k, 3, 3) symmetric matrices."""
+    k = len(matrix)
+    return tuple(matrix.reshape(k, 9)[:, [0, 4, 8, 1, 2, 5]].T.copy())
+
+
+def _symmetric_inverse(m00, m11, m22, m01, m02, m12) -> tuple[np.ndarray, ...]:
+    """The inverse's six entries, by the adjugate: ``adj(M) / det(M)``.
+
+    The adjugate of a symmetric matrix is symmetric, so six cofactors are enough. The
+    caller makes sure every matrix is invertible.
     """
-    m00, m11, m22 = matrix[:, 0, 0], matrix[:, 1, 1], matrix[:, 2, 2]
-    m01, m02, m12 = matrix[:, 0, 1], matrix[:, 0, 2], matrix[:, 1, 2]
-    # Cofactors; the adjugate of a symmetric matrix is symmetric, so six are enough.
     c00 = m11 * m22 - m12 * m12
     c01 = m02 * m12 - m01 * m22
     c02 = m01 * m12 - m02 * m11
@@ -142,14 +149,21 @@ def solve_symmetric_3x3(matrix: np.ndarray, rhs: np.ndarray) -> np.ndarray:
     c12 = m01 * m02 - m00 * m12
     c22 = m00 * m11 - m01 * m01
     det = m00 * c00 + m01 * c01 + m02 * c02
-    r0, r1, r2 = rhs[:, 0], rhs[:, 1], rhs[:, 2]
-    adjugate_times_rhs = np.stack(
-        [c00 * r0 + c01 * r1 + c02 * r2,
-         c01 * r0 + c11 * r1 + c12 * r2,
-         c02 * r0 + c12 * r1 + c22 * r2],
-        axis=1,
-    )
-    return adjugate_times_rhs / det[:, None]
+    return c00 / det, c11 / det, c22 / det, c01 / det, c02 / det, c12 / det
+
+
+def _symmetric_times(entries, x0, x1, x2) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``M x`` for k symmetric matrices given by their six entries, and k vectors by coordinate."""
+    m00, m11, m22, m01, m02, m12 = entries
+    return (m00 * x0 + m01 * x1 + m02 * x2,
+            m01 * x0 + m11 * x1 + m12 * x2,
+            m02 * x0 + m12 * x1 + m22 * x2)
+
+
+def solve_symmetric_3x3(matrix: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """(k, 3) solutions of k symmetric 3x3 systems ``matrix[i] x = rhs[i]``, by the adjugate."""
+    inverse = _symmetric_inverse(*_symmetric_entries(matrix))
+    return np.stack(_symmetric_times(inverse, *rhs.T), axis=1)
 
 
 def optimal_points(quadric: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -175,23 +189,22 @@ def optimal_points(quadric: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[n
     corner); where they do not, it is close to 1, and ``x`` stays at the midpoint.
     For two planes meeting along a crease: at 2 degrees or more ``x`` goes onto the
     crease line, at 0.6 degrees halfway, below 0.1 degrees it stays at the midpoint as
-    if the region were flat. A quadric with no planes at all (zero-area faces) gives
-    the midpoint.
+    if the region were flat.
     """
-    A = quadric[:, :3, :3]                                              # (k, 3, 3)
-    q = quadric[:, :3, 3]                                               # (k, 3)
-    midpoint = 0.5 * (a + b)
-    eps = PULL_TO_MIDPOINT * np.trace(A, axis1=1, axis2=2)              # (k,)
-    has_planes = eps > 0
-    points = midpoint.copy()
-    if has_planes.any():
-        pulled = A[has_planes] + eps[has_planes, None, None] * np.eye(3)
-        rhs = -q[has_planes] + eps[has_planes, None] * midpoint[has_planes]
-        x = solve_symmetric_3x3(pulled, rhs)
-        for _ in range(REFINEMENT_STEPS):       # take the pull back out where A decides
-            residual = -q[has_planes] - np.einsum("kij,kj->ki", A[has_planes], x)
-            x = x + solve_symmetric_3x3(pulled, residual)
-        points[has_planes] = x
+    k = len(quadric)
+    A = _symmetric_entries(quadric[:, :3, :3])                    # six (k,) arrays
+    q = quadric.reshape(k, 16)[:, [3, 7, 11]].T.copy()            # (3, k): q by coordinate
+    midpoint = (0.5 * (a + b)).T                                  # (3, k)
+    trace = A[0] + A[1] + A[2]
+    # A quadric with no planes at all (zero-area faces) has A = 0 and q = 0: with
+    # eps = 1 the solve below gives the midpoint, as it should.
+    eps = np.where(trace > 0, PULL_TO_MIDPOINT * trace, 1.0)
+    pulled_inverse = _symmetric_inverse(A[0] + eps, A[1] + eps, A[2] + eps, A[3], A[4], A[5])
+    x = np.array(_symmetric_times(pulled_inverse, *(eps * midpoint - q)))          # (3, k)
+    for _ in range(REFINEMENT_STEPS):                  # take the pull back out where A decides
+        residual = -q - np.array(_symmetric_times(A, *x))
+        x = x + np.array(_symmetric_times(pulled_inverse, *residual))
+    points = np.ascontiguousarray(x.T)
     return points, np.maximum(quadric_cost(quadric, points), 0.0)
 
 
@@ -375,16 +388,15 @@ class _EdgePrices:
         keys = edges[:, 0] * n + edges[:, 1]                       # ascending (np.unique order)
         stale = moved[edges[:, 0]] | moved[edges[:, 1]]
         if len(self.keys):
+            # Take every edge's old price by its key, then overwrite the stale ones
+            # (one gather of whole arrays is cheaper than picking the fresh ones out).
             where = np.minimum(np.searchsorted(self.keys, keys), len(self.keys) - 1)
             stale |= self.keys[where] != keys
-        points = np.empty((len(edges), 3))
-        cost = np.empty(len(edges))
-        keep = np.empty(len(edges), dtype=np.int64)
-        fresh = ~stale
-        if fresh.any():
-            points[fresh] = self.points[where[fresh]]
-            cost[fresh] = self.cost[where[fresh]]
-            keep[fresh] = self.keep[where[fresh]]
+            points, cost, keep = self.points[where], self.cost[where], self.keep[where]
+        else:
+            points = np.empty((len(edges), 3))
+            cost = np.empty(len(edges))
+            keep = np.empty(len(edges), dtype=np.int64)
         todo = np.flatnonzero(stale)
         a, b = edges[todo, 0], edges[todo, 1]
         quadric = quadrics[a] + quadrics[b]

@@ -325,8 +325,8 @@ print(stepper.describe())
 # %% [markdown]
 # The cheapest edge would turn a face over: its best point lies beyond the fan of
 # triangles around one of its ends, so one of them would flip upside down. The queue
-# drops the entry and pops the next one. Near the end, where the mesh is coarse, the
-# link condition of chapter 08 starts to bite too:
+# drops the entry and pops the next one. Later, as the mesh gets coarser, the link
+# condition of chapter 08 starts to bite too:
 
 # %%
 for k in skipped:                          # the first skip that the link condition causes

@@ -201,8 +201,7 @@ print("degrees after flipping it:           ", {k: flipped.vertex(v.index).degre
 
 # %% [markdown]
 # The flip takes one edge from `a` and `b` and gives one to `c` and `d`. Here each of
-# the four moves one step towards 6 (the two 7s become 6, the 5 becomes 6, the 4
-# becomes 5): a gain of 4, the most a single flip can give. The library computes the gain of every edge at
+# the four moves one step towards 6: a gain of 4, the most a single flip can give. The library computes the gain of every edge at
 # once, and flips a set of improving edges that share no vertex together (two flips at
 # one vertex could otherwise both take an edge from it), repeating until nothing
 # improves. It also refuses flips across a sharp crease and flips that would fold a

@@ -389,7 +389,7 @@ Image(histogram_png(list(answers.values()), list(answers), L_B, size=(9.6, 2.6))
 #
 # They are not free: their mean distance to Spot is about three times that of A, and
 # the largest (at the tips of the horns and ears, rounded off by the smoothing) is
-# about half of L. Between B and C there is little to choose. B projects onto the
+# half of L or more. Between B and C there is little to choose. B projects onto the
 # original Spot, so it is a little closer; C projects onto the simplified Spot and
 # inherits its error, but on a huge input it is the practical order: simplification is
 # cheap and gets the size right, and a few remeshing iterations then fix the
