@@ -47,7 +47,7 @@ import numpy as np
 
 from ..core.mesh import HalfedgeMesh
 from ._progress import progress_range
-from .simplify import _choose_round, _cross, _no_turned_faces, _topology_ok, csr, expand
+from .simplify import _choose_round, _cross, _no_turned_faces, _topology_ok, expand, vertex_faces, vertex_neighbours
 
 #: Split edges longer than this times L; collapse edges shorter than ``COLLAPSE_BELOW * L``.
 SPLIT_ABOVE = 4.0 / 3.0
@@ -278,10 +278,9 @@ def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Re
     first, second = np.where(swap, b, a), np.where(swap, a, b)
 
     degree = np.bincount(edges.reshape(-1), minlength=n)
-    both = np.concatenate([edges, edges[:, ::-1]])
-    neighbours = csr(both[:, 0], both[:, 1], n, stable=False)
+    neighbours = vertex_neighbours(edges, n)
     valid, opposite_owner, opposite_vertex = _topology_ok(
-        n, edges, edges[candidates], along, boundary_vertex, degree, neighbours
+        n, edges[candidates], along, boundary_vertex, degree, neighbours
     )
 
     # Try the places in turn; the first one that makes no edge longer than 4/3 L wins.
@@ -307,10 +306,10 @@ def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Re
         remove[fits] = np.where(kept[fits] == first[fits], second[fits], first[fits])
     valid &= ~np.isnan(points[:, 0])
     turned = np.zeros(len(candidates), dtype=bool)
-    vertex_faces = csr(faces.reshape(-1), np.repeat(np.arange(len(faces)), 3), n, stable=False)
+    faces_around = vertex_faces(faces, n)
 
     def no_turned_faces(indices: np.ndarray) -> np.ndarray:
-        ok = _no_turned_faces(vertices, faces, vertex_faces, points[indices], keep[indices],
+        ok = _no_turned_faces(vertices, faces, faces_around, points[indices], keep[indices],
                               remove[indices], max_normal_cos)
         turned[indices[~ok]] = True
         return ok

@@ -201,7 +201,7 @@ print("the library's point:       ", optimal_points(Q_nearly_flat[None], *ends)[
 
 # %% [markdown]
 # So the library adds a small pull towards the midpoint `m`: it minimizes the cost
-# plus `eps |x - m|^2`, with `eps` ten-thousandth of `A`'s trace, by solving
+# plus `eps |x - m|^2`, with `eps` a ten-thousandth of `A`'s trace, by solving
 # `(A + eps I) x = -q + eps m`. Then it takes the pull back out twice,
 # `x += (A + eps I)^-1 (-q - A x)`, which leaves the exact answer wherever the planes
 # really decide it (the cube's edge above, any corner) and the midpoint wherever they
