@@ -432,10 +432,10 @@ def _choose_round(edges, candidates, open_, n, topology_ok, no_turned_faces, kno
     condition; ``opposite_owner`` holds candidate indices), then
     ``no_turned_faces(indices) -> ok`` (the geometric check). Checking the picked few
     instead of every candidate is what keeps a round cheap: a pass picks a few
-    candidates in a hundred. What passes is accepted; then every vertex within one ring of an
-    accepted edge is blocked, and so is every vertex that just lost an edge as an
-    opposite vertex, and the next pass picks among what is left. A few passes come
-    close to a maximal set, so fewer rounds are needed.
+    candidates in a hundred. What passes is accepted; then every vertex within one
+    ring of an accepted edge is blocked, and so is every vertex that just lost an edge
+    as an opposite vertex, and the next pass picks among what is left. A few passes
+    come close to a maximal set, so fewer rounds are needed.
 
     ``known_opposites``: ``(owner, vertex)`` arrays of opposite vertices the caller has
     already found (candidate indices and vertices), so that candidates whose opposite
@@ -457,9 +457,8 @@ def _choose_round(edges, candidates, open_, n, topology_ok, no_turned_faces, kno
         still_open = np.flatnonzero(open_)
         picked = still_open[_independent(cand_edges[still_open], priority[still_open], edges, n)]
         ok, opposite_owner, opposite_vertex = topology_ok(picked)
-        if known_opposites is None:
-            known_owner = np.concatenate([known_owner, opposite_owner])
-            known_vertex = np.concatenate([known_vertex, opposite_vertex])
+        known_owner = np.concatenate([known_owner, opposite_owner])     # repeats do no harm
+        known_vertex = np.concatenate([known_vertex, opposite_vertex])
         open_[picked[~ok]] = False                        # refused for the whole round
         passed = np.zeros(len(candidates), dtype=bool)
         passed[picked[ok]] = True
