@@ -32,10 +32,10 @@ import numpy as np
 
 import halfedge_edu as hx
 from halfedge_edu.data import sample
-from halfedge_edu.ops import (
+from halfedge_edu.core.ops import (
     OperationLog, can_collapse, can_flip, can_split, collapse, flip, split,
 )
-from halfedge_edu.ops.log import Writer
+from halfedge_edu.core.ops.log import Writer
 
 OPERATIONS = {"flip": (can_flip, flip), "split": (can_split, split), "collapse": (can_collapse, collapse)}
 

@@ -288,7 +288,7 @@ def loop_subdivide_by_operations(
 
     Attention: one Python step per edge; use :func:`loop_subdivide` on big meshes.
     """
-    from ..ops import flip, split
+    from ..core.ops import flip, split
 
     if weights not in VERTEX_WEIGHTS:
         raise ValueError(f"weights must be one of {VERTEX_WEIGHTS}, got {weights!r}")

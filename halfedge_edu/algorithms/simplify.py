@@ -19,7 +19,7 @@ disturb each other (no two within one ring of each other), all at once, with num
 edge is taken only if it is the cheapest in its neighbourhood, so the order stays
 close to the queue's, and tens of rounds replace tens of thousands of Python steps.
 
-Every collapse must pass the same checks as :func:`halfedge_edu.ops.can_collapse`: the
+Every collapse must pass the same checks as :func:`halfedge_edu.core.ops.can_collapse`: the
 link condition (the endpoints share exactly the two opposite vertices, one on the
 boundary), no interior edge between two boundary vertices, no opposite vertex left with
 too few edges; and a geometric check the topology does not see: no face around the

@@ -32,7 +32,9 @@ from typing import Iterator, NamedTuple
 import numpy as np
 
 from .build import INDEX, HalfedgeArrays, build_arrays, check_input, drop_unreferenced
+from . import ops
 from .elements import Edge, Face, Halfedge, Vertex
+from .ops.check import OpCheck
 from .rings import RingWalk, walk_rings
 
 
@@ -487,13 +489,6 @@ class HalfedgeMesh:
         vertices, faces = self.to_arrays()
         return pyvista.PolyData.from_regular_faces(vertices, faces)
 
-    def save(self, path) -> None:
-        """Write the mesh to ``path`` (OBJ by the package's writer; others via trimesh)."""
-        # The one place core reaches into io/: a convenience door, imported on use.
-        from ..io import save
-
-        save(self, path)
-
     # ----------------------------------------------------------------------------------
     # Growing and deleting (used by local operations)
     # ----------------------------------------------------------------------------------
@@ -639,44 +634,33 @@ class HalfedgeMesh:
 
         validate(self)
 
-    # The local operations live in ops/, one readable file each; these methods are the
-    # doors the API promises (``mesh.flip(e)``), imported on first use so that core
-    # itself depends on nothing else in the package.
+    # The local operations live in core/ops/, one readable file each (flip.py, split.py,
+    # collapse.py); they belong to the mesh, as in pmp-library, so these methods simply
+    # hand over. ops/ reads the mesh's arrays and writes them through one Writer.
 
-    def can_flip(self, edge):
+    def can_flip(self, edge) -> OpCheck:
         """Whether :meth:`flip` is allowed on ``edge``: truthy result with a ``.reason``."""
-        from ..ops import can_flip
-
-        return can_flip(self, edge)
+        return ops.can_flip(self, edge)
 
     def flip(self, edge) -> Edge:
-        """Turn ``edge`` inside its two triangles; returns the same edge. See ``ops/flip.py``."""
-        from ..ops import flip
+        """Turn ``edge`` inside its two triangles; returns the same edge. See ``core/ops/flip.py``."""
+        return ops.flip(self, edge)
 
-        return flip(self, edge)
-
-    def can_split(self, edge):
-        from ..ops import can_split
-
-        return can_split(self, edge)
+    def can_split(self, edge) -> OpCheck:
+        """Whether :meth:`split` is allowed on ``edge``: truthy result with a ``.reason``."""
+        return ops.can_split(self, edge)
 
     def split(self, edge, position=None) -> Vertex:
         """Split ``edge`` at ``position`` (midpoint by default); returns the new vertex."""
-        from ..ops import split
+        return ops.split(self, edge, position)
 
-        return split(self, edge, position)
-
-    def can_collapse(self, edge):
+    def can_collapse(self, edge) -> OpCheck:
         """Whether :meth:`collapse` is allowed (the link condition and boundary rules)."""
-        from ..ops import can_collapse
-
-        return can_collapse(self, edge)
+        return ops.can_collapse(self, edge)
 
     def collapse(self, edge, position=None) -> Vertex:
         """Merge the two ends of ``edge`` at ``position`` (midpoint by default); returns the survivor."""
-        from ..ops import collapse
-
-        return collapse(self, edge, position)
+        return ops.collapse(self, edge, position)
 
 
 def _old_to_new(deleted: np.ndarray) -> np.ndarray:

@@ -45,7 +45,7 @@ import numpy as np
 from halfedge_edu.core.errors import MeshInvariantError
 from halfedge_edu.core.mesh import HalfedgeMesh
 from halfedge_edu.data import sample
-from halfedge_edu.ops import OperationLog, can_collapse, can_flip, collapse, flip
+from halfedge_edu.core.ops import OperationLog, can_collapse, can_flip, collapse, flip
 
 from .checks import TIME_LIMIT, CheckResult, _failed, _passed, _run
 

@@ -8,7 +8,7 @@
     print(w.describe())
 
 How it works: the stepper copies the mesh, runs the real operation on the copy with an
-:class:`~halfedge_edu.ops.log.OperationLog`, and keeps the mesh as it was before. Step
+:class:`~halfedge_edu.core.ops.log.OperationLog`, and keeps the mesh as it was before. Step
 ``k`` shows "before, plus the first k changes applied" (``log.replay``), so going back
 is as cheap as going forward and the pictures can never disagree with the operation.
 A change that creates an element is shown together with the lines that fill in its
@@ -92,7 +92,7 @@ class OperationStepper(StepperWidget):
 
     def __init__(self, mesh, edge, *, position=None, mode: str | None = None, preset="default",
                  rings: int = 2, window_size=None):
-        from ..ops.log import OperationLog
+        from ..core.ops.log import OperationLog
 
         self.before = mesh.copy()
         self.after = mesh.copy()
@@ -447,12 +447,12 @@ class FlipStepper(OperationStepper):
     operation = "flip"
 
     def _can(self, mesh, edge):
-        from ..ops import can_flip
+        from ..core.ops import can_flip
 
         return can_flip(mesh, edge)
 
     def _run(self, mesh, edge, position, log) -> None:
-        from ..ops import flip
+        from ..core.ops import flip
 
         flip(mesh, edge, log=log)
 
@@ -464,12 +464,12 @@ class SplitStepper(OperationStepper):
     operation = "split"
 
     def _can(self, mesh, edge):
-        from ..ops import can_split
+        from ..core.ops import can_split
 
         return can_split(mesh, edge)
 
     def _run(self, mesh, edge, position, log) -> None:
-        from ..ops import split
+        from ..core.ops import split
 
         split(mesh, edge, position, log=log)
 
@@ -481,12 +481,12 @@ class CollapseStepper(OperationStepper):
     operation = "collapse"
 
     def _can(self, mesh, edge):
-        from ..ops import can_collapse
+        from ..core.ops import can_collapse
 
         return can_collapse(mesh, edge)
 
     def _run(self, mesh, edge, position, log) -> None:
-        from ..ops import collapse
+        from ..core.ops import collapse
 
         collapse(mesh, edge, position, log=log)
 

@@ -25,7 +25,7 @@ from IPython.display import Image
 from PIL import Image as PILImage, ImageDraw, ImageFont
 
 import halfedge_edu as hx
-from halfedge_edu.ops import OperationLog, can_flip, can_split, flip, split
+from halfedge_edu.core.ops import OperationLog, can_flip, can_split, flip, split
 from halfedge_edu.viz import FlipStepper, HalfedgeScene, SplitStepper
 
 
@@ -80,7 +80,7 @@ side_by_side(
 # `v0 v3 v1 v2`; a flip replaces the diagonal `v0 – v1` by the other diagonal
 # `v2 – v3`, reusing the same edge, its two halfedges and both faces.**
 #
-# The names are those of `halfedge_edu/ops/flip.py`, which you can read top to bottom:
+# The names are those of `halfedge_edu/core/ops/flip.py`, which you can read top to bottom:
 #
 # ```
 #             before                               after
@@ -220,7 +220,7 @@ side_by_side(
 # now runs through `m`.
 #
 # The names follow the flip's, plus `m` and the new halfedges `h_mX` (from `m` to `vX`)
-# and their twins `h_Xm`; the picture is at the top of `halfedge_edu/ops/split.py`.
+# and their twins `h_Xm`; the picture is at the top of `halfedge_edu/core/ops/split.py`.
 
 # %%
 for name, mesh, log in (("interior edge 1", split_inside, log_inside), ("boundary edge 0", split_boundary, log_boundary)):

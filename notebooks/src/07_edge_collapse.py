@@ -26,7 +26,7 @@ from IPython.display import Image
 from PIL import Image as PILImage, ImageDraw, ImageFont
 
 import halfedge_edu as hx
-from halfedge_edu.ops import OperationLog, can_collapse, collapse
+from halfedge_edu.core.ops import OperationLog, can_collapse, collapse
 from halfedge_edu.viz import CollapseAtlas, CollapseStepper, HalfedgeScene
 
 
@@ -97,7 +97,7 @@ grid(
 # it deletes the edge, `vB`, both faces beside the edge, and one more edge of each of
 # those faces; `vA` moves to the midpoint of the edge.**
 #
-# The names are those of `halfedge_edu/ops/collapse.py` (a halfedge `h_X_Y` runs from
+# The names are those of `halfedge_edu/core/ops/collapse.py` (a halfedge `h_X_Y` runs from
 # `vX` to `vY`):
 #
 # ```

@@ -26,8 +26,8 @@ from IPython.display import Image
 from PIL import Image as PILImage
 
 import halfedge_edu as hx
-from halfedge_edu.ops import can_collapse, collapse, link_condition, link_of_edge, link_of_vertex
-from halfedge_edu.ops.link import BOUNDARY
+from halfedge_edu.core.ops import can_collapse, collapse, link_condition, link_of_edge, link_of_vertex
+from halfedge_edu.core.ops.link import BOUNDARY
 from halfedge_edu.viz import side_by_side
 
 LINK_A, LINK_B, SHARED, EXTRA = "#E69F00", "#56B4E9", "#009E73", "#D55E00"   # Okabe-Ito colours

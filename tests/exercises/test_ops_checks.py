@@ -14,7 +14,7 @@ import pytest
 
 from halfedge_edu.exercises.checks import CheckResult
 from halfedge_edu.exercises.ops_checks import check_collapse, check_flip, collapse_cases, flip_cases
-from halfedge_edu.ops import can_collapse, can_flip, collapse, flip
+from halfedge_edu.core.ops import can_collapse, can_flip, collapse, flip
 
 
 # --------------------------------------------------------------------------------------

@@ -9,7 +9,7 @@ import pytest
 from PIL import Image
 
 from halfedge_edu.data import sample
-from halfedge_edu.ops import OperationLog, split
+from halfedge_edu.core.ops import OperationLog, split
 from halfedge_edu.viz.steppers import CollapseAtlas, CollapseStepper, FlipStepper, SplitStepper, group_changes
 
 ARRAYS = ("halfedge_next", "halfedge_prev", "halfedge_vertex", "halfedge_face", "vertex_halfedge", "face_halfedge")

@@ -18,10 +18,10 @@ from hypothesis import strategies as st
 
 import halfedge_edu as hx
 from halfedge_edu.data import sample
-from halfedge_edu.ops import (
+from halfedge_edu.core.ops import (
     OperationLog, can_collapse, can_flip, can_split, collapse, flip, link_condition, split,
 )
-from tests.ops.helpers import (
+from tests.core.ops.helpers import (
     assert_replay_gives, assert_same_mesh, assert_unchanged, counts, jittered, pillow, snapshot,
 )
 from tests.strategies import build, cases

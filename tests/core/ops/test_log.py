@@ -5,9 +5,9 @@ from __future__ import annotations
 import pytest
 
 from halfedge_edu.data import sample
-from halfedge_edu.ops import OperationLog, PointerChange, collapse, flip, split
-from halfedge_edu.ops import log as log_module
-from tests.ops.helpers import assert_replay_gives
+from halfedge_edu.core.ops import OperationLog, PointerChange, collapse, flip, split
+from halfedge_edu.core.ops import log as log_module
+from tests.core.ops.helpers import assert_replay_gives
 
 def logged(operation, mesh, *args, **kwargs):
     before = mesh.copy()

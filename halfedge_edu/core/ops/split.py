@@ -49,12 +49,12 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from ..core.elements import Vertex
+from ..elements import Vertex
 from .check import OpCheck, edge_argument, position_argument
 from .log import OperationLog, writer_for
 
 if TYPE_CHECKING:
-    from ..core.mesh import HalfedgeMesh
+    from ..mesh import HalfedgeMesh
 
 __all__ = ["can_split", "split"]
 

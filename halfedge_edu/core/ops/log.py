@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, NamedTuple
 
 if TYPE_CHECKING:
-    from ..core.mesh import HalfedgeMesh
+    from ..mesh import HalfedgeMesh
 
 __all__ = ["LoggingWriter", "OperationLog", "PointerChange", "Writer", "writer_for"]
 

@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING, NamedTuple
 from .check import edge_argument
 
 if TYPE_CHECKING:
-    from ..core.mesh import HalfedgeMesh
+    from ..mesh import HalfedgeMesh
 
 __all__ = [
     "BOUNDARY", "Link", "LinkCondition", "halfedge_between", "link_condition", "link_of_edge",

@@ -12,11 +12,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..core.elements import Edge, Halfedge, _Handle
-from ..core.errors import TopologyError
+from ..elements import Edge, Halfedge, _Handle
+from ..errors import TopologyError
 
 if TYPE_CHECKING:
-    from ..core.mesh import HalfedgeMesh
+    from ..mesh import HalfedgeMesh
 
 
 class OpCheck:

@@ -7,8 +7,8 @@ import pytest
 
 import halfedge_edu as hx
 from halfedge_edu.data import sample
-from halfedge_edu.ops import can_flip, flip
-from tests.ops.helpers import assert_same_mesh, assert_unchanged, counts, pillow, snapshot, tent
+from halfedge_edu.core.ops import can_flip, flip
+from tests.core.ops.helpers import assert_same_mesh, assert_unchanged, counts, pillow, snapshot, tent
 
 STRIP_VERTICES = [[0, 0, 0], [1, 0, 0], [0.5, 1, 0], [1.5, 1, 0], [2, 0, 0]]
 

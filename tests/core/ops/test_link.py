@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 from halfedge_edu.data import sample
-from halfedge_edu.ops import link_condition, link_of_edge, link_of_vertex
-from halfedge_edu.ops.link import BOUNDARY, halfedge_between, one_ring, outgoing
+from halfedge_edu.core.ops import link_condition, link_of_edge, link_of_vertex
+from halfedge_edu.core.ops.link import BOUNDARY, halfedge_between, one_ring, outgoing
 
 
 def test_the_link_of_an_interior_vertex_is_the_polygon_around_it():

@@ -7,8 +7,8 @@ import pytest
 
 import halfedge_edu as hx
 from halfedge_edu.data import sample
-from halfedge_edu.ops import OperationLog, can_collapse, collapse
-from tests.ops.helpers import (
+from halfedge_edu.core.ops import OperationLog, can_collapse, collapse
+from tests.core.ops.helpers import (
     assert_same_mesh, assert_unchanged, counts, open_tetrahedron, pillow, snapshot,
 )
 

@@ -7,8 +7,8 @@ import pytest
 
 from halfedge_edu.data import sample
 import halfedge_edu as hx
-from halfedge_edu.ops import can_split, collapse, split
-from tests.ops.helpers import assert_same_mesh, assert_unchanged, counts, pillow, snapshot
+from halfedge_edu.core.ops import can_split, collapse, split
+from tests.core.ops.helpers import assert_same_mesh, assert_unchanged, counts, pillow, snapshot
 
 STRIP_VERTICES = [[0, 0, 0], [1, 0, 0], [0.5, 1, 0], [1.5, 1, 0], [2, 0, 0]]
 

@@ -40,13 +40,13 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from ..core.elements import Edge
+from ..elements import Edge
 from .check import OpCheck, edge_argument
 from .link import halfedge_between, outgoing
 from .log import OperationLog, writer_for
 
 if TYPE_CHECKING:
-    from ..core.mesh import HalfedgeMesh
+    from ..mesh import HalfedgeMesh
 
 __all__ = ["can_flip", "flip"]
 
