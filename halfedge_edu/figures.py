@@ -15,12 +15,13 @@ scenes and widgets the notebooks use, in static mode.
 from __future__ import annotations
 
 import argparse
-import io
 import os
 import sys
 import tempfile
 from pathlib import Path
 from typing import Callable
+
+from .viz.pictures import TitleStyle, grid_png, plotter_png
 
 #: name -> (what it shows, function returning PNG bytes); filled by @figure below.
 FIGURES: dict[str, tuple[str, Callable[[], bytes]]] = {}
@@ -67,24 +68,13 @@ def _widget_picture(widget, *moves) -> bytes:
         widget.close()
 
 
-def _row(pictures: list[bytes], titles: list[str] | None = None) -> bytes:
-    """PNGs side by side on white, each with an optional title above it."""
-    from PIL import Image, ImageDraw, ImageFont
+#: Titles above the pictures of a figure row: a little larger than the notebooks' own.
+FIGURE_TITLES = TitleStyle(font_size=18, band=30, left=12, top=6, color=(20, 20, 20))
 
-    images = [Image.open(io.BytesIO(p)).convert("RGB") for p in pictures]
-    band = 30 if titles else 0
-    sheet = Image.new("RGB", (sum(i.width for i in images), max(i.height for i in images) + band), "white")
-    draw = ImageDraw.Draw(sheet)
-    font = ImageFont.load_default(size=18) if titles else None
-    x = 0
-    for k, image in enumerate(images):
-        sheet.paste(image, (x, band))
-        if titles:
-            draw.text((x + 12, 6), titles[k], fill=(20, 20, 20), font=font)
-        x += image.width
-    buffer = io.BytesIO()
-    sheet.save(buffer, format="png")
-    return buffer.getvalue()
+
+def _row(pictures: list[bytes], titles: list[str]) -> bytes:
+    """PNGs side by side on white, each with its title above it."""
+    return grid_png([pictures], [titles], style=FIGURE_TITLES)
 
 
 def _two_triangles():
@@ -138,7 +128,6 @@ def cube_large() -> bytes:
 
 @figure("bunny", "the Stanford bunny, whole")
 def bunny() -> bytes:
-    import numpy as np
     import pyvista as pv
 
     from .data import sample
@@ -153,15 +142,9 @@ def bunny() -> bytes:
                          smooth_shading=True)
         plotter.view_xy()
         plotter.camera.zoom(1.3)
-        plotter.render()
-        pixels = plotter.screenshot(None, return_img=True)
+        return plotter_png(plotter)
     finally:
         plotter.close()
-    from PIL import Image
-
-    buffer = io.BytesIO()
-    Image.fromarray(np.asarray(pixels)).save(buffer, format="png")
-    return buffer.getvalue()
 
 
 @figure("bunny_closeup", "on the bunny only the arrows and labels near the highlight are drawn")

@@ -35,8 +35,8 @@ import numpy as np
 
 from ..algorithms.loop import LoopStep, loop_positions, loop_subdivide_by_operations
 from .painted_scene import Layer, PaintedScene, legend_html
-from .palette import BLACK, BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, VERMILLION
-from .widgets import StepperWidget, _css
+from .palette import BLACK, BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, VERMILLION, panel_css
+from .widgets import StepperWidget
 
 #: The largest mesh (in edges) the stepper accepts: it keeps one copy per step.
 MAX_EDGES = 600
@@ -287,7 +287,7 @@ class LoopStepper(StepperWidget):
         return [row]
 
     def _panel_html(self) -> str:
-        size = _css(self.look)["font"]
+        size = panel_css(self.look)["font"]
         record = self.records[self._step]
         before, mesh = self.before, record.mesh
         rows = [("vertices", before.n_vertices, mesh.n_vertices, f"V + E = {before.n_vertices + before.n_edges}"),

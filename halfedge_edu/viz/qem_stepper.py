@@ -33,8 +33,8 @@ import numpy as np
 from ..algorithms.simplify import optimal_points, quadric_cost
 from ..algorithms.simplify_queue import CollapseStep, QuadricQueue, simplify_sequential, turns_a_face
 from .painted_scene import Layer, PaintedScene, legend_html
-from .palette import BLACK, REDDISH_PURPLE, VERMILLION
-from .widgets import StepperWidget, _css
+from .palette import BLACK, REDDISH_PURPLE, VERMILLION, panel_css
+from .widgets import StepperWidget
 
 NEXT_EDGE, QUEUED, LAST_COLLAPSE = VERMILLION, REDDISH_PURPLE, BLACK
 
@@ -271,7 +271,7 @@ class QEMStepper(StepperWidget):
         return [row]
 
     def _panel_html(self) -> str:
-        size = _css(self.look)["font"]
+        size = panel_css(self.look)["font"]
         cell = "padding:2px 8px;border-bottom:1px solid #ddd;text-align:left"
         coming = self.steps[self._step].edge if self._step < self.n_steps else None
         rows, seen_next = [], coming is None

@@ -28,9 +28,9 @@ import numpy as np
 
 from ..algorithms.remesh import COLLAPSE_BELOW, SPLIT_ABOVE, quality_report, remesh_step_by_step
 from .painted_scene import Layer, PaintedScene, legend_html
-from .palette import BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, VERMILLION
+from .palette import BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, VERMILLION, panel_css
 from .pictures import png_bytes
-from .widgets import StepperWidget, _css
+from .widgets import StepperWidget
 
 TOO_LONG, TOO_SHORT, OFF_DEGREE = VERMILLION, BLUE, REDDISH_PURPLE
 #: Colours of the histograms' outlines after the first (grey, filled) entry.
@@ -398,7 +398,7 @@ class RemeshStepper(StepperWidget):
         return [row]
 
     def _panel_html(self) -> str:
-        size = _css(self.look)["font"]
+        size = panel_css(self.look)["font"]
         cell = "padding:2px 6px;border-bottom:1px solid #ddd;text-align:right"
         header = "".join(f'<th style="{cell}">{h}</th>'
                          for h in ("", "phase", "V", "F", "short", "long", "|deg - ideal|", "min angle"))
