@@ -274,17 +274,13 @@ class LoopStepper(StepperWidget):
     # -- panel ---------------------------------------------------------------------------
 
     def _controls(self) -> list:
-        import ipywidgets as widgets
-
-        row = widgets.HBox([
-            self._button("start", "step 0: the new positions, computed first", lambda: self.go("start")),
-            self._button("back", "one step back", self.back),
-            self._button("step", "the next split or flip", self.step),
-            self._button("phase", "to the start of the next phase", lambda: self.go("phase")),
-            self._button("end", "the subdivided mesh", lambda: self.go("end")),
+        return self._button_row([
+            ("start", "step 0: the new positions, computed first", lambda: self.go("start")),
+            ("back", "one step back", self.back),
+            ("step", "the next split or flip", self.step),
+            ("phase", "to the start of the next phase", lambda: self.go("phase")),
+            ("end", "the subdivided mesh", lambda: self.go("end")),
         ])
-        self.buttons = {b.description: b for b in row.children}
-        return [row]
 
     def _panel_html(self) -> str:
         size = panel_css(self.look)["font"]

@@ -49,12 +49,15 @@ def png_bytes(image, path=None) -> bytes:
     return data
 
 
-def plotter_png(plotter, path=None) -> bytes:
-    """Render ``plotter`` and return what it shows as PNG bytes (also written to ``path``)."""
+def plotter_png(plotter, path=None, *, window_size: tuple[int, int] | None = None) -> bytes:
+    """Render ``plotter`` and return what it shows as PNG bytes (also written to ``path``).
+
+    ``window_size`` resizes the render window first (pyvista's own screenshot option).
+    """
     from PIL import Image
 
     plotter.render()
-    pixels = plotter.screenshot(None, return_img=True)
+    pixels = plotter.screenshot(None, return_img=True, window_size=None if window_size is None else list(window_size))
     return png_bytes(Image.fromarray(np.asarray(pixels)), path)
 
 

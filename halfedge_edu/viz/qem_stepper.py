@@ -257,18 +257,14 @@ class QEMStepper(StepperWidget):
     # -- panel ---------------------------------------------------------------------------
 
     def _controls(self) -> list:
-        import ipywidgets as widgets
-
-        row = widgets.HBox([
-            self._button("start", "no collapse yet: every edge priced", lambda: self.go("start")),
-            self._button("back", "one collapse back", self.back),
-            self._button("step", "one collapse", self.step),
-            self._button("+10", "ten collapses", lambda: self.jump(10)),
-            self._button("+100", "a hundred collapses", lambda: self.jump(100)),
-            self._button("end", "down to the target", lambda: self.go("end")),
+        return self._button_row([
+            ("start", "no collapse yet: every edge priced", lambda: self.go("start")),
+            ("back", "one collapse back", self.back),
+            ("step", "one collapse", self.step),
+            ("+10", "ten collapses", lambda: self.jump(10)),
+            ("+100", "a hundred collapses", lambda: self.jump(100)),
+            ("end", "down to the target", lambda: self.go("end")),
         ])
-        self.buttons = {b.description: b for b in row.children}
-        return [row]
 
     def _panel_html(self) -> str:
         size = panel_css(self.look)["font"]

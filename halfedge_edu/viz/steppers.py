@@ -32,7 +32,7 @@ from .neighbourhood import ring_window
 from .palette import panel_css, preset as _preset
 from .pictures import grid_png
 from .scene import MAX_ARROWS, HalfedgeScene
-from .widgets import StepperWidget, table_html
+from .widgets import StepperWidget, panel_button, table_html
 
 # Stepper roles by the kind of element they colour.
 _CHANGED = {"halfedge": "changed", "vertex": "changed_vertex", "face": "changed_face"}
@@ -391,20 +391,16 @@ class OperationStepper(StepperWidget):
         return f"Edge {self.operation}: step by step"
 
     def _controls(self) -> list:
-        import ipywidgets as widgets
-
         if not self.check:
             self.buttons = {}
             return []
-        row = widgets.HBox([
-            self._button("start", "back to the gathered elements", lambda: self.go("start")),
-            self._button("back", "one change back", self.back),
-            self._button("step", "apply the next change", self.step),
-            self._button("phase", "to the start of the next phase", lambda: self.go("phase")),
-            self._button("end", "all changes applied", lambda: self.go("end")),
+        return self._button_row([
+            ("start", "back to the gathered elements", lambda: self.go("start")),
+            ("back", "one change back", self.back),
+            ("step", "apply the next change", self.step),
+            ("phase", "to the start of the next phase", lambda: self.go("phase")),
+            ("end", "all changes applied", lambda: self.go("end")),
         ])
-        self.buttons = {b.description: b for b in row.children}
-        return [row]
 
     def _panel_html(self) -> str:
         css = panel_css(self.look)
@@ -571,15 +567,7 @@ class CollapseAtlas:
         self._refresh()
 
     def _button(self, label: str, action):
-        import ipywidgets as widgets
-
-        css = panel_css(self.look)
-        button = widgets.Button(description=label,
-                                layout=widgets.Layout(height=css["button_height"], width=css["button_width"]))
-        button.style.font_size = css["font"]
-        button.style.font_weight = "bold"
-        button.on_click(lambda _: action())
-        return button
+        return panel_button(self.look, label, "", action)
 
     @property
     def phase(self) -> int:

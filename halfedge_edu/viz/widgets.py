@@ -21,10 +21,39 @@ from __future__ import annotations
 
 import base64
 import html
+from collections.abc import Callable
 
 from .palette import ROLES, Preset, panel_css, preset as _preset
 from .renderer import View, choose_mode, make_plotter
 from .scene import HalfedgeScene
+
+
+def panel_button(look: Preset, label: str, tooltip: str, action: Callable[[], object], *,
+                 on_error: Callable[[Exception], None] | None = None):
+    """A bold panel button of the preset's size that runs ``action()`` when clicked.
+
+    ``on_error`` receives an ``IndexError`` or ``ValueError`` the action raises (a widget
+    shows it in its status line: callbacks must not print); without it the error propagates.
+    """
+    import ipywidgets as widgets
+
+    css = panel_css(look)
+    button = widgets.Button(description=label, tooltip=tooltip,
+                            layout=widgets.Layout(height=css["button_height"], width=css["button_width"]))
+    button.style.font_size = css["font"]
+    button.style.font_weight = "bold"
+
+    def clicked(_):
+        if on_error is None:
+            action()
+            return
+        try:
+            action()
+        except (IndexError, ValueError) as error:
+            on_error(error)
+
+    button.on_click(clicked)
+    return button
 
 
 def legend_html(entries, look: Preset) -> str:
@@ -113,22 +142,16 @@ class SceneWidget:
 
     def _button(self, label: str, tooltip: str, action):
         """A button that runs ``action()``; an error shows in the status line instead."""
+        return panel_button(self.look, label, tooltip, action, on_error=lambda error: self._say(str(error), error=True))
+
+    def _button_row(self, buttons: list[tuple[str, str, Callable[[], object]]]) -> list:
+        """One row of ``(label, tooltip, action)`` buttons, kept by label in ``self.buttons``;
+        returns the row as a list of controls."""
         import ipywidgets as widgets
 
-        css = panel_css(self.look)
-        button = widgets.Button(description=label, tooltip=tooltip,
-                                layout=widgets.Layout(height=css["button_height"], width=css["button_width"]))
-        button.style.font_size = css["font"]
-        button.style.font_weight = "bold"
-
-        def clicked(_):
-            try:
-                action()
-            except (IndexError, ValueError) as error:
-                self._say(str(error), error=True)
-
-        button.on_click(clicked)
-        return button
+        row = widgets.HBox([self._button(label, tooltip, action) for label, tooltip, action in buttons])
+        self.buttons = {button.description: button for button in row.children}
+        return [row]
 
     def _number_box(self, value: int, label: str):
         import ipywidgets as widgets
