@@ -22,6 +22,7 @@ from pathlib import Path
 from typing import Callable
 
 from .viz.pictures import TitleStyle, grid_png, plotter_png
+from .viz.scene import scene_picture
 
 #: name -> (what it shows, function returning PNG bytes); filled by @figure below.
 FIGURES: dict[str, tuple[str, Callable[[], bytes]]] = {}
@@ -45,18 +46,6 @@ def _headless() -> None:
         os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
     os.environ.setdefault("PYVISTA_JUPYTER_BACKEND", "static")
     os.environ.setdefault("VTK_WASM_DIR_OVERRIDE", empty)
-
-
-def _scene_picture(mesh, show=None, **options) -> bytes:
-    from .viz import HalfedgeScene
-
-    scene = HalfedgeScene(mesh, **options)
-    try:
-        if show is not None:
-            show(scene)
-        return scene.screenshot()
-    finally:
-        scene.close()
 
 
 def _widget_picture(widget, *moves) -> bytes:
@@ -85,14 +74,14 @@ def _two_triangles():
 
 @figure("two_triangles", "two triangles sharing an edge: every halfedge, twins and boundary, with indices")
 def two_triangles() -> bytes:
-    return _scene_picture(_two_triangles(), labels=True, legend=True)
+    return scene_picture(_two_triangles(), labels=True, legend=True)
 
 
 @figure("navigation", "the open patch with halfedge 7 and its twin, next, prev, origin, tip and face")
 def navigation() -> bytes:
     from .data import sample
 
-    return _scene_picture(sample("open_patch"), lambda s: s.show_halfedge(7), labels=True)
+    return scene_picture(sample("open_patch"), lambda s: s.show_halfedge(7), labels=True)
 
 
 @figure("boundary", "a boundary halfedge of the open patch: no face, next and prev run along the hole")
@@ -101,7 +90,7 @@ def boundary() -> bytes:
 
     mesh = sample("open_patch")
     h = int(mesh.boundary_loops()[0][0])
-    return _scene_picture(mesh, lambda s: s.show_halfedge(h))
+    return scene_picture(mesh, lambda s: s.show_halfedge(h))
 
 
 @figure("one_ring", "the one-ring of vertex 5 of the open patch: outgoing halfedges, neighbours, faces")
@@ -109,21 +98,21 @@ def one_ring() -> bytes:
     from .data import sample
 
     mesh = sample("open_patch")
-    return _scene_picture(mesh, lambda s: s.show_one_ring(5, current=mesh.vertex(5).halfedge.index))
+    return scene_picture(mesh, lambda s: s.show_one_ring(5, current=mesh.vertex(5).halfedge.index))
 
 
 @figure("cube", "the cube's halfedge 0 with its neighbours, every element labelled")
 def cube() -> bytes:
     from .data import sample
 
-    return _scene_picture(sample("cube"), lambda s: s.show_halfedge(0))
+    return scene_picture(sample("cube"), lambda s: s.show_halfedge(0))
 
 
 @figure("cube_large", "the same in the lecture-hall preset (preset='large')")
 def cube_large() -> bytes:
     from .data import sample
 
-    return _scene_picture(sample("cube"), lambda s: s.show_halfedge(0), preset="large")
+    return scene_picture(sample("cube"), lambda s: s.show_halfedge(0), preset="large")
 
 
 @figure("bunny", "the Stanford bunny, whole")
@@ -152,7 +141,7 @@ def bunny_closeup() -> bytes:
     from .data import sample
 
     mesh = sample("bunny")
-    return _scene_picture(mesh, lambda s: s.show_halfedge(int(mesh.boundary_loops()[0][0]) ^ 1))
+    return scene_picture(mesh, lambda s: s.show_halfedge(int(mesh.boundary_loops()[0][0]) ^ 1))
 
 
 @figure("flip", "edge flip of the open patch's edge 12: gathered elements, then the result")

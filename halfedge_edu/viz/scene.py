@@ -24,7 +24,7 @@ the scene does not watch the mesh.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 
 import numpy as np
 
@@ -371,3 +371,15 @@ class HalfedgeScene:
     def _draw_labels(self, focus: np.ndarray) -> None:
         self._labels.draw(self.mesh, self._geometry, self._highlight, focus, windowed=self.windowed,
                           arrow_halfedges=self._arrows.halfedges, corners=self._arrows.corners)
+
+
+def scene_picture(mesh, show: "Callable[[HalfedgeScene], None] | None" = None, **options) -> bytes:
+    """One picture of ``mesh`` as PNG bytes: a :class:`HalfedgeScene` made with ``options``,
+    ``show(scene)`` run on it (e.g. ``lambda s: s.show_halfedge(7)``), then closed."""
+    scene = HalfedgeScene(mesh, **options)
+    try:
+        if show is not None:
+            show(scene)
+        return scene.screenshot()
+    finally:
+        scene.close()
