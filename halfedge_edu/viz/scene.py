@@ -286,8 +286,7 @@ class HalfedgeScene:
         points.point_data["rgb"] = np.zeros((1, 3), dtype=np.uint8)
         add("highlight_vertices", points, scalars="rgb", rgb=True,
             point_size=look.highlight_vertex_size, render_points_as_spheres=True, show_scalar_bar=False)
-        self._arrows.halfedges = np.zeros(0, dtype=np.int64)
-        self._geometry_dirty = True
+        self._geometry_dirty = True                # the next update draws the arrows again
         self._legend.forget()
 
     def _draw_local_faces(self) -> None:
