@@ -15,12 +15,14 @@ scenes and widgets the notebooks use, in static mode.
 from __future__ import annotations
 
 import argparse
-import io
 import os
 import sys
 import tempfile
 from pathlib import Path
 from typing import Callable
+
+from .viz.pictures import TitleStyle, grid_png, plotter_png
+from .viz.scene import scene_picture
 
 #: name -> (what it shows, function returning PNG bytes); filled by @figure below.
 FIGURES: dict[str, tuple[str, Callable[[], bytes]]] = {}
@@ -46,18 +48,6 @@ def _headless() -> None:
     os.environ.setdefault("VTK_WASM_DIR_OVERRIDE", empty)
 
 
-def _scene_picture(mesh, show=None, **options) -> bytes:
-    from .viz import HalfedgeScene
-
-    scene = HalfedgeScene(mesh, **options)
-    try:
-        if show is not None:
-            show(scene)
-        return scene.screenshot()
-    finally:
-        scene.close()
-
-
 def _widget_picture(widget, *moves) -> bytes:
     try:
         for move in moves:
@@ -67,24 +57,13 @@ def _widget_picture(widget, *moves) -> bytes:
         widget.close()
 
 
-def _row(pictures: list[bytes], titles: list[str] | None = None) -> bytes:
-    """PNGs side by side on white, each with an optional title above it."""
-    from PIL import Image, ImageDraw, ImageFont
+#: Titles above the pictures of a figure row: a little larger than the notebooks' own.
+FIGURE_TITLES = TitleStyle(font_size=18, band=30, left=12, top=6, color=(20, 20, 20))
 
-    images = [Image.open(io.BytesIO(p)).convert("RGB") for p in pictures]
-    band = 30 if titles else 0
-    sheet = Image.new("RGB", (sum(i.width for i in images), max(i.height for i in images) + band), "white")
-    draw = ImageDraw.Draw(sheet)
-    font = ImageFont.load_default(size=18) if titles else None
-    x = 0
-    for k, image in enumerate(images):
-        sheet.paste(image, (x, band))
-        if titles:
-            draw.text((x + 12, 6), titles[k], fill=(20, 20, 20), font=font)
-        x += image.width
-    buffer = io.BytesIO()
-    sheet.save(buffer, format="png")
-    return buffer.getvalue()
+
+def _row(pictures: list[bytes], titles: list[str]) -> bytes:
+    """PNGs side by side on white, each with its title above it."""
+    return grid_png([pictures], [titles], style=FIGURE_TITLES)
 
 
 def _two_triangles():
@@ -95,14 +74,14 @@ def _two_triangles():
 
 @figure("two_triangles", "two triangles sharing an edge: every halfedge, twins and boundary, with indices")
 def two_triangles() -> bytes:
-    return _scene_picture(_two_triangles(), labels=True, legend=True)
+    return scene_picture(_two_triangles(), labels=True, legend=True)
 
 
 @figure("navigation", "the open patch with halfedge 7 and its twin, next, prev, origin, tip and face")
 def navigation() -> bytes:
     from .data import sample
 
-    return _scene_picture(sample("open_patch"), lambda s: s.show_halfedge(7), labels=True)
+    return scene_picture(sample("open_patch"), lambda s: s.show_halfedge(7), labels=True)
 
 
 @figure("boundary", "a boundary halfedge of the open patch: no face, next and prev run along the hole")
@@ -111,7 +90,7 @@ def boundary() -> bytes:
 
     mesh = sample("open_patch")
     h = int(mesh.boundary_loops()[0][0])
-    return _scene_picture(mesh, lambda s: s.show_halfedge(h))
+    return scene_picture(mesh, lambda s: s.show_halfedge(h))
 
 
 @figure("one_ring", "the one-ring of vertex 5 of the open patch: outgoing halfedges, neighbours, faces")
@@ -119,26 +98,25 @@ def one_ring() -> bytes:
     from .data import sample
 
     mesh = sample("open_patch")
-    return _scene_picture(mesh, lambda s: s.show_one_ring(5, current=mesh.vertex(5).halfedge.index))
+    return scene_picture(mesh, lambda s: s.show_one_ring(5, current=mesh.vertex(5).halfedge.index))
 
 
 @figure("cube", "the cube's halfedge 0 with its neighbours, every element labelled")
 def cube() -> bytes:
     from .data import sample
 
-    return _scene_picture(sample("cube"), lambda s: s.show_halfedge(0))
+    return scene_picture(sample("cube"), lambda s: s.show_halfedge(0))
 
 
 @figure("cube_large", "the same in the lecture-hall preset (preset='large')")
 def cube_large() -> bytes:
     from .data import sample
 
-    return _scene_picture(sample("cube"), lambda s: s.show_halfedge(0), preset="large")
+    return scene_picture(sample("cube"), lambda s: s.show_halfedge(0), preset="large")
 
 
 @figure("bunny", "the Stanford bunny, whole")
 def bunny() -> bytes:
-    import numpy as np
     import pyvista as pv
 
     from .data import sample
@@ -153,15 +131,9 @@ def bunny() -> bytes:
                          smooth_shading=True)
         plotter.view_xy()
         plotter.camera.zoom(1.3)
-        plotter.render()
-        pixels = plotter.screenshot(None, return_img=True)
+        return plotter_png(plotter)
     finally:
         plotter.close()
-    from PIL import Image
-
-    buffer = io.BytesIO()
-    Image.fromarray(np.asarray(pixels)).save(buffer, format="png")
-    return buffer.getvalue()
 
 
 @figure("bunny_closeup", "on the bunny only the arrows and labels near the highlight are drawn")
@@ -169,7 +141,7 @@ def bunny_closeup() -> bytes:
     from .data import sample
 
     mesh = sample("bunny")
-    return _scene_picture(mesh, lambda s: s.show_halfedge(int(mesh.boundary_loops()[0][0]) ^ 1))
+    return scene_picture(mesh, lambda s: s.show_halfedge(int(mesh.boundary_loops()[0][0]) ^ 1))
 
 
 @figure("flip", "edge flip of the open patch's edge 12: gathered elements, then the result")

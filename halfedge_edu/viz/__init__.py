@@ -4,6 +4,7 @@
     from halfedge_edu.viz import FlipStepper, SplitStepper, CollapseStepper, CollapseAtlas
     from halfedge_edu.viz import LoopStepper, QEMStepper, RemeshStepper
     from halfedge_edu.viz import DeCasteljauViewer, BezierSurfaceEditor
+    from halfedge_edu.viz import side_by_side, grid, scene_picture, surface_png, plotter_png
 
 - :class:`HalfedgeScene`: draw a mesh with its halfedges as arrows inside their faces,
   highlight elements by role (current, twin, next, prev, origin, tip, face, one-ring),
@@ -12,6 +13,35 @@
   follows every step elsewhere (:func:`choose_mode`, ``HALFEDGE_EDU_VIZ=static|live``).
   Each can be driven from code (``w.go("twin")``, ``w.step()``) and says its state in
   plain text (``w.describe()``).
+- Still pictures: :func:`side_by_side` and :func:`grid` paste PNGs in titled rows,
+  :func:`scene_picture` makes one picture of a scene, :func:`surface_png` a plain picture
+  of a mesh, :func:`plotter_png` encodes what any plotter shows.
+
+The modules, one concern each (as pyvista splits its plotting package), from the bottom up:
+
+- ``palette``: colours, roles (:data:`ROLES`), presets and widget panel sizes (``panel_css``).
+- ``screen``: unit vectors and placing points a few pixels aside on screen.
+- ``neighbourhood``: rings of vertices and the halfedges between them (what "near" means).
+- ``pictures``: PNG encoding, screenshots, rows and grids of titled pictures.
+- ``renderer``: static or live mode, and the plotters the scenes draw into.
+- ``actors``: a scene's named parts in a plotter, refilled in place.
+- ``arrows``: halfedge arrows, their geometry and the arrow layer that colours them by role.
+- ``geometry``: what a scene knows about its mesh (normals, centre, faces as drawn).
+- ``highlights``: the highlight (roles, names) and its coloured faces and dots.
+- ``labels``: index labels ("v3", "h7", "f1") near the highlight, hidden when facing away.
+- ``legend``: the legend box and its entries.
+- ``camera``: where the camera stands: the whole mesh, some vertices, following the highlight.
+- ``scene``: :class:`HalfedgeScene`, which owns the surface and decides what is redrawn when.
+- ``painted_scene``: a mesh with coloured layers (Loop, QEM, remeshing, Bezier widgets).
+- ``widgets``, ``steppers``, ``loop_stepper``, ``qem_stepper``, ``remesh_stepper``,
+  ``bezier_widgets``: the notebook widgets.
+
+The rule between modules (``tests/viz/test_layout.py`` checks it): a module uses only the
+public names of another, so no ``from .x import _name`` and no ``obj._attr`` on an object
+that is not ``self`` (or ``cls``/``super()``). What a part needs from another is passed
+to its constructor (a stepper gives the scene its arrow placement as ``corners=``) or
+offered as a public method. The one exception is IPython's display protocol
+(``widget._repr_mimebundle_``), which is public by convention.
 
 Nothing here imports pyvista or ipywidgets until a scene or widget is made, and the
 package itself (``import halfedge_edu``) never imports this module.
@@ -20,16 +50,17 @@ package itself (``import halfedge_edu``) never imports this module.
 from .bezier_widgets import BezierSurfaceEditor, DeCasteljauViewer
 from .loop_stepper import LoopStepper
 from .palette import PRESETS, ROLES
-from .pictures import side_by_side
+from .pictures import grid, plotter_png, side_by_side, surface_png
 from .qem_stepper import QEMStepper
 from .remesh_stepper import RemeshStepper
 from .renderer import choose_mode
-from .scene import HalfedgeScene
+from .scene import HalfedgeScene, scene_picture
 from .steppers import CollapseAtlas, CollapseStepper, FlipStepper, SplitStepper
 from .widgets import HalfedgeExplorer, OneRingViewer
 
 __all__ = [
     "PRESETS", "ROLES", "choose_mode", "HalfedgeScene", "HalfedgeExplorer", "OneRingViewer",
     "FlipStepper", "SplitStepper", "CollapseStepper", "CollapseAtlas", "LoopStepper",
-    "QEMStepper", "RemeshStepper", "DeCasteljauViewer", "BezierSurfaceEditor", "side_by_side",
+    "QEMStepper", "RemeshStepper", "DeCasteljauViewer", "BezierSurfaceEditor", "side_by_side", "grid",
+    "plotter_png", "surface_png", "scene_picture",
 ]

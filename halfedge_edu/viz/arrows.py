@@ -22,6 +22,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .palette import ROLES, rgb
+
 POINTS_PER_ARROW = 7
 TRIANGLES_PER_ARROW = 3
 _ARROW_TRIANGLES = np.array([[1, 2, 3], [1, 3, 0], [4, 5, 6]])  # (3, 3) within one arrow
@@ -116,3 +118,72 @@ def typical_edge_length(mesh, halfedges: np.ndarray | None = None) -> float:
         return 1.0
     ends = mesh.positions[mesh.halfedge_vertex[halfedges]] - mesh.positions[mesh.halfedge_vertex[np.asarray(halfedges) ^ 1]]
     return float(np.median(np.linalg.norm(ends, axis=1))) or 1.0
+
+
+def drawable(mesh, halfedges: np.ndarray) -> np.ndarray:
+    """The live ones among ``halfedges`` whose two ends are set (not -1)."""
+    halfedges = halfedges[(halfedges >= 0) & (halfedges < mesh.n_halfedge_slots)]
+    halfedges = halfedges[~mesh.edge_deleted[halfedges >> 1]]
+    ends_set = (mesh.halfedge_vertex[halfedges] >= 0) & (mesh.halfedge_vertex[halfedges ^ 1] >= 0)
+    return halfedges[ends_set]
+
+
+class ArrowLayer:
+    """The arrows of one scene: the part "arrows" of ``actors``, one arrow per halfedge.
+
+    Args:
+        actors: the scene's :class:`~halfedge_edu.viz.actors.Actors` holding the part.
+        preset: the scene's look (arrow width and plain colours).
+        corners: ``(mesh, halfedges) -> (A, B, third)``, where each arrow goes; by
+            default :func:`halfedge_corners`. A stepper passes its own to place the
+            arrows of a mesh whose pointers are half rewired.
+    """
+
+    def __init__(self, actors, preset, corners=halfedge_corners):
+        self.actors = actors
+        self.preset = preset
+        self.corners = corners
+        #: (k,) the halfedges that have an arrow, in arrow order.
+        self.halfedges = np.zeros(0, dtype=np.int64)
+        self._slot_of = np.zeros(0, dtype=np.int64)
+
+    def draw(self, mesh, halfedges: np.ndarray, scale: float) -> None:
+        """Build the arrows of ``halfedges`` (in one numpy pass), uncoloured."""
+        import pyvista as pv
+
+        halfedges = np.asarray(halfedges, dtype=np.int64)
+        self.halfedges = halfedges
+        if len(halfedges) == 0:
+            self.actors.set("arrows", None)
+            return
+        A, B, third = self.corners(mesh, halfedges)
+        points, triangles = arrow_geometry(A, B, third, scale=scale, width=self.preset.arrow_width)
+        data = pv.PolyData.from_regular_faces(points, triangles)
+        data.cell_data["rgb"] = np.zeros((len(triangles), 3), dtype=np.uint8)
+        self.actors.set("arrows", data)
+        # Where each halfedge sits in the arrow list (-1 if it has no arrow).
+        self._slot_of = np.full(mesh.n_halfedge_slots, -1, dtype=np.int64)
+        self._slot_of[halfedges] = np.arange(len(halfedges))
+
+    def color(self, mesh, members: list[tuple[str, np.ndarray]]) -> None:
+        """Colour the arrows: plain or boundary, then each role's halfedges ``members``
+        (``(role, indices)`` in ROLES order; the earliest role wins)."""
+        halfedges = self.halfedges
+        if len(halfedges) == 0:
+            return
+        look = self.preset
+        colors = np.where((mesh.halfedge_face[halfedges] < 0)[:, None], rgb(look.boundary_arrow), rgb(look.plain_arrow))
+        for name, indices in reversed(members):
+            slots = self._slot_of[indices[(indices >= 0) & (indices < len(self._slot_of))]]
+            colors[slots[slots >= 0]] = rgb(ROLES[name].color)
+        self.actors.data("arrows").cell_data["rgb"] = np.repeat(colors.astype(np.uint8), TRIANGLES_PER_ARROW, axis=0)
+
+    def colors(self) -> np.ndarray:
+        """(k, 3) uint8 the colour of each arrow, in the order of :attr:`halfedges`."""
+        return np.asarray(self.actors.data("arrows").cell_data["rgb"])[::TRIANGLES_PER_ARROW][: len(self.halfedges)]
+
+    def points(self) -> np.ndarray:
+        """(7k, 3) the arrows' points when any are drawn, else (0, 3)."""
+        if not self.actors.visible("arrows"):
+            return np.zeros((0, 3))
+        return np.asarray(self.actors.data("arrows").points)

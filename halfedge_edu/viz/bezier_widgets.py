@@ -31,8 +31,8 @@ import numpy as np
 
 from ..algorithms.bezier import bezier_curve, bezier_surface, bezier_surface_points, de_casteljau
 from .painted_scene import Layer, PaintedScene, legend_html
-from .palette import BLACK, BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, SKY_BLUE, VERMILLION
-from .widgets import SceneWidget, _css
+from .palette import BLACK, BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, SKY_BLUE, VERMILLION, panel_css
+from .widgets import SceneWidget
 
 #: Colours of de Casteljau's levels 1, 2, 3, ... (level 0, the control polygon, is grey).
 LEVEL_COLORS = (BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, SKY_BLUE, "#8C6D31")
@@ -376,7 +376,7 @@ class BezierSurfaceEditor(SceneWidget):
             self._syncing = False
 
     def _panel_html(self) -> str:
-        size = _css(self.look)["font"]
+        size = panel_css(self.look)["font"]
         return f'<div style="font-size:{size};max-width:30em">' + "<br>".join(
             html.escape(line) for line in self.describe().splitlines()) + "</div>"
 

@@ -35,8 +35,8 @@ import numpy as np
 
 from ..algorithms.loop import LoopStep, loop_positions, loop_subdivide_by_operations
 from .painted_scene import Layer, PaintedScene, legend_html
-from .palette import BLACK, BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, VERMILLION
-from .widgets import StepperWidget, _css
+from .palette import BLACK, BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, VERMILLION, panel_css
+from .widgets import StepperWidget
 
 #: The largest mesh (in edges) the stepper accepts: it keeps one copy per step.
 MAX_EDGES = 600
@@ -274,20 +274,16 @@ class LoopStepper(StepperWidget):
     # -- panel ---------------------------------------------------------------------------
 
     def _controls(self) -> list:
-        import ipywidgets as widgets
-
-        row = widgets.HBox([
-            self._button("start", "step 0: the new positions, computed first", lambda: self.go("start")),
-            self._button("back", "one step back", self.back),
-            self._button("step", "the next split or flip", self.step),
-            self._button("phase", "to the start of the next phase", lambda: self.go("phase")),
-            self._button("end", "the subdivided mesh", lambda: self.go("end")),
+        return self._button_row([
+            ("start", "step 0: the new positions, computed first", lambda: self.go("start")),
+            ("back", "one step back", self.back),
+            ("step", "the next split or flip", self.step),
+            ("phase", "to the start of the next phase", lambda: self.go("phase")),
+            ("end", "the subdivided mesh", lambda: self.go("end")),
         ])
-        self.buttons = {b.description: b for b in row.children}
-        return [row]
 
     def _panel_html(self) -> str:
-        size = _css(self.look)["font"]
+        size = panel_css(self.look)["font"]
         record = self.records[self._step]
         before, mesh = self.before, record.mesh
         rows = [("vertices", before.n_vertices, mesh.n_vertices, f"V + E = {before.n_vertices + before.n_edges}"),

@@ -28,11 +28,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .palette import Preset, preset as _preset
-from .pictures import png_bytes
+from ..algorithms.normals import face_normals
+from .camera import VIEW_DIRECTION
+from .pictures import plotter_png
+from .renderer import prepare_plotter
 from .screen import beside, unit
 
-#: From the object toward the camera, for meshes that are not flat (as HalfedgeScene).
-VIEW_DIRECTION = np.array([0.75, 0.85, 1.3])
 #: Vertex labels are drawn when the mesh has at most this many vertices.
 LABEL_VERTICES = 60
 
@@ -82,17 +83,10 @@ class PaintedScene:
 
     def __init__(self, mesh, *, preset: "str | Preset" = "default", plotter=None, window_size=None,
                  view_direction=None, vertex_labels="auto", fit_points=None, view_up=None):
-        import pyvista as pv
-
         self.mesh = mesh
         self.preset = _preset(preset)
         self.window_size = tuple(window_size or self.preset.window_size)
-        if plotter is None:
-            plotter = pv.Plotter(off_screen=True, window_size=list(self.window_size))
-        self.plotter = plotter
-        self.plotter.set_background(self.preset.background)
-        self.plotter.remove_all_lights()
-        self.plotter.add_light(pv.Light(light_type="headlight"))
+        self.plotter = prepare_plotter(self.preset, self.window_size, plotter)
         self.vertex_labels = vertex_labels
         self.layers: list[Layer] = []
         self._names: set[str] = set()
@@ -215,10 +209,7 @@ class PaintedScene:
 
     def screenshot(self, path=None) -> bytes:
         """Render and return the picture as PNG bytes; also write it to ``path`` if given."""
-        from PIL import Image
-
-        pixels = self.plotter.screenshot(None, return_img=True, window_size=list(self.window_size))
-        return png_bytes(Image.fromarray(np.asarray(pixels)), path)
+        return plotter_png(self.plotter, path, window_size=self.window_size)
 
     def close(self) -> None:
         """Free the render window."""
@@ -230,9 +221,7 @@ class PaintedScene:
         positions = mesh.positions[~mesh.vertex_deleted]
         if fit_points is not None:
             positions = np.concatenate([positions, np.asarray(fit_points, dtype=np.float64).reshape(-1, 3)])
-        corners = mesh.face_vertices()[~mesh.face_deleted]
-        a, b, c = (mesh.positions[corners[:, k]] for k in range(3))
-        normals = unit(np.cross(b - a, c - a))
+        normals = face_normals(mesh)[~mesh.face_deleted]
         mean_normal = normals.mean(axis=0) if len(normals) else np.zeros(3)
         if view_direction is not None:
             direction = unit(np.asarray(view_direction, dtype=np.float64))

@@ -157,3 +157,11 @@ def rgb(color: str) -> np.ndarray:
     """(3,) uint8 of a ``#RRGGBB`` colour."""
     color = color.lstrip("#")
     return np.array([int(color[i : i + 2], 16) for i in (0, 2, 4)], dtype=np.uint8)
+
+
+def panel_css(look: Preset) -> dict[str, str]:
+    """Widget panel sizes for a preset (font, button height and width, table cell
+    padding): the "large" one is readable from the back of a hall."""
+    if look.name == "large":
+        return {"font": "20px", "button_height": "52px", "button_width": "150px", "cell": "6px 12px"}
+    return {"font": "14px", "button_height": "32px", "button_width": "96px", "cell": "2px 8px"}

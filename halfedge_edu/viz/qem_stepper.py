@@ -33,8 +33,8 @@ import numpy as np
 from ..algorithms.simplify import optimal_points, quadric_cost
 from ..algorithms.simplify_queue import CollapseStep, QuadricQueue, simplify_sequential, turns_a_face
 from .painted_scene import Layer, PaintedScene, legend_html
-from .palette import BLACK, REDDISH_PURPLE, VERMILLION
-from .widgets import StepperWidget, _css
+from .palette import BLACK, REDDISH_PURPLE, VERMILLION, panel_css
+from .widgets import StepperWidget
 
 NEXT_EDGE, QUEUED, LAST_COLLAPSE = VERMILLION, REDDISH_PURPLE, BLACK
 
@@ -257,21 +257,17 @@ class QEMStepper(StepperWidget):
     # -- panel ---------------------------------------------------------------------------
 
     def _controls(self) -> list:
-        import ipywidgets as widgets
-
-        row = widgets.HBox([
-            self._button("start", "no collapse yet: every edge priced", lambda: self.go("start")),
-            self._button("back", "one collapse back", self.back),
-            self._button("step", "one collapse", self.step),
-            self._button("+10", "ten collapses", lambda: self.jump(10)),
-            self._button("+100", "a hundred collapses", lambda: self.jump(100)),
-            self._button("end", "down to the target", lambda: self.go("end")),
+        return self._button_row([
+            ("start", "no collapse yet: every edge priced", lambda: self.go("start")),
+            ("back", "one collapse back", self.back),
+            ("step", "one collapse", self.step),
+            ("+10", "ten collapses", lambda: self.jump(10)),
+            ("+100", "a hundred collapses", lambda: self.jump(100)),
+            ("end", "down to the target", lambda: self.go("end")),
         ])
-        self.buttons = {b.description: b for b in row.children}
-        return [row]
 
     def _panel_html(self) -> str:
-        size = _css(self.look)["font"]
+        size = panel_css(self.look)["font"]
         cell = "padding:2px 8px;border-bottom:1px solid #ddd;text-align:left"
         coming = self.steps[self._step].edge if self._step < self.n_steps else None
         rows, seen_next = [], coming is None

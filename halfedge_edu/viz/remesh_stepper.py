@@ -28,9 +28,9 @@ import numpy as np
 
 from ..algorithms.remesh import COLLAPSE_BELOW, SPLIT_ABOVE, quality_report, remesh_step_by_step
 from .painted_scene import Layer, PaintedScene, legend_html
-from .palette import BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, VERMILLION
-from .pictures import png_bytes
-from .widgets import StepperWidget, _css
+from .palette import BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, VERMILLION, panel_css
+from .pictures import grid_png
+from .widgets import StepperWidget
 
 TOO_LONG, TOO_SHORT, OFF_DEGREE = VERMILLION, BLUE, REDDISH_PURPLE
 #: Colours of the histograms' outlines after the first (grey, filled) entry.
@@ -373,32 +373,21 @@ class RemeshStepper(StepperWidget):
 
     def screenshot(self, path=None) -> bytes:
         """The view with the histograms below it, as PNG bytes (also written to ``path``)."""
-        from PIL import Image
-
-        view = Image.open(io.BytesIO(super().screenshot())).convert("RGB")
-        charts = Image.open(io.BytesIO(self.histogram_png())).convert("RGB")
-        sheet = Image.new("RGB", (max(view.width, charts.width), view.height + charts.height), "white")
-        sheet.paste(view, (0, 0))
-        sheet.paste(charts, (0, view.height))
-        return png_bytes(sheet, path)
+        return grid_png([[super().screenshot()], [self.histogram_png()]], path=path)
 
     # -- panel ---------------------------------------------------------------------------
 
     def _controls(self) -> list:
-        import ipywidgets as widgets
-
-        row = widgets.HBox([
-            self._button("start", "the input", lambda: self.go("start")),
-            self._button("back", "one phase back", self.back),
-            self._button("step", "the next phase", self.step),
-            self._button("iteration", "the same phase, one iteration on", lambda: self.go("iteration")),
-            self._button("end", "the remeshed mesh", lambda: self.go("end")),
+        return self._button_row([
+            ("start", "the input", lambda: self.go("start")),
+            ("back", "one phase back", self.back),
+            ("step", "the next phase", self.step),
+            ("iteration", "the same phase, one iteration on", lambda: self.go("iteration")),
+            ("end", "the remeshed mesh", lambda: self.go("end")),
         ])
-        self.buttons = {b.description: b for b in row.children}
-        return [row]
 
     def _panel_html(self) -> str:
-        size = _css(self.look)["font"]
+        size = panel_css(self.look)["font"]
         cell = "padding:2px 6px;border-bottom:1px solid #ddd;text-align:right"
         header = "".join(f'<th style="{cell}">{h}</th>'
                          for h in ("", "phase", "V", "F", "short", "long", "|deg - ideal|", "min angle"))

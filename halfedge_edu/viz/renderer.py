@@ -106,3 +106,17 @@ class View:
             update = getattr(getattr(self.widget, "viewer", None), "update", None)
             if callable(update):
                 update()
+
+
+def prepare_plotter(look, window_size: tuple[int, int], plotter=None):
+    """``plotter`` (by default a new off-screen one of ``window_size``) set up as every
+    scene is: the preset's background and one light at the eye, so faces seen head-on
+    show their true colour."""
+    import pyvista as pv
+
+    if plotter is None:
+        plotter = pv.Plotter(off_screen=True, window_size=list(window_size))
+    plotter.set_background(look.background)
+    plotter.remove_all_lights()
+    plotter.add_light(pv.Light(light_type="headlight"))
+    return plotter

@@ -28,10 +28,11 @@ from collections import defaultdict
 import numpy as np
 
 from ..core.elements import Halfedge
-from .palette import preset as _preset
-from .scene import HalfedgeScene
-from .pictures import png_bytes
-from .widgets import StepperWidget, _css, table_html
+from .neighbourhood import ring_window
+from .palette import panel_css, preset as _preset
+from .pictures import grid_png
+from .scene import MAX_ARROWS, HalfedgeScene
+from .widgets import StepperWidget, panel_button, table_html
 
 # Stepper roles by the kind of element they colour.
 _CHANGED = {"halfedge": "changed", "vertex": "changed_vertex", "face": "changed_face"}
@@ -250,17 +251,16 @@ class OperationStepper(StepperWidget):
     def _make_scene(self, mesh, **options) -> HalfedgeScene:
         """A scene of the mesh before, with the operation's faces kept apart."""
         self._prepare_references()
-        scene = HalfedgeScene(mesh, preset=self.look, follow=False, local_faces=self._touched_faces(),
-                              **options)
-        scene.corners = self._arrow_corners
-        scene.face_corners = self._face_corners
         vertices = self._operation_vertices()
-        if scene.windowed and len(vertices):
-            mark = scene._ring_mark(vertices, scene.rings)
-            outgoing = scene._outgoing_of(np.flatnonzero(mark))
-            window = outgoing[mark[self.before.halfedge_vertex[outgoing ^ 1]]]
+        window = None
+        if self.before.n_halfedges > MAX_ARROWS and len(vertices):
+            # A large mesh: the arrows around the operation, and every halfedge it creates.
+            _, around = ring_window(self.before, vertices, options["rings"])
             created = np.arange(self.before.n_halfedge_slots, self.after.n_halfedge_slots)
-            scene.fixed_window = np.unique(np.concatenate([window, created]))
+            window = np.unique(np.concatenate([around, created]))
+        scene = HalfedgeScene(mesh, preset=self.look, follow=False, local_faces=self._touched_faces(),
+                              corners=self._arrow_corners, face_corners=self._face_corners, window=window,
+                              **options)
         if not self.check:
             # Face the refused edge itself; the other elements of the reason are lit up.
             edge = self._edge_index()
@@ -391,23 +391,19 @@ class OperationStepper(StepperWidget):
         return f"Edge {self.operation}: step by step"
 
     def _controls(self) -> list:
-        import ipywidgets as widgets
-
         if not self.check:
             self.buttons = {}
             return []
-        row = widgets.HBox([
-            self._button("start", "back to the gathered elements", lambda: self.go("start")),
-            self._button("back", "one change back", self.back),
-            self._button("step", "apply the next change", self.step),
-            self._button("phase", "to the start of the next phase", lambda: self.go("phase")),
-            self._button("end", "all changes applied", lambda: self.go("end")),
+        return self._button_row([
+            ("start", "back to the gathered elements", lambda: self.go("start")),
+            ("back", "one change back", self.back),
+            ("step", "apply the next change", self.step),
+            ("phase", "to the start of the next phase", lambda: self.go("phase")),
+            ("end", "all changes applied", lambda: self.go("end")),
         ])
-        self.buttons = {b.description: b for b in row.children}
-        return [row]
 
     def _panel_html(self) -> str:
-        css = _css(self.look)
+        css = panel_css(self.look)
         size = css["font"]
         if not self.check:
             return (f'<div style="font-size:{size}"><b>{html.escape(self._heading())}: refused</b> '
@@ -537,7 +533,7 @@ class CollapseAtlas:
         self.phases = [title for _, title in self.steppers[0].log.phases] if self.steppers else []
         self._phase = 0
 
-        css = _css(self.look)
+        css = panel_css(self.look)
         self._status = widgets.HTML()
         self._captions = [widgets.HTML(layout=widgets.Layout(width=f"{case_size[0]}px")) for _ in self.steppers]
         buttons = widgets.HBox([
@@ -571,15 +567,7 @@ class CollapseAtlas:
         self._refresh()
 
     def _button(self, label: str, action):
-        import ipywidgets as widgets
-
-        css = _css(self.look)
-        button = widgets.Button(description=label,
-                                layout=widgets.Layout(height=css["button_height"], width=css["button_width"]))
-        button.style.font_size = css["font"]
-        button.style.font_weight = "bold"
-        button.on_click(lambda _: action())
-        return button
+        return panel_button(self.look, label, "", action)
 
     @property
     def phase(self) -> int:
@@ -625,7 +613,7 @@ class CollapseAtlas:
         return self.phases[self._phase - 1]
 
     def _refresh(self) -> None:
-        size = _css(self.look)["font"]
+        size = panel_css(self.look)["font"]
         self._status.value = (f'<div style="font-size:{size}">phase {self._phase} of {len(self.phases)}: '
                               f"<i>{html.escape(self._phase_title())}</i></div>")
         for caption, stepper in zip(self._captions, self.steppers):
@@ -649,25 +637,7 @@ class CollapseAtlas:
 
     def screenshot(self, path=None) -> bytes:
         """Every picture of the atlas in one PNG: the cases in a row, the refusals below."""
-        import io
-
-        from PIL import Image
-
-        def picture(stepper):
-            return Image.open(io.BytesIO(stepper.screenshot())).convert("RGB")
-
-        rows = [[picture(s) for s in self.steppers], [picture(s) for s in self.refused]]
-        rows = [row for row in rows if row]
-        width = max(sum(p.width for p in row) for row in rows)
-        sheet = Image.new("RGB", (width, sum(max(p.height for p in row) for row in rows)), "white")
-        y = 0
-        for row in rows:
-            x = 0
-            for p in row:
-                sheet.paste(p, (x, y))
-                x += p.width
-            y += max(p.height for p in row)
-        return png_bytes(sheet, path)
+        return grid_png([[s.screenshot() for s in self.steppers], [s.screenshot() for s in self.refused]], path=path)
 
     def close(self) -> None:
         self.widget.close()

@@ -21,17 +21,39 @@ from __future__ import annotations
 
 import base64
 import html
+from collections.abc import Callable
 
-from .palette import ROLES, Preset, preset as _preset
+from .palette import ROLES, Preset, panel_css, preset as _preset
 from .renderer import View, choose_mode, make_plotter
 from .scene import HalfedgeScene
 
 
-def _css(look: Preset) -> dict[str, str]:
-    """Panel sizes for a preset: the "large" one is readable from the back of a hall."""
-    if look.name == "large":
-        return {"font": "20px", "button_height": "52px", "button_width": "150px", "cell": "6px 12px"}
-    return {"font": "14px", "button_height": "32px", "button_width": "96px", "cell": "2px 8px"}
+def panel_button(look: Preset, label: str, tooltip: str, action: Callable[[], object], *,
+                 on_error: Callable[[Exception], None] | None = None):
+    """A bold panel button of the preset's size that runs ``action()`` when clicked.
+
+    ``on_error`` receives an ``IndexError`` or ``ValueError`` the action raises (a widget
+    shows it in its status line: callbacks must not print); without it the error propagates.
+    """
+    import ipywidgets as widgets
+
+    css = panel_css(look)
+    button = widgets.Button(description=label, tooltip=tooltip,
+                            layout=widgets.Layout(height=css["button_height"], width=css["button_width"]))
+    button.style.font_size = css["font"]
+    button.style.font_weight = "bold"
+
+    def clicked(_):
+        if on_error is None:
+            action()
+            return
+        try:
+            action()
+        except (IndexError, ValueError) as error:
+            on_error(error)
+
+    button.on_click(clicked)
+    return button
 
 
 def legend_html(entries, look: Preset) -> str:
@@ -42,12 +64,12 @@ def legend_html(entries, look: Preset) -> str:
         f"&nbsp;{html.escape(text)}</div>"
         for text, color, kind in entries
     )
-    return f'<div style="font-size:{_css(look)["font"]};line-height:1.45">{rows}</div>'
+    return f'<div style="font-size:{panel_css(look)["font"]};line-height:1.45">{rows}</div>'
 
 
 def table_html(rows, look: Preset, *, header=None, mark_row: int | None = None) -> str:
     """An HTML table; a row is ``(cells, role_or_None)``, the role colouring its left edge."""
-    css = _css(look)
+    css = panel_css(look)
     cell = f"padding:{css['cell']};border-bottom:1px solid #ddd;text-align:left"
     lines = [f'<table style="border-collapse:collapse;font-size:{css["font"]};'
              f'font-family:monospace">']
@@ -82,7 +104,7 @@ class SceneWidget:
         size = tuple(window_size or self.look.window_size)
         self.scene = self._make_scene(mesh, labels=labels, rings=rings, legend=False,
                                       plotter=make_plotter(self.mode, size), window_size=size)
-        css = _css(self.look)
+        css = panel_css(self.look)
         self._status = widgets.HTML(layout=widgets.Layout(min_height="1.5em"))
         self._info = widgets.HTML()
         self._legend = widgets.HTML()
@@ -120,27 +142,21 @@ class SceneWidget:
 
     def _button(self, label: str, tooltip: str, action):
         """A button that runs ``action()``; an error shows in the status line instead."""
+        return panel_button(self.look, label, tooltip, action, on_error=lambda error: self._say(str(error), error=True))
+
+    def _button_row(self, buttons: list[tuple[str, str, Callable[[], object]]]) -> list:
+        """One row of ``(label, tooltip, action)`` buttons, kept by label in ``self.buttons``;
+        returns the row as a list of controls."""
         import ipywidgets as widgets
 
-        css = _css(self.look)
-        button = widgets.Button(description=label, tooltip=tooltip,
-                                layout=widgets.Layout(height=css["button_height"], width=css["button_width"]))
-        button.style.font_size = css["font"]
-        button.style.font_weight = "bold"
-
-        def clicked(_):
-            try:
-                action()
-            except (IndexError, ValueError) as error:
-                self._say(str(error), error=True)
-
-        button.on_click(clicked)
-        return button
+        row = widgets.HBox([self._button(label, tooltip, action) for label, tooltip, action in buttons])
+        self.buttons = {button.description: button for button in row.children}
+        return [row]
 
     def _number_box(self, value: int, label: str):
         import ipywidgets as widgets
 
-        css = _css(self.look)
+        css = panel_css(self.look)
         box = widgets.IntText(value=int(value), description=label,
                               layout=widgets.Layout(width=f"calc({css['button_width']} * 1.6)",
                                                     height=css["button_height"]))
@@ -149,7 +165,7 @@ class SceneWidget:
 
     def _say(self, text: str, *, error: bool = False) -> None:
         color = "#B00020" if error else "#333333"
-        size = _css(self.look)["font"]
+        size = panel_css(self.look)["font"]
         self._status.value = f'<span style="color:{color};font-size:{size}">{html.escape(text)}</span>'
 
     def _refresh_panel(self) -> None:
@@ -368,7 +384,7 @@ class HalfedgeExplorer(SceneWidget):
     def _panel_html(self) -> str:
         if hasattr(self, "_index_box"):
             self._index_box.value = self._trail[-1][1]
-        size = _css(self.look)["font"]
+        size = panel_css(self.look)["font"]
         return (table_html(self._pointer_rows(), self.look, header=("pointer", "value"))
                 + f'<div style="font-size:{size};margin-top:8px"><b>trail</b>: '
                 f'{html.escape(self._trail_text(limit=12))}</div>')
@@ -476,7 +492,7 @@ class OneRingViewer(SceneWidget):
                 mark = k
         v = self.vertex
         kind = "boundary" if v.is_boundary else "interior"
-        size = _css(self.look)["font"]
+        size = panel_css(self.look)["font"]
         return (f'<div style="font-size:{size};margin-bottom:6px">vertex <b>{v.index}</b> ({kind}, degree {v.degree})'
                 f"<br>CCW: <code>h = h.prev.twin</code></div>"
                 + table_html(rows, self.look, header=("#", "outgoing h", "h.tip", "h.face"), mark_row=mark))

@@ -235,7 +235,8 @@ hx.HalfedgeMesh.from_faces(flipped.vertices, flipped.faces, face_lines=flipped.f
 
 # %%
 import ipywidgets as widgets
-from PIL import Image as PILImage
+
+from halfedge_edu.viz import plotter_png
 
 editor = widgets.Textarea(value=pyramid_obj, rows=13, continuous_update=False,
                           layout=widgets.Layout(width="460px"))
@@ -260,9 +261,7 @@ def read_editor(change=None):
     playground_plotter.clear()
     playground_plotter.add_mesh(mesh.to_pyvista(), color="#E9E6DF", show_edges=True, edge_color="#555555")
     playground_plotter.reset_camera()
-    buffer = io.BytesIO()
-    PILImage.fromarray(playground_plotter.screenshot(None, return_img=True)).save(buffer, format="png")
-    picture.value = buffer.getvalue()
+    picture.value = plotter_png(playground_plotter)
 
 
 editor.observe(read_editor, names="value")

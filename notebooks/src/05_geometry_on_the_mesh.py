@@ -342,10 +342,10 @@ picture.show()
 
 # %%
 import base64
-import io
 
 import ipywidgets as widgets
-from PIL import Image
+
+from halfedge_edu.viz import plotter_png
 
 
 class SmoothingViewer:
@@ -376,10 +376,7 @@ class SmoothingViewer:
         else:
             self.surface.point_data.pop("Normals", None)
             self.actor.prop.interpolation = "flat"
-        pixels = self.plotter.screenshot(return_img=True)
-        buffer = io.BytesIO()
-        Image.fromarray(pixels).save(buffer, format="png")
-        self.image.value = buffer.getvalue()
+        self.image.value = plotter_png(self.plotter)
         self.status.value = self.describe()
 
     def describe(self):

@@ -18,41 +18,19 @@
 # - write `flip` yourself and have `check_flip` tell you what is off.
 
 # %%
-import io
-
 import numpy as np
-from IPython.display import Image
-from PIL import Image as PILImage, ImageDraw, ImageFont
 
 import halfedge_edu as hx
 from halfedge_edu.core.ops import OperationLog, can_flip, can_split, flip, split
-from halfedge_edu.viz import FlipStepper, HalfedgeScene, SplitStepper
+from halfedge_edu.viz import FlipStepper, SplitStepper, scene_picture, side_by_side
 
 
 def named_picture(mesh, log, roles, size=(400, 300), labels="auto", only_created=False):
     """A picture of ``mesh`` with the elements of ``log`` labelled by their names."""
-    scene = HalfedgeScene(mesh, window_size=size, legend=False, labels=labels)
     names = {element: name for name, element in log.named.items()
              if not only_created or element in log.created or element[0] == "vertex"}
-    scene.set_roles(roles, names=names)
-    png = scene.screenshot()
-    scene.close()
-    return png
-
-
-def side_by_side(pngs, titles):
-    """Paste PNG pictures into one row, each with a title above it."""
-    pictures = [PILImage.open(io.BytesIO(png)).convert("RGB") for png in pngs]
-    width, height = sum(p.width for p in pictures), max(p.height for p in pictures) + 26
-    row = PILImage.new("RGB", (width, height), "white")
-    x = 0
-    for picture, title in zip(pictures, titles):
-        row.paste(picture, (x, 26))
-        ImageDraw.Draw(row).text((x + 10, 4), title, fill="black", font=ImageFont.load_default(size=15))
-        x += picture.width
-    buffer = io.BytesIO()
-    row.save(buffer, format="png")
-    return Image(buffer.getvalue())
+    return scene_picture(mesh, lambda scene: scene.set_roles(roles, names=names),
+                         window_size=size, legend=False, labels=labels)
 
 
 strip = hx.sample("strip")

@@ -19,41 +19,23 @@
 # - write `collapse` yourself and have `check_collapse` tell you what is off.
 
 # %%
-import io
-
 import numpy as np
-from IPython.display import Image
-from PIL import Image as PILImage, ImageDraw, ImageFont
 
 import halfedge_edu as hx
 from halfedge_edu.core.ops import OperationLog, can_collapse, collapse
-from halfedge_edu.viz import CollapseAtlas, CollapseStepper, HalfedgeScene
+from halfedge_edu.viz import CollapseAtlas, CollapseStepper, grid, scene_picture
 
 
 def named_picture(mesh, log, roles, size=(380, 290), camera=None):
     """A picture of ``mesh`` with the elements of ``log`` labelled by their names."""
-    scene = HalfedgeScene(mesh, window_size=size, legend=False, labels=("vertex",), follow=False)
-    if camera is not None:
-        scene.plotter.camera_position = camera
-    scene.set_roles(roles, names={element: name for name, element in log.named.items()})  # deleted ones are skipped
-    png = scene.screenshot()
-    scene.close()
-    return png
+    names = {element: name for name, element in log.named.items()}
 
+    def show(scene):
+        if camera is not None:
+            scene.plotter.camera_position = camera
+        scene.set_roles(roles, names=names)  # deleted ones are skipped
 
-def grid(rows, titles):
-    """Paste rows of PNG pictures into one picture, each with a title above it."""
-    rows = [[PILImage.open(io.BytesIO(png)).convert("RGB") for png in row] for row in rows]
-    cell_w, cell_h = max(p.width for row in rows for p in row), max(p.height for row in rows for p in row) + 26
-    sheet = PILImage.new("RGB", (cell_w * max(len(row) for row in rows), cell_h * len(rows)), "white")
-    draw, font = ImageDraw.Draw(sheet), ImageFont.load_default(size=15)
-    for r, row in enumerate(rows):
-        for c, picture in enumerate(row):
-            sheet.paste(picture, (c * cell_w, r * cell_h + 26))
-            draw.text((c * cell_w + 10, r * cell_h + 4), titles[r][c], fill="black", font=font)
-    buffer = io.BytesIO()
-    sheet.save(buffer, format="png")
-    return Image(buffer.getvalue())
+    return scene_picture(mesh, show, window_size=size, legend=False, labels=("vertex",), follow=False)
 
 
 def collapsed(mesh, h):

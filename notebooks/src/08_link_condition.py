@@ -18,17 +18,13 @@
 # - write the test yourself from one-rings.
 
 # %%
-import io
-
 import numpy as np
 import pyvista as pv
-from IPython.display import Image
-from PIL import Image as PILImage
 
 import halfedge_edu as hx
 from halfedge_edu.core.ops import can_collapse, collapse, link_condition, link_of_edge, link_of_vertex
 from halfedge_edu.core.ops.link import BOUNDARY
-from halfedge_edu.viz import side_by_side
+from halfedge_edu.viz import plotter_png, side_by_side
 
 LINK_A, LINK_B, SHARED, EXTRA = "#E69F00", "#56B4E9", "#009E73", "#D55E00"   # Okabe-Ito colours
 
@@ -89,11 +85,9 @@ def draw_link(plotter, mesh, e, view=None):
 def link_png(mesh, e, view=None, size=(320, 300)):
     plotter = pv.Plotter(off_screen=True, window_size=list(size))
     draw_link(plotter, mesh, e, view)
-    png = plotter.screenshot(None, return_img=True)
+    png = plotter_png(plotter)
     plotter.close()
-    buffer = io.BytesIO()
-    PILImage.fromarray(png).save(buffer, format="png")
-    return buffer.getvalue()
+    return png
 
 
 examples = [("single_collapse", 0, (0, 0, 1)), ("cube", 1, VIEWS["cube"]), ("tetrahedron", 0, VIEWS["tetrahedron"])]
@@ -285,10 +279,7 @@ class LinkViewer:
     def redraw(self, change=None):
         self.plotter.clear_actors()
         self.condition = draw_link(self.plotter, self.mesh, self.edge_choice.value, VIEWS.get(self.mesh_choice.value))
-        pixels = self.plotter.screenshot(None, return_img=True)
-        buffer = io.BytesIO()
-        PILImage.fromarray(pixels).save(buffer, format="png")
-        self.image.value = buffer.getvalue()
+        self.image.value = plotter_png(self.plotter)
         self.text.value = "<pre>" + self.describe() + "</pre>"
 
     def describe(self):

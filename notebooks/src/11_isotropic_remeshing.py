@@ -23,39 +23,20 @@
 #   check it.
 
 # %%
-import io
-
 import numpy as np
-import pyvista as pv
 from IPython.display import Image
-from PIL import Image as PILImage
 
 import halfedge_edu as hx
 from halfedge_edu.algorithms.remesh import PHASES, closest_points_on_segments, remesh_step_by_step
 from halfedge_edu.viz.remesh_stepper import RemeshStepper, histogram_png, phase_quality
-from halfedge_edu.viz import side_by_side
+from halfedge_edu.viz import side_by_side, surface_png
 
 SPOT_VIEW = (2.6, 0.8, -2.3)        # from Spot toward the camera: the cow seen from the front left
 
 
 def mesh_png(mesh, size=(380, 320), view=SPOT_VIEW, boundary_colour=None, zoom=1.35):
     """A picture of ``mesh`` with its edges drawn (and its boundary in a colour, if given)."""
-    V, F = mesh.to_arrays()
-    plotter = pv.Plotter(off_screen=True, window_size=list(size))
-    plotter.set_background("white")
-    plotter.add_mesh(pv.PolyData.from_regular_faces(V, F), color="#E9E6DF", show_edges=True,
-                     edge_color="#555555", line_width=0.8)
-    if boundary_colour is not None:
-        rim = [h for h in mesh.halfedges if h.is_boundary]
-        lines = np.array([[2, h.vertex.index, h.tip.index] for h in rim]).ravel()
-        plotter.add_mesh(pv.PolyData(mesh.positions.copy(), lines=lines), color=boundary_colour, line_width=4)
-    plotter.view_vector(view, viewup=(0, 1, 0))
-    plotter.camera.zoom(zoom)
-    png = plotter.screenshot(None, return_img=True)
-    plotter.close()
-    buffer = io.BytesIO()
-    PILImage.fromarray(png).save(buffer, format="png")
-    return buffer.getvalue()
+    return surface_png(mesh, size=size, view=view, zoom=zoom, boundary_color=boundary_colour)
 
 
 spot = hx.sample("spot")

@@ -19,18 +19,14 @@
 # - choose an order of operations for a given goal, and defend it with numbers.
 
 # %%
-import io
-
 import numpy as np
-import pyvista as pv
 from IPython.display import Image
-from PIL import Image as PILImage
 from scipy.spatial import cKDTree
 
 import halfedge_edu as hx
 from halfedge_edu.algorithms.remesh import closest_points_on_triangles
 from halfedge_edu.viz.remesh_stepper import RemeshStepper, histogram_png, phase_quality
-from halfedge_edu.viz import side_by_side
+from halfedge_edu.viz import side_by_side, surface_png
 
 R, r = 1.0, 0.35                                   # the torus: distance to the tube's centre, tube radius
 
@@ -56,18 +52,7 @@ def torus_distance(mesh):
 
 
 def mesh_png(mesh, size=(300, 240), view=(0.3, -1.0, 0.9), zoom=1.4):
-    V, F = mesh.to_arrays()
-    plotter = pv.Plotter(off_screen=True, window_size=list(size))
-    plotter.set_background("white")
-    plotter.add_mesh(pv.PolyData.from_regular_faces(V, F), color="#E9E6DF", show_edges=True,
-                     edge_color="#555555", line_width=0.8)
-    plotter.view_vector(view, viewup=(0, 0, 1) if abs(view[2]) < 0.99 else (0, 1, 0))
-    plotter.camera.zoom(zoom)
-    png = plotter.screenshot(None, return_img=True)
-    plotter.close()
-    buffer = io.BytesIO()
-    PILImage.fromarray(png).save(buffer, format="png")
-    return buffer.getvalue()
+    return surface_png(mesh, size=size, view=view, view_up=(0, 0, 1) if abs(view[2]) < 0.99 else (0, 1, 0), zoom=zoom)
 
 
 def collapse_shortest(mesh, count):

@@ -10,14 +10,13 @@ from PIL import Image
 
 from halfedge_edu.data import sample
 from halfedge_edu.viz import HalfedgeScene
-from halfedge_edu.viz.arrows import TRIANGLES_PER_ARROW
 from halfedge_edu.viz.palette import PRESETS, ROLES, rgb
 
 
 def _arrow_color(scene, h):
     """The colour the scene gives halfedge h's arrow."""
     slot = int(np.flatnonzero(scene.drawn_halfedges == h)[0])
-    return tuple(scene._data["arrows"].cell_data["rgb"][TRIANGLES_PER_ARROW * slot])
+    return tuple(scene.arrow_colors[slot])
 
 
 @pytest.fixture
