@@ -1,6 +1,17 @@
-"""Build step that pyproject.toml cannot say: put the chapters into the wheel.
+"""Build steps that pyproject.toml cannot say: the chapters into the wheel, and a README
+whose links work on the package index.
 
-Everything else about the package is in pyproject.toml. ``build_py`` here also writes
+Everything else about the package is in pyproject.toml.
+
+The README links pictures and files relative to the repository, which is right on the
+repository's own page and in a clone, but the package index shows the README without
+the repository beside it. :func:`readme_for_index` rewrites each relative link to an
+absolute one under ``REPOSITORY`` (``/raw/main/`` for pictures, ``/blob/main/`` for
+other files); the README itself stays relative. ``REPOSITORY`` is a placeholder until the
+project has a public address; tests/test_environments.py checks that it equals
+``[project.urls] Repository`` and that every relative link names a file in the repository.
+
+``build_py`` here also writes
 ``halfedge_edu/chapters/NN_*.ipynb``: the executed notebooks of ``notebooks/`` with
 their outputs removed, by ``halfedge_edu/course.py`` (loaded by path, standard library
 only, so the isolated build needs nothing more than setuptools). Why at build time and
@@ -10,6 +21,7 @@ not checked in: see course.py's docstring.
 from __future__ import annotations
 
 import importlib.util
+import re
 import sys
 from pathlib import Path
 
@@ -17,6 +29,28 @@ from setuptools import setup
 from setuptools.command.build_py import build_py
 
 ROOT = Path(__file__).resolve().parent
+REPOSITORY = "https://example.org/halfedge_edu"
+
+# A Markdown link or picture: [text](target) or ![alt](target), target without spaces.
+MARKDOWN_LINK = re.compile(r"(!?)\[([^\]]*)\]\(([^)\s]+)\)")
+
+
+def is_relative(target: str) -> bool:
+    """A link into the repository: not a URL, not mailto:, not an anchor on the same page."""
+    return not re.match(r"^([a-z][a-z0-9+.-]*:|#|/)", target, flags=re.I)
+
+
+def readme_for_index(text: str, repository: str = REPOSITORY) -> str:
+    """``text`` (Markdown) with every relative link made absolute under ``repository``."""
+
+    def absolute(match: re.Match) -> str:
+        bang, label, target = match.groups()
+        if not is_relative(target):
+            return match.group(0)
+        kind = "raw" if bang else "blob"
+        return f"{bang}[{label}]({repository}/{kind}/main/{target})"
+
+    return MARKDOWN_LINK.sub(absolute, text)
 
 
 def _course_module():
@@ -39,4 +73,9 @@ class BuildWithChapters(build_py):
                 raise RuntimeError("no notebooks/NN_*.ipynb to put in the wheel: build from a full clone or the sdist")
 
 
-setup(cmdclass={"build_py": BuildWithChapters})
+if __name__ == "__main__":  # setuptools runs this file as __main__; tests import it for readme_for_index
+    setup(
+        cmdclass={"build_py": BuildWithChapters},
+        long_description=readme_for_index((ROOT / "README.md").read_text(encoding="utf-8")),
+        long_description_content_type="text/markdown",
+    )
