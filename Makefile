@@ -5,6 +5,12 @@
 PYTHON ?= python3
 VENV ?= .venv
 PYTEST_ARGS ?=
+# The semester lock (pip constraints): every student and CI get the versions this
+# semester was tested with, not whatever was released the night before a lab. `LOCK=`
+# installs the newest versions within pyproject.toml's bounds instead. A lock that cannot
+# install on this Python (no wheels for it) falls back to that too, saying so.
+SEMESTER ?= 2026-fall
+LOCK ?= constraints/$(SEMESTER).txt
 
 PY := $(VENV)/bin/python
 DEV_STAMP := $(VENV)/.installed-dev
@@ -31,9 +37,22 @@ ifeq ($(shell id -u),0)
 LAB_FLAGS += --ServerApp.allow_root=True
 endif
 
+COMMA := ,
 PIP := PIP_DISABLE_PIP_VERSION_CHECK=1 $(if $(CI),PIP_PROGRESS_BAR=off) $(PY) -m pip
 
-.PHONY: help lab test figures bench clean distclean
+# $(call install,EXTRAS,STAMP): pip install -e ".[EXTRAS]" with the lock if it installs,
+# else without it; STAMP records which (tests/test_environments.py reads it).
+define install
+	$(PIP) install --quiet "pip>=21.3"
+	@if [ -n "$(LOCK)" ] && $(PIP) install -e ".[$(1)]" -c "$(LOCK)"; then \
+	  echo "$(LOCK)" > $(2); \
+	else \
+	  if [ -n "$(LOCK)" ]; then echo "*** $(LOCK) does not install with $$($(PY) --version); installing the newest versions within pyproject.toml's bounds instead"; fi; \
+	  $(PIP) install -e ".[$(1)]" && : > $(2); \
+	fi
+endef
+
+.PHONY: help lab test figures bench book lock clean distclean
 .DEFAULT_GOAL := help
 
 help:
@@ -41,8 +60,10 @@ help:
 	@echo "make test       run every test and every notebook, headless"
 	@echo "make figures    rebuild the pictures in figures/"
 	@echo "make bench      compare against OpenMesh, fast-simplification and PyMeshLab"
+	@echo "make book       build the website (executed chapters, CLI and API) in build/book"
+	@echo "make lock       write the installed versions to constraints/\$$SEMESTER.txt"
 	@echo "make clean      remove caches and build files (distclean: also $(VENV))"
-	@echo "options: PYTHON=python3.12  PYTEST_ARGS='-k cli -x'"
+	@echo "options: PYTHON=python3.12  PYTEST_ARGS='-k cli -x'  LOCK= (no semester lock)"
 
 $(PY):
 	@$(PYTHON) -c 'import sys; sys.exit(sys.version_info < (3, 10))' 2>/dev/null || \
@@ -54,15 +75,12 @@ $(PY):
 	  exit 1; \
 	fi
 
-$(DEV_STAMP): pyproject.toml | $(PY)
-	$(PIP) install --quiet "pip>=21.3"
-	$(PIP) install -e ".[dev]"
-	@touch $@
+$(DEV_STAMP): pyproject.toml $(LOCK) | $(PY)
+	$(call install,dev,$@)
 
-$(BENCH_STAMP): pyproject.toml | $(PY)
-	$(PIP) install --quiet "pip>=21.3"
-	$(PIP) install -e ".[dev,bench]"
-	@touch $@ $(DEV_STAMP)
+$(BENCH_STAMP): pyproject.toml $(LOCK) | $(PY)
+	$(call install,dev$(COMMA)bench,$@)
+	@cp $@ $(DEV_STAMP)
 
 lab: $(DEV_STAMP)
 	@mkdir -p notebooks
@@ -72,7 +90,7 @@ lab: $(DEV_STAMP)
 # cores it was not faster (shared notes). conftest.py switches `-n` to --dist loadfile.
 test: $(DEV_STAMP)
 	@mkdir -p "$(WASM_EMPTY)"
-	$(HEADLESS_ENV) $(PY) -m pytest $(PYTEST_ARGS)
+	HALFEDGE_EDU_LOCK="$$(cat $(DEV_STAMP))" $(HEADLESS_ENV) $(PY) -m pytest $(PYTEST_ARGS)
 
 figures: $(DEV_STAMP)
 	@mkdir -p "$(WASM_EMPTY)"
@@ -81,8 +99,23 @@ figures: $(DEV_STAMP)
 bench: $(BENCH_STAMP)
 	$(PY) benchmarks/run_all.py
 
+# Sphinx + myst-nb over the executed notebooks (never re-executed: their stored outputs
+# are the pictures) and the docstrings; offline, nothing is downloaded. Not -W: docstrings
+# are written for help() and the notebooks, not as reST, so docutils warns about some
+# indented lines; tests/browser/test_book.py checks what matters (links, pictures).
+book: $(DEV_STAMP)
+	$(PY) -m sphinx -q -b html docs build/book
+	@echo "open build/book/index.html"
+
+# Write the current environment as the semester lock (after `make test` passed with it).
+lock: $(DEV_STAMP)
+	@mkdir -p constraints
+	{ echo "# Semester lock $(SEMESTER): the versions 'make test' passed with ($$($(PY) --version), $$(uname -sm))."; \
+	  echo "# Made by 'make lock'; 'make lab' and 'make test' install with it (see Makefile, LOCK)."; \
+	  $(PIP) freeze --exclude-editable | grep -v -i '^halfedge[-_]edu'; } > constraints/$(SEMESTER).txt
+
 clean:
-	rm -rf build dist .pytest_cache .hypothesis *.egg-info
+	rm -rf build dist .pytest_cache .hypothesis *.egg-info docs/_build
 	find . -path ./$(VENV) -prune -o -name __pycache__ -type d -prune -exec rm -rf {} +
 
 distclean: clean

@@ -30,6 +30,8 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Callable, Iterator, NoReturn, Sequence
 
+from halfedge_edu.course import add_course_parser
+
 PROG = "halfedge-edu"
 
 EXIT_OK = 0
@@ -205,6 +207,7 @@ def build_parser() -> argparse.ArgumentParser:
             "(.obj by halfedge_edu's own writer, .ply .stl .off .glb .gltf through trimesh)."
         ),
     )
+    add_course_parser(commands)
     return parser
 
 

@@ -24,10 +24,15 @@ else:  # pytest itself depends on tomli before 3.11
 ROOT = Path(__file__).resolve().parents[1]
 PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text())
 PROJECT = PYPROJECT["project"]
-ENVIRONMENT = yaml.safe_load((ROOT / "environment.yml").read_text())
+# Each conda file and the pyproject.toml extras it must list, no more and no fewer:
+# students get the notebooks only, contributors everything.
+ENVIRONMENT_FILES = {
+    "environment.yml": ("notebooks",),
+    "environment-dev.yml": ("notebooks", "dev", "docs", "bench"),
+}
 README = (ROOT / "README.md").read_text()
 
-EXTRAS = ("notebooks", "dev", "bench")
+EXTRAS = ("notebooks", "dev", "docs", "bench")
 # Imported by the notebooks and widgets only; `import halfedge_edu` must not pull them in.
 PLOTTING_MODULES = ("pyvista", "vtk", "vtkmodules", "trame", "trame_pyvista", "ipywidgets", "matplotlib")
 
@@ -37,10 +42,10 @@ def normalise(name: str) -> str:
     return re.sub(r"[-_.]+", "-", name).lower()
 
 
-def pyproject_requirements() -> dict[str, SpecifierSet]:
-    """Core and every extra, by normalised name (the self-reference left out)."""
+def pyproject_requirements(extras: tuple[str, ...] = EXTRAS) -> dict[str, SpecifierSet]:
+    """Core and the given extras, by normalised name (the self-reference left out)."""
     lines = list(PROJECT["dependencies"])
-    for extra in EXTRAS:
+    for extra in extras:
         lines += PROJECT["optional-dependencies"][extra]
     found = {}
     for line in lines:
@@ -50,10 +55,14 @@ def pyproject_requirements() -> dict[str, SpecifierSet]:
     return found
 
 
-def environment_requirements() -> tuple[dict[str, SpecifierSet], dict[str, SpecifierSet]]:
-    """(conda, pip) packages of environment.yml by normalised name; pip options skipped."""
+def load_environment(filename: str) -> dict:
+    return yaml.safe_load((ROOT / filename).read_text())
+
+
+def environment_requirements(filename: str) -> tuple[dict[str, SpecifierSet], dict[str, SpecifierSet]]:
+    """(conda, pip) packages of a conda environment file by normalised name; pip options skipped."""
     conda, pip = {}, {}
-    for entry in ENVIRONMENT["dependencies"]:
+    for entry in load_environment(filename)["dependencies"]:
         if isinstance(entry, dict):
             for line in entry["pip"]:
                 if not line.startswith("-"):
@@ -65,34 +74,49 @@ def environment_requirements() -> tuple[dict[str, SpecifierSet], dict[str, Speci
     return conda, pip
 
 
-def test_every_pyproject_dependency_is_in_environment_yml_with_the_same_bound():
-    conda, pip = environment_requirements()
+@pytest.mark.parametrize("filename", ENVIRONMENT_FILES)
+def test_every_pyproject_dependency_is_in_the_environment_file_with_the_same_bounds(filename):
+    conda, pip = environment_requirements(filename)
     in_environment = {**conda, **pip}
-    wanted = pyproject_requirements()
+    wanted = pyproject_requirements(ENVIRONMENT_FILES[filename])
     missing = sorted(set(wanted) - set(in_environment))
-    assert not missing, f"add to environment.yml: {missing}"
+    assert not missing, f"add to {filename}: {missing}"
     differ = {name: (str(wanted[name]), str(in_environment[name])) for name in wanted if wanted[name] != in_environment[name]}
-    assert not differ, f"lower bounds differ (pyproject, environment.yml): {differ}"
+    assert not differ, f"bounds differ (pyproject, {filename}): {differ}"
 
 
-def test_environment_yml_lists_nothing_that_pyproject_lacks():
-    conda, pip = environment_requirements()
-    extra = sorted((set(conda) | set(pip)) - set(pyproject_requirements()) - {"python", "pip"})
-    assert not extra, f"in environment.yml but not pyproject.toml: {extra}"
+@pytest.mark.parametrize("filename", ENVIRONMENT_FILES)
+def test_environment_file_lists_nothing_that_its_extras_lack(filename):
+    conda, pip = environment_requirements(filename)
+    extra = sorted((set(conda) | set(pip)) - set(pyproject_requirements(ENVIRONMENT_FILES[filename])) - {"python", "pip"})
+    assert not extra, f"in {filename} but not in pyproject.toml's {ENVIRONMENT_FILES[filename]}: {extra}"
 
 
-def test_environment_yml_python_matches_requires_python():
-    conda, _ = environment_requirements()
+@pytest.mark.parametrize("filename", ENVIRONMENT_FILES)
+def test_environment_file_python_matches_requires_python(filename):
+    conda, _ = environment_requirements(filename)
     assert conda["python"] == SpecifierSet(PROJECT["requires-python"])
 
 
-def test_environment_yml_installs_this_package():
-    pip_lines = next(e["pip"] for e in ENVIRONMENT["dependencies"] if isinstance(e, dict))
+@pytest.mark.parametrize("filename", ENVIRONMENT_FILES)
+def test_environment_file_installs_this_package(filename):
+    pip_lines = next(e["pip"] for e in load_environment(filename)["dependencies"] if isinstance(e, dict))
     assert "-e ." in pip_lines
 
 
-def test_dev_extra_includes_the_notebooks_extra():
-    assert "halfedge_edu[notebooks]" in PROJECT["optional-dependencies"]["dev"]
+def test_environment_files_have_different_names():
+    names = [load_environment(filename)["name"] for filename in ENVIRONMENT_FILES]
+    assert len(set(names)) == len(names), names
+
+
+def test_students_environment_has_no_contributor_tools():
+    conda, pip = environment_requirements("environment.yml")
+    contributor_only = set(pyproject_requirements(("dev", "docs", "bench"))) - set(pyproject_requirements(("notebooks",)))
+    assert not (set(conda) | set(pip)) & contributor_only
+
+
+def test_dev_extra_includes_the_notebooks_and_docs_extras():
+    assert "halfedge_edu[notebooks,docs]" in PROJECT["optional-dependencies"]["dev"]
 
 
 def test_import_does_not_load_the_plotting_stack():

@@ -47,6 +47,10 @@ Nothing here imports pyvista or ipywidgets until a scene or widget is made, and 
 package itself (``import halfedge_edu``) never imports this module.
 """
 
+from halfedge_edu._extras import require
+
+require("notebooks", "halfedge_edu.viz")
+
 from .bezier_widgets import BezierSurfaceEditor, DeCasteljauViewer
 from .loop_stepper import LoopStepper
 from .palette import PRESETS, ROLES

@@ -1,0 +1,53 @@
+"""JupyterHub for one server: every student gets a Jupyter server with the course.
+
+Run it from the repository root (the hub and the students' servers in the Python
+environment where halfedge_edu[notebooks], jupyterhub and jupyter-server-proxy are
+installed; configurable-http-proxy from npm on PATH):
+
+    jupyterhub -f deploy/jupyterhub/jupyterhub_config.py
+
+As written it is the test setup: the hub on 127.0.0.1, any user name with the shared
+password $HALFEDGE_HUB_PASSWORD (DummyAuthenticator), and every student's server
+started as the hub's own user in /tmp/halfedge-hub/NAME (SimpleLocalProcessSpawner).
+For a real class on one server set HALFEDGE_HUB_SPAWNER=systemdspawner.SystemdSpawner
+(pip install jupyterhub-systemdspawner; what The Littlest JupyterHub uses): it gives each
+student a system user and enforces the memory and CPU limits below with cgroups. The
+local-process spawners only pass the limits on as MEM_LIMIT and CPU_LIMIT (shown in the
+Lab's resource indicator), they do not enforce them; and pick a real authenticator.
+
+Every student's server starts through deploy/singleuser-start.sh, which sets the live
+3D view's environment and copies the chapters into ~/course (halfedge-edu course).
+"""
+
+import os
+from pathlib import Path
+
+c = get_config()  # noqa: F821 (JupyterHub provides get_config when it loads this file)
+
+DEPLOY = Path(__file__).resolve().parents[1]
+# The hub's database, cookie secret and (with the test spawner) the students' homes.
+STATE = Path(os.environ.get("HALFEDGE_HUB_STATE", "/tmp/halfedge-hub"))
+STATE.mkdir(parents=True, exist_ok=True)
+
+c.JupyterHub.ip = os.environ.get("HALFEDGE_HUB_IP", "127.0.0.1")
+c.JupyterHub.port = int(os.environ.get("HALFEDGE_HUB_PORT", "8000"))
+c.JupyterHub.hub_ip = "127.0.0.1"
+c.JupyterHub.cookie_secret_file = str(STATE / "cookie_secret")
+c.JupyterHub.db_url = f"sqlite:///{STATE / 'jupyterhub.sqlite'}"
+
+c.JupyterHub.authenticator_class = "dummy"
+c.DummyAuthenticator.password = os.environ.get("HALFEDGE_HUB_PASSWORD", "halfedge")
+c.Authenticator.allow_all = True
+
+c.JupyterHub.spawner_class = os.environ.get("HALFEDGE_HUB_SPAWNER", "simple")
+c.SimpleLocalProcessSpawner.home_dir_template = str(STATE / "{username}")
+c.Spawner.cmd = [str(DEPLOY / "singleuser-start.sh"), "jupyterhub-singleuser"]
+c.Spawner.default_url = "/lab/tree/course"
+# Measured (issue 14): 470-530 MiB per student kernel after chapter 03, about 200 MiB of
+# it the first live 3D view; rotating it costs up to a core while dragging.
+c.Spawner.mem_limit = "1G"
+c.Spawner.mem_guarantee = "512M"
+c.Spawner.cpu_limit = 1.0
+c.Spawner.cpu_guarantee = 0.25
+c.Spawner.start_timeout = 120
+c.Spawner.http_timeout = 120

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# The environment of one student's Jupyter server on a hub or on Binder, then the server.
+# Used by all three recipes: deploy/jupyterhub/jupyterhub_config.py (Spawner.cmd), the
+# Zero to JupyterHub image (deploy/z2jh/Dockerfile, ENTRYPOINT) and binder/start.
+# Usage: singleuser-start.sh jupyterhub-singleuser [ARGS...]
+#
+# These are `make lab`'s live settings for a Linux server without a screen (see the
+# Makefile and README, "Headless and in CI"), plus what a hub needs:
+# - VTK_DEFAULT_OPENGL_WINDOW: render with EGL, there is no X server.
+# - VTK_WASM_DIR_OVERRIDE: an empty folder, so trame-vtklocal never tries to download VTK.wasm.
+# - PYVISTA_TRAME_SERVER_PROXY_PREFIX: the live 3D views reach the kernel's trame server
+#   through jupyter-server-proxy under this user's own prefix (/user/NAME/proxy/PORT).
+# PYVISTA_JUPYTER_BACKEND=static is NOT set: that is for CI only and would turn every live
+# view into a picture. A hub short of memory may set HALFEDGE_EDU_VIZ=static instead.
+set -euo pipefail
+
+export VTK_DEFAULT_OPENGL_WINDOW=vtkEGLRenderWindow
+export VTK_WASM_DIR_OVERRIDE="${VTK_WASM_DIR_OVERRIDE:-$HOME/.cache/halfedge_edu/vtk-wasm-empty}"
+export PYVISTA_TRAME_SERVER_PROXY_PREFIX="${JUPYTERHUB_SERVICE_PREFIX:-/}proxy/"
+mkdir -p "$VTK_WASM_DIR_OVERRIDE"
+
+# Each student's own copy of the chapters, from the installed package; files already
+# there (their work) are kept. A failure here must not keep the server from starting.
+halfedge-edu course "${HALFEDGE_EDU_COURSE_DIR:-$HOME/course}" || echo "singleuser-start: could not copy the course" >&2
+
+exec "$@"

@@ -1,0 +1,154 @@
+"""The deployment recipes (deploy/, binder/) parse and agree with each other and the Makefile.
+
+They cannot all be run here (no Docker, no Kubernetes, no Binder): each file is parsed
+(Python, YAML, Dockerfile instructions, shell), the one script they share is run for
+real, and the settings every recipe repeats (limits, packages, environment) are compared.
+hadolint is not installable from the registries this project uses (its PyPI wrappers
+download the binary at run time), so the Dockerfile check is the instruction parse below.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import shlex
+import subprocess
+import sys
+from pathlib import Path
+
+import yaml
+from traitlets.config import Config
+
+ROOT = Path(__file__).resolve().parents[1]
+START = ROOT / "deploy" / "singleuser-start.sh"
+HUB_CONFIG = ROOT / "deploy" / "jupyterhub" / "jupyterhub_config.py"
+VALUES = yaml.safe_load((ROOT / "deploy" / "z2jh" / "values.yaml").read_text())
+DOCKERFILE = (ROOT / "deploy" / "z2jh" / "Dockerfile").read_text()
+MAKEFILE = (ROOT / "Makefile").read_text()
+LOCK = re.search(r"^SEMESTER \?= (\S+)$", MAKEFILE, flags=re.M).group(1)
+DOCKER_INSTRUCTIONS = {
+    "FROM", "RUN", "CMD", "LABEL", "EXPOSE", "ENV", "ADD", "COPY", "ENTRYPOINT", "VOLUME",
+    "USER", "WORKDIR", "ARG", "ONBUILD", "STOPSIGNAL", "HEALTHCHECK", "SHELL",
+}
+
+
+def hub_config(tmp_path: Path) -> Config:
+    """deploy/jupyterhub/jupyterhub_config.py loaded as JupyterHub loads it."""
+    config = Config()
+    namespace = {"get_config": lambda: config, "__file__": str(HUB_CONFIG)}
+    previous = os.environ.get("HALFEDGE_HUB_STATE")
+    os.environ["HALFEDGE_HUB_STATE"] = str(tmp_path / "hub")
+    try:
+        exec(compile(HUB_CONFIG.read_text(), str(HUB_CONFIG), "exec"), namespace)
+    finally:
+        if previous is None:
+            del os.environ["HALFEDGE_HUB_STATE"]
+        else:
+            os.environ["HALFEDGE_HUB_STATE"] = previous
+    return config
+
+
+def docker_instructions() -> list[tuple[str, str]]:
+    """(INSTRUCTION, arguments) of the Dockerfile, continuation lines joined, comments dropped."""
+    logical, current = [], ""
+    for line in DOCKERFILE.splitlines():
+        if not current and (not line.strip() or line.lstrip().startswith("#")):
+            continue
+        current += line.rstrip("\\").strip() + " "
+        if not line.rstrip().endswith("\\"):
+            logical.append(current.strip())
+            current = ""
+    assert not current, "the Dockerfile ends inside a continued line"
+    return [tuple(line.split(None, 1)) for line in logical]
+
+
+def gib(text: str) -> float:
+    number, unit = re.fullmatch(r"([\d.]+)([MG])", text).groups()
+    return float(number) / (1024 if unit == "M" else 1)
+
+
+def test_shared_start_script_sets_the_live_environment_and_copies_the_course(tmp_path):
+    env = {key: value for key, value in os.environ.items() if not key.startswith(("PYVISTA_", "VTK_", "HALFEDGE_EDU_"))}
+    env.update(HOME=str(tmp_path), JUPYTERHUB_SERVICE_PREFIX="/user/ann/",
+               PATH=os.path.dirname(sys.executable) + os.pathsep + env.get("PATH", ""))
+    result = subprocess.run(
+        [str(START), sys.executable, "-c", "import json, os; print(json.dumps(dict(os.environ)))"],
+        capture_output=True, text=True, env=env, timeout=120,
+    )
+    assert result.returncode == 0, result.stderr
+    started = json.loads(result.stdout.splitlines()[-1])
+    assert started["PYVISTA_TRAME_SERVER_PROXY_PREFIX"] == "/user/ann/proxy/"
+    assert started["VTK_DEFAULT_OPENGL_WINDOW"] == re.search(r"VTK_DEFAULT_OPENGL_WINDOW=(\S+)", MAKEFILE).group(1)
+    wasm = Path(started["VTK_WASM_DIR_OVERRIDE"])
+    assert wasm.is_dir() and not any(wasm.iterdir())
+    assert "PYVISTA_JUPYTER_BACKEND" not in started, "a hub keeps the live view (static is for CI)"
+    assert len(list((tmp_path / "course").glob("[0-9][0-9]_*.ipynb"))) == len(list((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb")))
+
+
+def test_start_script_sets_the_makefiles_variables_and_the_proxy_prefix():
+    exported = set(re.findall(r"^export (\w+)=", START.read_text(), flags=re.M))
+    makefile_variables = set(re.findall(r"\b(VTK_\w+|PYVISTA_\w+)=", MAKEFILE))
+    # Every headless/lab variable of the Makefile except the CI-only static backend.
+    assert exported == makefile_variables - {"PYVISTA_JUPYTER_BACKEND"} | {"PYVISTA_TRAME_SERVER_PROXY_PREFIX"}
+    readme = (ROOT / "README.md").read_text()
+    assert all(f"`{name}`" in readme for name in exported), "README documents every variable"
+
+
+def test_local_hub_config_starts_students_through_the_shared_script(tmp_path):
+    config = hub_config(tmp_path)
+    assert config.JupyterHub.ip == "127.0.0.1"
+    assert config.JupyterHub.authenticator_class == "dummy"
+    assert config.JupyterHub.spawner_class == "simple"
+    command = config.Spawner.cmd
+    assert Path(command[0]) == START and os.access(command[0], os.X_OK)
+    assert command[1:] == ["jupyterhub-singleuser"]
+    assert (tmp_path / "hub").is_dir()
+
+
+def test_kubernetes_values_have_the_local_hubs_limits(tmp_path):
+    config = hub_config(tmp_path)
+    single = VALUES["singleuser"]
+    assert gib(single["memory"]["limit"]) == gib(config.Spawner.mem_limit)
+    assert gib(single["memory"]["guarantee"]) == gib(config.Spawner.mem_guarantee)
+    assert single["cpu"]["limit"] == config.Spawner.cpu_limit
+    assert single["cpu"]["guarantee"] == config.Spawner.cpu_guarantee
+    assert single["defaultUrl"] == config.Spawner.default_url
+    assert single["cmd"] == config.Spawner.cmd[1]
+    assert single["image"]["tag"] == LOCK
+
+
+def test_dockerfile_parses_and_installs_the_package_like_binder():
+    instructions = docker_instructions()
+    unknown = [name for name, _ in instructions if name.upper() not in DOCKER_INSTRUCTIONS or name != name.upper()]
+    assert not unknown, f"not Dockerfile instructions: {unknown}"
+    assert instructions[0][0] == "FROM"
+    by_name = {}
+    for name, arguments in instructions:
+        by_name.setdefault(name, []).append(arguments)
+    assert json.loads(by_name["ENTRYPOINT"][-1]) == ["/usr/local/bin/singleuser-start.sh"]
+    assert json.loads(by_name["CMD"][-1]) == [VALUES["singleuser"]["cmd"]]
+    runs = " ".join(by_name["RUN"])
+    apt = set((ROOT / "binder" / "apt.txt").read_text().split())
+    assert apt == {"libgl1", "libegl1"} and all(package in shlex.split(runs) for package in apt)
+    assert f"constraints/{LOCK}.txt" in runs and (ROOT / "constraints" / f"{LOCK}.txt").exists()
+    assert '"/tmp/halfedge_edu[notebooks]"' in runs and " -e " not in runs, "the notebooks extra, not editable"
+    python = re.match(r"python:(\d+\.\d+)", by_name["FROM"][0]).group(1)
+    assert (ROOT / "binder" / "runtime.txt").read_text().strip() == f"python-{python}"
+
+
+def test_binder_installs_the_notebooks_extra_non_editable_and_starts_through_the_script():
+    post_build = (ROOT / "binder" / "postBuild").read_text()
+    installs = [shlex.split(line) for line in post_build.splitlines() if line.startswith("pip install")]
+    assert len(installs) == 1
+    assert '.[notebooks]' in installs[0] and "-e" not in installs[0] and "--editable" not in installs[0]
+    assert f"constraints/{LOCK}.txt" in installs[0]
+    assert "jupyter-server-proxy" in (ROOT / "binder" / "requirements.txt").read_text()
+    start = (ROOT / "binder" / "start").read_text()
+    assert "deploy/singleuser-start.sh" in start and '"$@"' in start
+    for script in ("postBuild", "start"):
+        path = ROOT / "binder" / script
+        assert os.access(path, os.X_OK), f"binder/{script} must be executable"
+        syntax = subprocess.run(["bash", "-n", str(path)], capture_output=True, text=True)
+        assert syntax.returncode == 0, syntax.stderr
+    assert "jupyter-server-proxy" in DOCKERFILE
