@@ -26,7 +26,10 @@ endif
 
 # The live Lab keeps its interactive defaults; only a Linux server without a screen
 # needs VTK pointed at EGL, and root (containers) needs JupyterLab's permission.
-LAB_ENV :=
+# trame-vtklocal (pulled in by the live view) tries to download VTK's WebAssembly files
+# at start unless pointed at a folder: without this a learner's first live view shows a
+# red "Task exception was never retrieved" traceback (and tries the network).
+LAB_ENV := VTK_WASM_DIR_OVERRIDE=$(WASM_EMPTY)
 LAB_FLAGS :=
 ifeq ($(UNAME),Linux)
 ifeq ($(DISPLAY)$(WAYLAND_DISPLAY),)
@@ -83,7 +86,7 @@ $(BENCH_STAMP): pyproject.toml $(LOCK) | $(PY)
 	@cp $@ $(DEV_STAMP)
 
 lab: $(DEV_STAMP)
-	@mkdir -p notebooks
+	@mkdir -p notebooks "$(WASM_EMPTY)"
 	$(LAB_ENV) $(VENV)/bin/jupyter lab $(LAB_FLAGS) notebooks/
 
 # No pytest-xdist here: a notebook's cells must run in order in one kernel, and on two
