@@ -695,27 +695,35 @@ def test_algorithm_failing_half_way_writes_nothing(capsys, tmp_path, cube, old_o
     assert_only(tmp_path, "cube.obj")
 
 
-def test_disk_full_half_way_through_writing_leaves_no_partial_file(capsys, tmp_path, cube, old_output, monkeypatch):
+class InterruptedWrite:
+    """The temporary file: half of what is written arrives, then ``interrupt()`` is called."""
+
+    def __init__(self, file, interrupt):
+        self.file, self.interrupt = file, interrupt
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exception):
+        self.file.close()
+
+    def write(self, text):
+        self.file.write(text[: len(text) // 2])
+        self.file.flush()
+        self.interrupt()
+
+
+def interrupt_writes(monkeypatch, interrupt) -> None:
+    """Make every file that ``hx.save`` opens an ``InterruptedWrite``."""
     real_fdopen = os.fdopen
+    monkeypatch.setattr(os, "fdopen", lambda *args, **kwargs: InterruptedWrite(real_fdopen(*args, **kwargs), interrupt))
 
-    class DiskFillsUp:
-        """The temporary file: half of what is written fits, then the disk is full."""
 
-        def __init__(self, file):
-            self.file = file
+def test_disk_full_half_way_through_writing_leaves_no_partial_file(capsys, tmp_path, cube, old_output, monkeypatch):
+    def disk_full():
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
 
-        def __enter__(self):
-            return self
-
-        def __exit__(self, *exception):
-            self.file.close()
-
-        def write(self, text):
-            self.file.write(text[: len(text) // 2])
-            self.file.flush()
-            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
-
-    monkeypatch.setattr(os, "fdopen", lambda *args, **kwargs: DiskFillsUp(real_fdopen(*args, **kwargs)))
+    interrupt_writes(monkeypatch, disk_full)
     status, out, err = run(capsys, "subdivide", cube, old_output, 1)
     monkeypatch.undo()
     assert_one_line_error(status, err)
@@ -938,26 +946,7 @@ def test_a_file_name_that_is_not_utf8_in_an_error_is_one_line(tmp_path):
 def test_sigterm_while_writing_removes_the_temporary_file(capsys, tmp_path, cube, old_output, monkeypatch):
     import signal
 
-    real_fdopen = os.fdopen
-
-    class TerminatedHalfWay:
-        """The temporary file: half of what is written arrives, then SIGTERM."""
-
-        def __init__(self, file):
-            self.file = file
-
-        def __enter__(self):
-            return self
-
-        def __exit__(self, *exception):
-            self.file.close()
-
-        def write(self, text):
-            self.file.write(text[: len(text) // 2])
-            self.file.flush()
-            os.kill(os.getpid(), signal.SIGTERM)
-
-    monkeypatch.setattr(os, "fdopen", lambda *args, **kwargs: TerminatedHalfWay(real_fdopen(*args, **kwargs)))
+    interrupt_writes(monkeypatch, lambda: os.kill(os.getpid(), signal.SIGTERM))
     before = signal.getsignal(signal.SIGTERM)
     status, out, err = run(capsys, "subdivide", cube, old_output, 1)
     monkeypatch.undo()
