@@ -39,7 +39,8 @@ import threading
 import warnings
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Callable, Iterator, NoReturn, Sequence
+from types import FrameType
+from typing import Callable, Iterator, NoReturn, Sequence, TextIO
 
 PROG = "halfedge-edu"
 
@@ -75,7 +76,7 @@ class Terminated(BaseException):
     through every ``except Exception`` and ``hx.save`` removes its temporary file."""
 
 
-def _raise_terminated(signum: int, frame) -> NoReturn:
+def _raise_terminated(signum: int, frame: FrameType | None) -> NoReturn:
     raise Terminated()
 
 
@@ -669,7 +670,7 @@ def _warn(message: str) -> None:
     _print(f"{PROG}: warning: {_one_line(message)}", file=sys.stderr)
 
 
-def _print(text: str, file=None) -> None:
+def _print(text: str, file: TextIO | None = None) -> None:
     """``print``, with file-name bytes that are not UTF-8 shown as ``\\xe9``.
 
     Python hands such bytes over as lone surrogates (``\\udce9``), which a UTF-8
