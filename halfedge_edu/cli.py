@@ -494,10 +494,9 @@ def _faces_at_edge_length(mesh, length: float) -> float:
     """
     import numpy as np
 
-    vertices, faces = mesh.to_arrays()  # (n, 3) float, (m, 3) int
-    corners = vertices[faces]  # (m, 3, 3)
-    normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])  # (m, 3)
-    area = 0.5 * np.linalg.norm(normals, axis=1).sum()
+    from halfedge_edu.algorithms.normals import face_areas
+
+    area = face_areas(mesh).sum()
     with np.errstate(over="ignore", divide="ignore"):  # a tiny length: the estimate is inf
         return float(area / (np.sqrt(3) / 4 * np.float64(length) ** 2))
 
