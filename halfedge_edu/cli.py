@@ -15,6 +15,15 @@ Promises, each tested in tests/test_cli.py:
 - Each result is validated before it is written. A broken result is a bug in
   halfedge_edu, not in the input: one line saying so, exit status 1 (the status ``check``
   gives a broken mesh), and nothing written.
+- Only regular files are read (a FIFO would block, a link to ``/dev/zero`` never end).
+- Work that would outgrow the machine is refused before it starts: ``subdivide`` and
+  ``remesh`` estimate the faces they would make and refuse above ``--max-faces``
+  (default 10 million), naming the estimate and the limit. Coordinates so large
+  (beyond 1e40) that the algorithms' products of them overflow are refused by every
+  command that computes with them.
+- SIGTERM, like Ctrl-C, removes a half-written OUT's temporary file; exit status 143
+  (130 for Ctrl-C).
+- File names that are not UTF-8 are printed with the odd bytes as ``\\xe9``.
 
 The library is imported only once a subcommand runs, so ``--help`` is instant.
 """
@@ -24,11 +33,14 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import signal
 import sys
+import threading
 import warnings
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Callable, Iterator, NoReturn, Sequence
+from types import FrameType
+from typing import Callable, Iterator, NoReturn, Sequence, TextIO
 
 from halfedge_edu.course import add_course_parser
 
@@ -41,6 +53,17 @@ EXIT_ERROR = 2  # bad input or usage (argparse uses 2 for usage errors too)
 # How many non-manifold elements `info` lists by index before it only counts them.
 MAX_LISTED = 10
 
+#: ``--max-faces``'s default: about 1-2 GB of memory for the halfedge arrays and the
+#: algorithms' work arrays.
+DEFAULT_MAX_FACES = 10_000_000
+
+#: The largest coordinate (in absolute value) a computing command accepts. The most
+#: any algorithm multiplies is six coordinates: simplify inverts 3x3 quadric matrices
+#: whose entries are squared lengths, and their determinant is a product of three.
+#: (1e40)^6 = 1e240 leaves room below float64's 1.8e308 for sums over many faces;
+#: measured, simplify overflows from about 1e51 and remesh from about 1e77.
+MAX_COORDINATE = 1e40
+
 
 class InputProblem(Exception):
     """Input the command cannot use; reported as one line on stderr with exit status 2."""
@@ -48,6 +71,28 @@ class InputProblem(Exception):
 
 class BrokenResult(Exception):
     """An algorithm returned a mesh that fails ``validate()``: a bug, reported with exit status 1."""
+
+
+class Terminated(BaseException):
+    """SIGTERM arrived. A ``BaseException`` like ``KeyboardInterrupt``, so that it unwinds
+    through every ``except Exception`` and ``hx.save`` removes its temporary file."""
+
+
+def _raise_terminated(signum: int, frame: FrameType | None) -> NoReturn:
+    raise Terminated()
+
+
+@contextmanager
+def _sigterm_unwinds() -> Iterator[None]:
+    """In the body, SIGTERM raises ``Terminated`` (signal handlers exist only in the main thread)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGTERM, _raise_terminated)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -62,8 +107,16 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line with ``argv`` (default: ``sys.argv[1:]``); return the exit status."""
     parser = build_parser()
     args = parser.parse_args(argv)
+    with _sigterm_unwinds():
+        return _run(args)
+
+
+def _run(args: argparse.Namespace) -> int:
+    """Run the chosen subcommand; every way it can end becomes an exit status."""
     try:
         return args.run(args)
+    except Terminated:
+        return 128 + signal.SIGTERM
     except InputProblem as problem:
         return _fail(str(problem))
     except BrokenResult as problem:
@@ -151,6 +204,7 @@ def build_parser() -> argparse.ArgumentParser:
         "--levels", dest="levels_option", type=_whole_number(0), metavar="N",
         help="the same as the positional N",
     )
+    _add_max_faces(subdivide)
 
     simplify = _add_transform(
         commands, "simplify", run_simplify,
@@ -198,6 +252,7 @@ def build_parser() -> argparse.ArgumentParser:
     remesh.add_argument(
         "--iterations", type=_whole_number(0), default=5, metavar="N", help="how many rounds (default 5)"
     )
+    _add_max_faces(remesh)
 
     _add_transform(
         commands, "convert", run_convert, progress=False,
@@ -219,6 +274,13 @@ def _add_repair(command: argparse.ArgumentParser) -> None:
         "--repair", action="store_true",
         help="repair the triangles on loading: drop degenerate and duplicate faces, "
         "orient them consistently, split non-manifold edges and vertices",
+    )
+
+
+def _add_max_faces(command: argparse.ArgumentParser) -> None:
+    command.add_argument(
+        "--max-faces", type=_whole_number(1), default=DEFAULT_MAX_FACES, metavar="N",
+        help=f"refuse to start if the result would have more than about N faces (default {DEFAULT_MAX_FACES:,})",
     )
 
 
@@ -301,7 +363,7 @@ def run_info(args: argparse.Namespace) -> int:
     ]
     counts = np.bincount(live_degrees) if live_degrees.size else np.zeros(0, dtype=int)
     lines += [f"  {degree:>3}: {count}" for degree, count in enumerate(counts) if count]
-    print("\n".join(lines))
+    _print("\n".join(lines))
     return EXIT_OK
 
 
@@ -346,7 +408,7 @@ def _info_not_buildable(path: Path, error: Exception) -> int:
             rows = found.reshape(len(found), -1).tolist()
             lines.append(f"  {title}: {len(found)}{_listing(form.format(*row) for row in rows)}")
     lines.append(f"loading said: {_one_line(str(error))}")
-    print("\n".join(lines))
+    _print("\n".join(lines))
     return EXIT_OK
 
 
@@ -359,9 +421,9 @@ def run_check(args: argparse.Namespace) -> int:
     try:
         mesh.validate()
     except MeshInvariantError as error:
-        print(f"{path}: not a valid halfedge mesh: {_one_line(str(error))}")
+        _print(f"{path}: not a valid halfedge mesh: {_one_line(str(error))}")
         return EXIT_INVALID
-    print(f"{path}: valid halfedge mesh ({mesh.n_vertices} vertices, {mesh.n_faces} faces)")
+    _print(f"{path}: valid halfedge mesh ({mesh.n_vertices} vertices, {mesh.n_faces} faces)")
     return EXIT_OK
 
 
@@ -377,7 +439,11 @@ def run_subdivide(args: argparse.Namespace) -> int:
 
         return loop_subdivide(mesh, levels, progress=_progress(args))
 
-    return _transform(args, algorithm)
+    def estimate(mesh) -> tuple[float, str]:
+        # Beyond 500 levels 4.0**levels leaves float range: more than any limit.
+        return mesh.n_faces * 4.0**levels if levels <= 500 else math.inf, f"{levels} levels of subdivision"
+
+    return _transform(args, algorithm, estimate=estimate)
 
 
 def run_simplify(args: argparse.Namespace) -> int:
@@ -415,19 +481,48 @@ def run_remesh(args: argparse.Namespace) -> int:
 
         return remesh(mesh, args.length, args.iterations, progress=_progress(args))
 
-    return _transform(args, algorithm)
+    def estimate(mesh) -> tuple[float, str]:
+        if args.length is None:  # the input's mean edge length: about the input's face count
+            return mesh.n_faces, "remeshing"
+        return _faces_at_edge_length(mesh, args.length), f"remeshing to edge length {args.length:g}"
+
+    return _transform(args, algorithm, estimate=estimate)
+
+
+def _faces_at_edge_length(mesh, length: float) -> float:
+    """About how many triangles with edges of ``length`` cover the mesh's surface.
+
+    An equilateral triangle with edge L has area sqrt(3)/4 L^2; isotropic remeshing
+    makes nearly equilateral triangles, so surface area / that area is the estimate.
+    """
+    import numpy as np
+
+    from halfedge_edu.algorithms.normals import face_areas
+
+    area = face_areas(mesh).sum()
+    with np.errstate(over="ignore", divide="ignore"):  # a tiny length: the estimate is inf
+        return float(area / (np.sqrt(3) / 4 * np.float64(length) ** 2))
 
 
 def run_convert(args: argparse.Namespace) -> int:
     """``convert IN OUT``: the same mesh in the format of OUT's suffix."""
-    return _transform(args, lambda mesh: mesh)
+    return _transform(args, lambda mesh: mesh, computes=False)
 
 
-def _transform(args: argparse.Namespace, algorithm: Callable) -> int:
+def _transform(
+    args: argparse.Namespace,
+    algorithm: Callable,
+    *,
+    estimate: Callable | None = None,
+    computes: bool = True,
+) -> int:
     """Load IN, run ``algorithm(mesh) -> mesh``, validate the result, write it to OUT.
 
     OUT is checked before loading (so a long run does not end in "cannot write
     there"), and written last, atomically: if anything fails, OUT is as it was.
+    ``estimate(mesh) -> (faces, what)`` says how large the result will be, checked
+    against ``--max-faces`` before the work starts; ``computes`` (every command but
+    ``convert``) refuses coordinates too large to compute with.
     """
     from halfedge_edu.core.errors import MeshInvariantError
 
@@ -436,6 +531,10 @@ def _transform(args: argparse.Namespace, algorithm: Callable) -> int:
     _check_writable(output)
     mesh = _load_or_fail(args.file, repair=args.repair)
     faces_before = mesh.n_faces
+    if computes:
+        _check_coordinate_size(mesh, args.file)
+    if estimate is not None:
+        _check_result_size(*estimate(mesh), args.max_faces)
     with _warnings_as_lines():
         result = algorithm(mesh)
     try:
@@ -446,8 +545,31 @@ def _transform(args: argparse.Namespace, algorithm: Callable) -> int:
             f"({_one_line(str(error))}); nothing was written; please report it"
         ) from error
     _save(result, output)
-    print(f"{args.command}: {faces_before} -> {result.n_faces} faces, wrote {output}")
+    _print(f"{args.command}: {faces_before} -> {result.n_faces} faces, wrote {output}")
     return EXIT_OK
+
+
+def _check_coordinate_size(mesh, path: Path) -> None:
+    """Raise ``InputProblem`` if a coordinate is beyond ``MAX_COORDINATE`` (products would overflow)."""
+    import numpy as np
+
+    vertices = mesh.to_arrays()[0]  # (n, 3)
+    largest = float(np.abs(vertices).max()) if vertices.size else 0.0
+    if largest > MAX_COORDINATE:
+        raise InputProblem(
+            f"{path}: coordinates up to {largest:.3g} are too large for the computation "
+            f"(at most {MAX_COORDINATE:.0e}, so that the products the algorithms take stay finite); scale the mesh down"
+        )
+
+
+def _check_result_size(estimated_faces: float, what: str, limit: int) -> None:
+    """Raise ``InputProblem`` if the estimated result is above ``--max-faces``."""
+    if estimated_faces > limit:
+        about = f"about {estimated_faces:.3g}" if math.isfinite(estimated_faces) else "more than 1e308"
+        raise InputProblem(
+            f"{what} would make {about} faces, more than the limit of {limit:,}; "
+            f"raise it with --max-faces N if the machine has the memory"
+        )
 
 
 def _progress(args: argparse.Namespace) -> bool:
@@ -479,12 +601,16 @@ def _check_writable(output: Path) -> None:
 
 
 def _save(mesh, output: Path) -> None:
-    """``hx.save`` (temporary file beside OUT, then moved into place), errors as ``InputProblem``."""
+    """``hx.save`` (temporary file beside OUT, then moved into place), errors as ``InputProblem``.
+
+    A ``MeshInputError`` here is OUT's format refusing the mesh, so it names OUT.
+    """
     import halfedge_edu as hx
+    from halfedge_edu.core.errors import MeshInputError
 
     try:
         hx.save(mesh, output)
-    except OSError as error:
+    except (OSError, MeshInputError) as error:
         raise InputProblem(_with_path(output, error)) from error
 
 
@@ -543,22 +669,24 @@ def _warnings_as_lines() -> Iterator[None]:
 
 
 def _warn(message: str) -> None:
-    print(f"{PROG}: warning: {_one_line(message)}", file=sys.stderr)
+    _print(f"{PROG}: warning: {_one_line(message)}", file=sys.stderr)
+
+
+def _print(text: str, file: TextIO | None = None) -> None:
+    """``print``, with file-name bytes that are not UTF-8 shown as ``\\xe9``.
+
+    Python hands such bytes over as lone surrogates (``\\udce9``), which a UTF-8
+    console refuses to encode: printing the name must not become the error.
+    """
+    print(text.encode("utf-8", "surrogateescape").decode("utf-8", "backslashreplace"), file=file)
 
 
 def _read_raw(path: Path):
     """The vertex and face arrays of a file, without building anything from them."""
-    import numpy as np
+    from halfedge_edu.io import load_arrays
 
-    if path.suffix.lower() == ".obj":
-        from halfedge_edu.io.obj import read_obj
-
-        data = read_obj(path)
-        return data.vertices, data.faces
-    import trimesh
-
-    raw = trimesh.load(path, process=False, force="mesh")
-    return np.asarray(raw.vertices), np.asarray(raw.faces, dtype=np.int64)
+    vertices, faces, _ = load_arrays(path)
+    return vertices, faces
 
 
 def _is_input_error(error: Exception) -> bool:
@@ -576,6 +704,8 @@ def _check_readable(path: Path) -> None:
         raise InputProblem(f"{path}: no such file")
     if path.is_dir():
         raise InputProblem(f"{path}: is a folder, not a mesh file")
+    if not path.is_file():  # follows symbolic links: a link to /dev/zero is a device
+        raise InputProblem(f"{path}: is not a regular file (a FIFO, device or socket); only mesh files can be read")
 
 
 def _with_path(path: Path, error: Exception) -> str:
@@ -603,7 +733,7 @@ def _one_line(text: str) -> str:
 
 
 def _fail(message: str, status: int = EXIT_ERROR) -> int:
-    print(f"{PROG}: error: {_one_line(message)}", file=sys.stderr)
+    _print(f"{PROG}: error: {_one_line(message)}", file=sys.stderr)
     return status
 
 

@@ -13,8 +13,10 @@ import math
 import os
 import subprocess
 import sys
+import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import halfedge_edu as hx
@@ -693,27 +695,35 @@ def test_algorithm_failing_half_way_writes_nothing(capsys, tmp_path, cube, old_o
     assert_only(tmp_path, "cube.obj")
 
 
-def test_disk_full_half_way_through_writing_leaves_no_partial_file(capsys, tmp_path, cube, old_output, monkeypatch):
+class InterruptedWrite:
+    """The temporary file: half of what is written arrives, then ``interrupt()`` is called."""
+
+    def __init__(self, file, interrupt):
+        self.file, self.interrupt = file, interrupt
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exception):
+        self.file.close()
+
+    def write(self, text):
+        self.file.write(text[: len(text) // 2])
+        self.file.flush()
+        self.interrupt()
+
+
+def interrupt_writes(monkeypatch, interrupt) -> None:
+    """Make every file that ``hx.save`` opens an ``InterruptedWrite``."""
     real_fdopen = os.fdopen
+    monkeypatch.setattr(os, "fdopen", lambda *args, **kwargs: InterruptedWrite(real_fdopen(*args, **kwargs), interrupt))
 
-    class DiskFillsUp:
-        """The temporary file: half of what is written fits, then the disk is full."""
 
-        def __init__(self, file):
-            self.file = file
+def test_disk_full_half_way_through_writing_leaves_no_partial_file(capsys, tmp_path, cube, old_output, monkeypatch):
+    def disk_full():
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
 
-        def __enter__(self):
-            return self
-
-        def __exit__(self, *exception):
-            self.file.close()
-
-        def write(self, text):
-            self.file.write(text[: len(text) // 2])
-            self.file.flush()
-            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
-
-    monkeypatch.setattr(os, "fdopen", lambda *args, **kwargs: DiskFillsUp(real_fdopen(*args, **kwargs)))
+    interrupt_writes(monkeypatch, disk_full)
     status, out, err = run(capsys, "subdivide", cube, old_output, 1)
     monkeypatch.undo()
     assert_one_line_error(status, err)
@@ -746,7 +756,224 @@ def test_running_out_of_memory_is_one_line(capsys, tmp_path, cube, monkeypatch):
         raise MemoryError
 
     monkeypatch.setattr(loop, "loop_subdivide", too_big)
-    status, _, err = run(capsys, "subdivide", cube, tmp_path / "out.obj", 12)
+    status, _, err = run(capsys, "subdivide", cube, tmp_path / "out.obj", 12, "--max-faces", 10**9)
     assert_one_line_error(status, err)
     assert "out of memory" in err
     assert_only(tmp_path, "cube.obj")
+
+
+# ---------------------------------------------------------------- formats that cannot hold the mesh
+
+FIN_V = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1)]
+FIN_F = [(0, 1, 2), (1, 0, 3), (0, 1, 4)]  # three triangles on the edge 0-1
+
+
+@pytest.mark.parametrize("suffix", [".stl", ".ply", ".off"])
+def test_info_reports_a_non_manifold_file_alike_in_every_format(capsys, tmp_path, suffix):
+    import trimesh
+
+    as_obj = write_obj(tmp_path / "fin.obj", FIN_V, FIN_F)
+    other = tmp_path / f"fin{suffix}"
+    trimesh.Trimesh(np.array(FIN_V, dtype=float), np.array(FIN_F), process=False).export(other)
+    _, obj_out, _ = run(capsys, "info", as_obj)
+    status, out, err = run(capsys, "info", other)
+    assert status == 0, err
+    assert "non-manifold edges (more than two faces): 1 (0-1)" in out
+    for key in ("vertices", "edges", "faces", "manifold"):
+        assert fields(out)[key] == fields(obj_out)[key], key
+
+
+def test_convert_repair_to_stl_is_refused_naming_the_output(capsys, tmp_path):
+    path = write_obj(tmp_path / "fin.obj", FIN_V, FIN_F)
+    status, out, err = run(capsys, "convert", path, tmp_path / "out.stl", "--repair")
+    lines = err.splitlines()
+    assert status == 2 and out == ""
+    assert lines[0].startswith("halfedge-edu: warning: ") and "split vertices" in lines[0]
+    assert lines[1].startswith(f"halfedge-edu: error: {tmp_path / 'out.stl'}: vertices 0 and ")
+    assert ".stl stores no shared vertices" in lines[1]
+    assert_only(tmp_path, "fin.obj")
+
+
+def test_convert_repair_to_an_indexed_format_loads_back_as_written(capsys, tmp_path):
+    path = write_obj(tmp_path / "fin.obj", FIN_V, FIN_F)
+    status, _, _ = run(capsys, "convert", path, tmp_path / "out.ply", "--repair")
+    assert status == 0
+    status, out, err = run(capsys, "check", tmp_path / "out.ply")
+    assert status == 0, err
+
+
+def test_convert_to_ply_refuses_coordinates_beyond_float32(capsys, tmp_path):
+    path = write_obj(tmp_path / "far.obj", [(0, 0, 0), (1e39, 0, 0), (0, 1, 0), (0, 0, 1)], TETRA_F)
+    status, _, err = run(capsys, "convert", path, tmp_path / "out.ply")
+    assert_one_line_error(status, err)
+    assert f"{tmp_path / 'out.ply'}: vertex 1 has a coordinate beyond float32's range" in err
+    assert_only(tmp_path, "far.obj")
+
+
+# ---------------------------------------------------------------- huge coordinates
+
+@pytest.mark.parametrize("command", ["subdivide", "simplify", "smooth", "remesh"])
+@pytest.mark.parametrize("largest", [1e308, 1e200, -1.5e41])
+def test_coordinates_too_large_to_compute_with_are_one_line(capsys, tmp_path, command, largest):
+    vertices = [(0, 0, 0), (largest, 0, 0), (0, largest, 0), (0, 0, largest)]
+    path = write_obj(tmp_path / "huge.obj", vertices, TETRA_F)
+    status, out, err = run(capsys, command, path, tmp_path / "out.obj", *WRITERS[command])
+    assert_one_line_error(status, err)
+    assert f"coordinates up to {abs(largest):.3g} are too large for the computation" in err
+    assert_only(tmp_path, "huge.obj")
+
+
+@pytest.mark.parametrize("command", ["subdivide", "simplify", "smooth", "remesh"])
+def test_coordinates_just_below_the_limit_are_computed_with(capsys, tmp_path, command):
+    scaled = [(1e40 * x, 1e40 * y, 1e40 * z) for x, y, z in hx.sample("cube").to_arrays()[0]]
+    path = write_obj(tmp_path / "big.obj", scaled, hx.sample("cube").to_arrays()[1])
+    status, _, err = run(capsys, command, path, tmp_path / "out.obj", *WRITERS[command])
+    assert status == 0 and err == ""
+
+
+def test_info_and_check_read_huge_coordinates_as_they_are(capsys, tmp_path):
+    path = write_obj(tmp_path / "huge.obj", [(0, 0, 0), (1e308, 0, 0), (0, 1e308, 0), (0, 0, 1e308)], TETRA_F)
+    assert run(capsys, "info", path)[0] == 0
+    assert run(capsys, "check", path)[0] == 0
+
+
+# ---------------------------------------------------------------- output size, estimated first
+
+def test_subdivide_refuses_a_result_above_max_faces_naming_estimate_and_limit(capsys, tmp_path, cube):
+    status, _, err = run(capsys, "subdivide", cube, tmp_path / "out.obj", 20)
+    assert_one_line_error(status, err)
+    assert f"20 levels of subdivision would make about {12 * 4.0**20:.3g} faces" in err
+    assert "more than the limit of 10,000,000; raise it with --max-faces" in err
+    assert_only(tmp_path, "cube.obj")
+
+
+def test_subdivide_estimate_of_thousands_of_levels_is_refused_too(capsys, tmp_path, cube):
+    status, _, err = run(capsys, "subdivide", cube, tmp_path / "out.obj", 100000)
+    assert_one_line_error(status, err)
+    assert "would make more than 1e308 faces" in err
+
+
+def test_max_faces_moves_the_limit_both_ways(capsys, tmp_path, cube):
+    status, _, err = run(capsys, "subdivide", cube, tmp_path / "out.obj", 2, "--max-faces", 191)
+    assert_one_line_error(status, err)
+    assert "about 192 faces, more than the limit of 191" in err
+    status, _, _ = run(capsys, "subdivide", cube, tmp_path / "out.obj", 2, "--max-faces", 192)
+    assert status == 0 and faces_in(tmp_path / "out.obj") == 192
+
+
+@pytest.mark.parametrize("length", ["1e-9", "1e-300"])
+def test_remesh_refuses_a_length_that_would_make_too_many_faces(capsys, tmp_path, cube, length):
+    status, _, err = run(capsys, "remesh", cube, tmp_path / "out.obj", "--length", length)
+    assert_one_line_error(status, err)
+    assert f"remeshing to edge length {float(length):g} would make " in err
+    assert "more than the limit of 10,000,000" in err
+    assert_only(tmp_path, "cube.obj")
+
+
+def test_remesh_estimate_is_close_to_what_remesh_makes(capsys, tmp_path, sphere):
+    # The unit sphere's area is about 4 pi; edges of 0.2 give about 4 pi / (sqrt(3)/4 0.04) = 725 faces.
+    status, out, _ = run(capsys, "remesh", sphere, tmp_path / "out.obj", "--length", "0.2", "--max-faces", 2000)
+    assert status == 0
+    made = faces_in(tmp_path / "out.obj")
+    assert 0.5 * 725 < made < 1.5 * 725
+    status, _, err = run(capsys, "remesh", sphere, tmp_path / "out.obj", "--length", "0.2", "--max-faces", 300)
+    assert_one_line_error(status, err)
+
+
+# ---------------------------------------------------------------- special files and names
+
+@pytest.mark.parametrize("command", ["info", "check", "convert"])
+def test_a_fifo_or_a_link_to_dev_zero_is_refused_at_once(capsys, tmp_path, command):
+    os.mkfifo(tmp_path / "pipe.obj")
+    (tmp_path / "zero.obj").symlink_to("/dev/zero")
+    for name in ("pipe.obj", "zero.obj"):
+        extra = [tmp_path / "out.obj"] if command == "convert" else []
+        status, _, err = run(capsys, command, tmp_path / name, *extra)
+        assert_one_line_error(status, err)
+        assert f"{name}: is not a regular file" in err
+    assert not (tmp_path / "out.obj").exists()
+
+
+def test_an_output_name_of_255_bytes_is_written(capsys, tmp_path, cube):
+    out = tmp_path / ("c" * 251 + ".obj")
+    status, _, err = run(capsys, "convert", cube, out)
+    assert status == 0, err
+    assert_only(tmp_path, "cube.obj", out.name)
+
+
+def test_a_permission_error_names_the_output_not_the_temporary_file(capsys, tmp_path, cube, monkeypatch):
+    import halfedge_edu.io.obj as obj
+
+    def refused(path, *args, **kwargs):
+        raise PermissionError(errno.EACCES, os.strerror(errno.EACCES), str(path))
+
+    monkeypatch.setattr(obj.os, "open", refused)
+    status, _, err = run(capsys, "convert", cube, tmp_path / "out.obj")
+    assert_one_line_error(status, err)
+    assert f"{tmp_path / 'out.obj'}: {os.strerror(errno.EACCES)}" in err
+    assert ".tmp" not in err
+
+
+@pytest.mark.parametrize("command", ["info", "check"])
+def test_a_file_name_that_is_not_utf8_is_printed_not_an_internal_error(tmp_path, command):
+    name = os.fsencode(tmp_path) + b"/caf\xe9.obj"  # Latin-1, not UTF-8
+    with open(name, "w") as file:
+        file.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+    env = {**os.environ, "PYTHONIOENCODING": "utf-8", "PYTHONPATH": str(ROOT)}
+    result = subprocess.run(
+        [sys.executable, "-m", "halfedge_edu", command, name], capture_output=True, text=True, env=env, timeout=60
+    )
+    assert result.returncode == 0, result.stderr
+    assert "caf\\xe9.obj" in result.stdout
+    assert result.stderr == ""
+
+
+def test_a_file_name_that_is_not_utf8_in_an_error_is_one_line(tmp_path):
+    name = os.fsencode(tmp_path) + b"/caf\xe9.obj"
+    with open(name, "w") as file:
+        file.write("v 0 0 0\nf 1 2 3\n")
+    env = {**os.environ, "PYTHONIOENCODING": "utf-8", "PYTHONPATH": str(ROOT)}
+    result = subprocess.run(
+        [sys.executable, "-m", "halfedge_edu", "check", name], capture_output=True, text=True, env=env, timeout=60
+    )
+    assert result.returncode == 2
+    assert_one_line_error(2, result.stderr)
+    assert "caf\\xe9.obj" in result.stderr
+
+
+# ---------------------------------------------------------------- SIGTERM while writing
+
+def test_sigterm_while_writing_removes_the_temporary_file(capsys, tmp_path, cube, old_output, monkeypatch):
+    import signal
+
+    interrupt_writes(monkeypatch, lambda: os.kill(os.getpid(), signal.SIGTERM))
+    before = signal.getsignal(signal.SIGTERM)
+    status, out, err = run(capsys, "subdivide", cube, old_output, 1)
+    monkeypatch.undo()
+    assert status == 128 + signal.SIGTERM and out == ""
+    assert old_output.read_text() == "# an earlier result\n"
+    assert_only(tmp_path, "cube.obj", "out.obj")
+    assert signal.getsignal(signal.SIGTERM) is before, "the handler is put back"
+
+
+def test_sigterm_to_a_real_process_leaves_no_temporary_file(tmp_path):
+    import signal
+
+    big = tmp_path / "big.obj"
+    hx.save(hx.sample("icosphere", subdivisions=5), big)  # 20480 faces: subdividing takes a moment
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    process = subprocess.Popen(
+        [sys.executable, "-m", "halfedge_edu", "subdivide", big, tmp_path / "out.obj", "2"],
+        env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+    )
+    # Wait until the output's temporary file exists, then terminate during the write.
+    deadline, sent = time.monotonic() + 120, False
+    while not sent and time.monotonic() < deadline and process.poll() is None:
+        if any(p.name.startswith(".halfedge_edu-") for p in tmp_path.iterdir()):
+            process.send_signal(signal.SIGTERM)
+            sent = True
+        time.sleep(0.001)
+    process.wait(timeout=60)
+    assert sent, "the temporary file was never seen"
+    assert process.returncode == 128 + signal.SIGTERM
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["big.obj"]

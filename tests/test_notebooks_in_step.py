@@ -15,7 +15,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tools"))
-from build_notebooks import chapter_sources, in_step  # noqa: E402
+from build_notebooks import chapter_sources, in_step, new_notebook, parse_source  # noqa: E402
 
 SOURCES = chapter_sources([])
 
@@ -36,3 +36,26 @@ def test_notebook_was_run_top_to_bottom(source: Path):
     counts = [cell.execution_count for cell in code]
     assert None not in counts, "some code cells were never executed"
     assert counts == list(range(1, len(code) + 1)), "cells were not run once each, in order, in a fresh kernel"
+
+
+@pytest.mark.parametrize("source", SOURCES, ids=[s.stem for s in SOURCES])
+def test_cell_ids_are_the_same_on_every_build_and_valid(source: Path):
+    text = source.read_text(encoding="utf-8")
+    first = parse_source(text, source.name[:2])
+    again = parse_source(text, source.name[:2])
+    assert [cell.id for cell in first] == [cell.id for cell in again]
+    assert len({cell.id for cell in first}) == len(first)
+    nbformat.validate(new_notebook(first))
+
+
+def test_a_cell_inserted_in_front_leaves_the_later_ids_alone():
+    text = "# %%\nx = 1\n\n# %% [markdown]\n# Some words\n\n# %%\nx = 1\n"
+    before = parse_source(text, "99")
+    after = parse_source("# %%\nnew = 0\n\n" + text, "99")
+    assert [cell.id for cell in after[1:]] == [cell.id for cell in before]
+    assert before[0].id != before[2].id, "two cells with the same text share an id"
+
+
+def test_the_parser_keeps_tags_and_nothing_else_in_cell_metadata():
+    cells = parse_source('# %% tags=["raises-exception"]\n1 / 0\n\n# %%\nx = 1\n', "99")
+    assert [dict(cell.metadata) for cell in cells] == [{"tags": ["raises-exception"]}, {}]

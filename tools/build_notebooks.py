@@ -7,7 +7,7 @@
 Each chapter is written as ``notebooks/src/NN_topic.py`` in the "percent" format that
 Jupytext, VS Code and Spyder understand: ``# %%`` starts a code cell, ``# %% [markdown]``
 a markdown cell whose lines begin with ``# ``, and ``# %% tags=["raises-exception"]``
-gives a cell tags. The script builds ``notebooks/NN_topic.ipynb`` from it and runs it
+gives a cell tags. jupytext reads the source into cells; the script builds ``notebooks/NN_topic.ipynb`` from it and runs it
 top to bottom in a fresh kernel, headless, with the same environment the tests use, so
 nbval can later compare every text output with a fresh run.
 
@@ -18,13 +18,13 @@ fresh kernel" is then the only way a notebook's outputs can come to exist.
 from __future__ import annotations
 
 import argparse
-import json
+import hashlib
 import os
-import re
 import sys
 import tempfile
 from pathlib import Path
 
+import jupytext
 import nbformat
 from nbclient import NotebookClient
 
@@ -32,37 +32,47 @@ ROOT = Path(__file__).resolve().parents[1]
 NOTEBOOKS = ROOT / "notebooks"
 SOURCES = NOTEBOOKS / "src"
 
-_CELL_START = re.compile(r"^# %%(?P<markdown> \[markdown\])?(?: tags=(?P<tags>\[.*\]))?\s*$")
+_NEW_CELL = {
+    "code": nbformat.v4.new_code_cell,
+    "markdown": nbformat.v4.new_markdown_cell,
+    "raw": nbformat.v4.new_raw_cell,
+}
 
 
-def parse_source(text: str) -> list[nbformat.NotebookNode]:
-    """Split a percent-format source into notebook cells (markdown and code)."""
+def cell_id(chapter: str, cell_type: str, source: str, taken: set[str]) -> str:
+    """A cell id that depends only on the chapter and the cell's own text.
+
+    nbformat would give every cell a random id on every build, so each rebuild rewrote
+    every id and notebook diffs churned. An id made from the chapter and a hash of the
+    cell stays put when the cell stays put, also when cells are inserted before it (an
+    id from the cell's position would shift for every later cell). Two cells with the
+    same text get ``-2``, ``-3`` ... so ids stay unique, as nbformat requires.
+    """
+    digest = hashlib.sha1(f"{cell_type}\n{source}".encode("utf-8")).hexdigest()[:12]
+    base = f"{chapter}-{digest}"
+    candidate, copy = base, 1
+    while candidate in taken:
+        copy += 1
+        candidate = f"{base}-{copy}"
+    taken.add(candidate)
+    return candidate
+
+
+def parse_source(text: str, chapter: str = "nb") -> list[nbformat.NotebookNode]:
+    """Read a percent-format source into notebook cells, through jupytext.
+
+    Only what the source says is kept: cell type, text and tags. jupytext's own
+    bookkeeping (``lines_to_next_cell`` and the like) would only serve a round trip back
+    to ``.py``, which the sources never make, so it is dropped. ``chapter`` (the two
+    digits of the file name) goes into the cell ids, see `cell_id`.
+    """
     cells: list[nbformat.NotebookNode] = []
-    kind, tags, lines = None, [], []
-
-    def finish() -> None:
-        if kind is None:
-            return
-        body = "\n".join(lines).strip("\n")
-        if kind == "markdown":
-            body = "\n".join(line[2:] if line.startswith("# ") else line.lstrip("#") for line in body.split("\n"))
-            cell = nbformat.v4.new_markdown_cell(body)
-        else:
-            cell = nbformat.v4.new_code_cell(body)
-        if tags:
-            cell.metadata["tags"] = tags
+    taken: set[str] = set()
+    for read in jupytext.reads(text, fmt="py:percent").cells:
+        cell = _NEW_CELL[read.cell_type](read.source, id=cell_id(chapter, read.cell_type, read.source, taken))
+        if read.metadata.get("tags"):
+            cell.metadata["tags"] = list(read.metadata["tags"])
         cells.append(cell)
-
-    for line in text.split("\n"):
-        match = _CELL_START.match(line)
-        if match:
-            finish()
-            kind = "markdown" if match.group("markdown") else "code"
-            tags = json.loads(match.group("tags")) if match.group("tags") else []
-            lines = []
-        elif kind is not None:
-            lines.append(line)
-    finish()
     return cells
 
 
@@ -88,7 +98,7 @@ def new_notebook(cells: list[nbformat.NotebookNode]) -> nbformat.NotebookNode:
 def build(source: Path) -> Path:
     """Build and execute one chapter; returns the notebook's path."""
     target = NOTEBOOKS / (source.stem + ".ipynb")
-    notebook = new_notebook(parse_source(source.read_text(encoding="utf-8")))
+    notebook = new_notebook(parse_source(source.read_text(encoding="utf-8"), source.name[:2]))
     os.environ.update(headless_environment())
     client = NotebookClient(
         notebook,
@@ -110,7 +120,7 @@ def in_step(source: Path) -> str | None:
     if not target.exists():
         return f"{target.name} is missing: run python tools/build_notebooks.py {source.stem[:2]}"
     stored = nbformat.read(target, as_version=4).cells
-    wanted = parse_source(source.read_text(encoding="utf-8"))
+    wanted = parse_source(source.read_text(encoding="utf-8"), source.name[:2])
     if len(stored) != len(wanted):
         return f"{target.name} has {len(stored)} cells, its source {len(wanted)}"
     for index, (have, want) in enumerate(zip(stored, wanted)):

@@ -3,6 +3,14 @@
 ``.obj`` goes through the package's own reader and writer (``halfedge_edu.io.obj``), so
 errors name the line of the file. ``.ply``, ``.stl``, ``.off``, ``.glb`` and ``.gltf``
 go through trimesh.
+
+What each format can hold decides what ``save`` refuses, so that a file never loads
+back as a different mesh: no format takes a non-finite coordinate; the float32 formats
+(``.ply``, ``.stl``, ``.glb``, ``.gltf``) take no coordinate beyond float32's range;
+and ``.stl``, which stores every triangle's corners by value and so is read back with
+equal positions merged into one vertex, takes no mesh with two vertices at one
+(float32) position, such as a repaired mesh whose non-manifold vertex was split into
+copies.
 """
 
 from __future__ import annotations
@@ -16,12 +24,15 @@ import numpy as np
 from halfedge_edu.core.errors import MeshInputError, MeshWarning
 from halfedge_edu.core.mesh import HalfedgeMesh
 from halfedge_edu.core.repair import repair_faces
-from halfedge_edu.io.obj import atomic_output, read_obj, write_obj
+from halfedge_edu.io.obj import atomic_output, checked_arrays, read_obj, require_regular_file, write_obj
 
-__all__ = ["load", "save", "SUFFIXES"]
+__all__ = ["load", "load_arrays", "save", "SUFFIXES"]
 
 #: The file suffixes ``load`` and ``save`` understand.
 SUFFIXES = (".obj", ".ply", ".stl", ".off", ".glb", ".gltf")
+
+#: The formats trimesh writes with float32 positions.
+FLOAT32_SUFFIXES = (".ply", ".stl", ".glb", ".gltf")
 
 
 def _suffix(path: Path) -> str:
@@ -55,17 +66,7 @@ def load(path: str | os.PathLike, *, repair: bool = False, triangulate: bool = T
             that cannot form a halfedge mesh (for ``.obj`` the message names the line).
     """
     path = Path(path)
-    suffix = _suffix(path)
-    if not path.exists():
-        raise FileNotFoundError(f"no such file: {str(path)!r}")
-
-    face_lines = None
-    if suffix == ".obj":
-        data = read_obj(path, triangulate=triangulate)
-        vertices, faces, face_lines = data.vertices, data.faces, data.face_lines
-    else:
-        vertices, faces = _load_with_trimesh(path)
-
+    vertices, faces, face_lines = load_arrays(path, triangulate=triangulate)
     if not repair:
         return HalfedgeMesh.from_faces(vertices, faces, face_lines=face_lines, source=path.name)
 
@@ -77,6 +78,34 @@ def load(path: str | os.PathLike, *, repair: bool = False, triangulate: bool = T
     if report:
         warnings.warn(f"{path.name}: {report}", MeshWarning, stacklevel=2)
     return mesh
+
+
+def load_arrays(path: str | os.PathLike, *, triangulate: bool = True) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """The vertex and face arrays of a mesh file, before any halfedge structure is built.
+
+    What ``load`` builds from, so a tool can look at a file that does not build (the
+    command line's ``info`` reports the non-manifold edges of any format from it).
+    ``.stl`` corners at exactly the same position are merged into one vertex, as in ``load``.
+
+    Returns:
+        ``(vertices, faces, face_lines)``: (n, 3) float64, (m, 3) int64 and, for
+        ``.obj``, the (m,) file line of each face (None for the other formats).
+
+    Raises:
+        FileNotFoundError: the file does not exist.
+        MeshInputError: an unknown suffix, a path that is not a regular file, or a file
+            that cannot be read.
+    """
+    path = Path(path)
+    suffix = _suffix(path)
+    if not path.exists():
+        raise FileNotFoundError(f"no such file: {str(path)!r}")
+    require_regular_file(path)
+    if suffix == ".obj":
+        data = read_obj(path, triangulate=triangulate)
+        return data.vertices, data.faces, data.face_lines
+    vertices, faces = _load_with_trimesh(path)
+    return vertices, faces, None
 
 
 def _load_with_trimesh(path: Path) -> tuple[np.ndarray, np.ndarray]:
@@ -113,15 +142,22 @@ def save(mesh: HalfedgeMesh, path: str | os.PathLike) -> None:
     The file is written beside ``path`` and moved into place, so a failure leaves no
     partial file (and an existing file is untouched).
 
-    Attention: only ``.obj`` (and ``.glb``/``.gltf``) keep float64 positions exactly;
-    trimesh writes ``.ply`` and ``.stl`` positions as float32, ``.off`` with 17 digits.
+    Attention: only ``.obj`` keeps float64 positions exactly (and ``.off``, written with
+    17 digits); trimesh writes ``.ply``, ``.stl``, ``.glb`` and ``.gltf`` positions as
+    float32, rounded to about 7 digits.
 
     Raises:
-        MeshInputError: an unknown suffix.
+        MeshInputError: an unknown suffix, or a mesh the format cannot hold (see the
+            module docstring): a non-finite coordinate, one beyond float32's range, or
+            for ``.stl`` two vertices at the same position.
     """
     path = Path(path)
     suffix = _suffix(path)
-    vertices, faces = mesh.to_arrays()
+    vertices, faces = checked_arrays(*mesh.to_arrays())
+    if suffix in FLOAT32_SUFFIXES:
+        _check_fits_float32(vertices, suffix)
+    if suffix == ".stl":
+        _check_no_shared_positions(vertices)
     if suffix == ".obj":
         write_obj(path, vertices, faces)
         return
@@ -135,3 +171,31 @@ def save(mesh: HalfedgeMesh, path: str | os.PathLike) -> None:
         exported = exported.encode("utf-8")
     with atomic_output(path, "wb") as file:
         file.write(exported)
+
+
+def _check_fits_float32(vertices: np.ndarray, suffix: str) -> None:
+    """Refuse coordinates that float32 would turn into inf."""
+    too_large = np.flatnonzero((np.abs(vertices) > np.finfo(np.float32).max).any(axis=1))
+    if len(too_large):
+        bad = int(too_large[0])
+        raise MeshInputError(
+            f"vertex {bad} has a coordinate beyond float32's range (about 3.4e38), which {suffix} stores; "
+            f"save as .obj or .off",
+            element=("vertex", bad),
+        )
+
+
+def _check_no_shared_positions(vertices: np.ndarray) -> None:
+    """Refuse two vertices that STL's float32 corners would merge into one on loading."""
+    stored = vertices.astype(np.float32)  # (n, 3), what the file will hold
+    _, first, inverse = np.unique(stored, axis=0, return_index=True, return_inverse=True)
+    inverse = inverse.reshape(-1)
+    merged = np.flatnonzero(first[inverse] != np.arange(len(vertices)))
+    if len(merged):
+        later = int(merged[0])
+        earlier = int(first[inverse[later]])
+        raise MeshInputError(
+            f"vertices {earlier} and {later} have the same position; .stl stores no shared vertices, "
+            f"so they would load back merged into one (another mesh); save as .obj, .ply or .off",
+            element=("vertex", later),
+        )

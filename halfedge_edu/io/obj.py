@@ -8,19 +8,37 @@ An OBJ file is text, one record per line. The first word says what the line is:
     f 1/4 2/5 3/6          ... with texture coordinate indices (``i/t``, ``i//n``, ``i/t/n``)
     f -3 -2 -1             ... negative: counted back from the last vertex defined so far
 
-Every other record (``vt``, ``vn``, ``g``, ``o``, ``s``, ``usemtl``, ``mtllib``, ``l`` ...)
-is skipped. A line ending in ``\\`` continues on the next line. Polygons with more than
-three vertices are cut into a fan of triangles (i, j, k), (i, k, l), ...
+The other records of the OBJ format (``vt``, ``vn``, ``g``, ``o``, ``s``, ``usemtl``,
+``mtllib``, ``l``, ``p``, the free-form ``curv``/``surf`` ... family) are skipped: they
+are OBJ, just not triangles. A line that starts with any other word is not OBJ at all
+and is an error naming its line, never skipped: skipping it could silently drop a
+record (a ``v`` behind a stray character shifts every index after it). A line ending in
+``\\`` continues on the next line. Polygons with more than three vertices are cut into a
+fan of triangles (i, j, k), (i, k, l), ...
+
+Encodings and line endings, each decided on purpose:
+
+- UTF-8 and ASCII are read; a UTF-8 byte-order mark at the start is dropped.
+- Lines may end in ``\\n`` (Unix), ``\\r\\n`` (Windows) or ``\\r`` alone (old Mac OS); a
+  file may even mix them. Line numbers count lines as an editor shows them.
+- Bytes that are not UTF-8 (Latin-1 in a comment, say) read as U+FFFD: harmless in a
+  comment or a group name, an "is not a number" error with the line in a ``v``/``f``.
+- UTF-16 and UTF-32 text (with or without a byte-order mark) is refused by name, and
+  any other file with NUL bytes as binary: their records cannot be read line by line.
 
 The reader checks everything before it returns: a bad line raises ``MeshInputError``
 whose ``.line`` is the 1-based line number and whose message quotes the line, and
-nothing is half-loaded.
+nothing is half-loaded. Only regular files are read (a FIFO would block, a link to
+``/dev/zero`` would never end).
 """
 
 from __future__ import annotations
 
+import codecs
 import os
+import re
 import secrets
+import stat
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -30,7 +48,8 @@ import numpy as np
 
 from halfedge_edu.core.errors import MeshInputError
 
-__all__ = ["ObjData", "read_obj", "write_obj", "atomic_output"]
+__all__ = ["ObjData", "read_obj", "write_obj", "atomic_output", "checked_arrays", "require_regular_file"]
+
 
 @dataclass
 class ObjData:
@@ -52,6 +71,17 @@ class ObjData:
     n_polygons_triangulated: int = 0
 
 
+#: Records of the OBJ format that carry no triangles (texture and normal data, grouping,
+#: materials, lines and points, free-form geometry, display attributes): skipped.
+SKIPPED_KEYWORDS = frozenset({
+    "vt", "vn", "vp", "g", "o", "s", "mg", "usemtl", "mtllib", "usemap", "maplib", "l", "p",
+    "cstype", "deg", "bmat", "step", "curv", "curv2", "surf", "parm", "trim", "hole", "scrv", "sp", "end", "con",
+    "lod", "bevel", "c_interp", "d_interp", "shadow_obj", "trace_obj", "ctech", "stech", "call", "csh",
+})
+
+#: One line break of any of the three conventions (Windows first, so \r\n is one break).
+_LINE_BREAK = re.compile(r"\r\n|\r|\n")
+
 #: Larger positive indices are rejected while parsing (the range check proper is at the end,
 #: since a positive index may name a vertex defined further down the file).
 _MAX_INDEX = 2**40
@@ -62,27 +92,67 @@ def _fail(source: str, line_no: int, text: str, problem: str) -> MeshInputError:
     return MeshInputError(f"{source}, line {line_no}: {problem}: {text.strip()!r}", line=line_no)
 
 
+def require_regular_file(path: str | os.PathLike) -> None:
+    """Raise ``MeshInputError`` unless ``path`` is a regular file (symbolic links followed).
+
+    Reading a FIFO blocks until some other program writes to it, and a device such as
+    ``/dev/zero`` never ends: a mesh is a file, so anything else is refused before it
+    is opened. A missing file raises ``FileNotFoundError``.
+    """
+    try:
+        mode = os.stat(path).st_mode
+    except FileNotFoundError:
+        raise
+    except OSError as error:
+        raise MeshInputError(f"{Path(path).name}: cannot read the file ({error.strerror})") from error
+    if stat.S_ISDIR(mode):
+        raise MeshInputError(f"{Path(path).name}: cannot read the file (it is a folder, not a file)")
+    if not stat.S_ISREG(mode):
+        kind = "a FIFO (named pipe)" if stat.S_ISFIFO(mode) else "a device or socket"
+        raise MeshInputError(f"{Path(path).name}: is {kind}, not a regular file; only mesh files can be read")
+
+
 def _read_text(path_or_file) -> tuple[str, str]:
-    """Return (text, source name). A missing file raises FileNotFoundError."""
+    """Return (text, source name), decoded as the module docstring says.
+
+    A missing file raises FileNotFoundError.
+    """
     if hasattr(path_or_file, "read"):
         source = str(getattr(path_or_file, "name", "<file>"))
         data = path_or_file.read()
     else:
         source = Path(path_or_file).name
+        require_regular_file(path_or_file)
         try:
             with open(path_or_file, "rb") as file:
                 data = file.read()
-        except FileNotFoundError:
-            raise
         except OSError as error:
-            raise MeshInputError(f"{source}: cannot read the file ({error})") from error
+            raise MeshInputError(f"{source}: cannot read the file ({error.strerror or error})") from error
     if isinstance(data, str):
         data = data.encode("utf-8", "surrogateescape")
+    wide = _wide_encoding(data)
+    if wide:
+        raise MeshInputError(f"{source}: the file is {wide} text; save it as UTF-8 (or ASCII) to read it")
     if b"\x00" in data:
         raise MeshInputError(f"{source}: this is a binary file, not a text OBJ file")
-    # Invalid UTF-8 bytes (e.g. Latin-1 in a comment) become U+FFFD: harmless in
-    # comments, and reported as an unparsable number if they are in a v or f record.
+    data = data.removeprefix(codecs.BOM_UTF8)
     return data.decode("utf-8", errors="replace"), source
+
+
+def _wide_encoding(data: bytes) -> str | None:
+    """"UTF-16" or "UTF-32" if ``data`` looks like text in one of them, else None.
+
+    Either the byte-order mark says so, or (without one) every second byte of the
+    start is NUL, as in UTF-16 text of ASCII characters.
+    """
+    if data.startswith((codecs.BOM_UTF32_LE, codecs.BOM_UTF32_BE)):
+        return "UTF-32"
+    if data.startswith((codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)):
+        return "UTF-16"
+    start = data[:1024]
+    if len(start) >= 4 and (start[0::2].count(0) == len(start[0::2]) or start[1::2].count(0) == len(start[1::2])):
+        return "UTF-16"
+    return None
 
 
 def _logical_lines(text: str) -> Iterator[tuple[int, str]]:
@@ -91,8 +161,8 @@ def _logical_lines(text: str) -> Iterator[tuple[int, str]]:
     A joined line carries the number of its first physical line.
     """
     pending, pending_no = "", 0
-    for line_no, line in enumerate(text.split("\n"), start=1):
-        line = line.split("#", 1)[0].rstrip()  # also drops the \r of CRLF files
+    for line_no, line in enumerate(_LINE_BREAK.split(text), start=1):
+        line = line.split("#", 1)[0].rstrip()
         if line.endswith("\\"):
             if not pending:
                 pending_no = line_no
@@ -177,6 +247,11 @@ def read_obj(path_or_file: str | os.PathLike | IO, *, triangulate: bool = True) 
             for k in range(1, len(corners) - 1):  # fan: (i, j, k), (i, k, l), ...
                 faces.append((corners[0], corners[k], corners[k + 1]))
                 face_lines.append(line_no)
+        elif keyword not in SKIPPED_KEYWORDS:
+            raise _fail(
+                source, line_no, line,
+                f"{keyword[:20]!r} is not an OBJ record (v and f are read; vt, vn, g, o, s, usemtl ... are skipped)",
+            )
 
     vertices = _parse_coordinates(coordinates, vertex_lines, text, source)
     if not faces:
@@ -228,27 +303,69 @@ def _parse_row(row: list[str], line_no: int, text: str, source: str) -> list[flo
 
 def _physical_line(text: str, line_no: int) -> str:
     """Line ``line_no`` (1-based) of ``text``, for an error message."""
-    return text.split("\n", line_no)[line_no - 1]
+    return _LINE_BREAK.split(text, maxsplit=line_no)[line_no - 1]
 
 
 @contextmanager
 def atomic_output(path: str | os.PathLike, mode: str = "w") -> Iterator[IO]:
     """Open a temporary file beside ``path``; on success move it onto ``path``.
 
-    If the body raises, the temporary file is removed and ``path`` is untouched, so a
-    failed save never leaves a partial file behind.
+    If the body raises (also ``KeyboardInterrupt``, or whatever a signal handler raises:
+    the command line turns SIGTERM into an exception for this), the temporary file is
+    removed and ``path`` is untouched, so a failed save never leaves a partial file.
+
+    The temporary name is short (``.halfedge_edu-XXXXXXXX.tmp``), not the output's
+    name plus a suffix, so that an output name near the file system's limit of 255
+    bytes can still be written. An error in creating or moving it names ``path``, the
+    file the caller asked for, not the temporary.
     """
     path = Path(path)
-    temporary = path.with_name(f".{path.name}.{secrets.token_hex(4)}.tmp")
-    # os.open with 0o666 lets the umask set the permissions, as for a plain open().
-    descriptor = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
+    temporary = path.with_name(f".halfedge_edu-{secrets.token_hex(4)}.tmp")
+    try:
+        # os.open with 0o666 lets the umask set the permissions, as for a plain open().
+        descriptor = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
+    except OSError as error:
+        raise OSError(error.errno, error.strerror, str(path)) from None
     try:
         with os.fdopen(descriptor, mode, **({} if "b" in mode else {"encoding": "utf-8", "newline": "\n"})) as file:
             yield file
-        os.replace(temporary, path)
+        try:
+            os.replace(temporary, path)
+        except OSError as error:
+            raise OSError(error.errno, error.strerror, str(path)) from None
     except BaseException:
         temporary.unlink(missing_ok=True)
         raise
+
+
+def checked_arrays(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(vertices, faces)`` as arrays, after the checks every writer makes before writing.
+
+    Every format refuses the same things, so that no file holds what a reader would
+    refuse or read back differently: wrong shapes, a non-finite coordinate (nan, inf),
+    a face index outside the vertices.
+
+    Raises:
+        MeshInputError: naming the first offending vertex or face.
+    """
+    vertices = np.asarray(vertices)
+    if np.iscomplexobj(vertices):
+        raise MeshInputError(f"vertices must be real numbers, not {vertices.dtype}")
+    vertices = vertices.astype(np.float64)
+    faces = np.asarray(faces)
+    if vertices.ndim != 2 or vertices.shape[1] != 3:
+        raise MeshInputError(f"vertices must have shape (n, 3), not {vertices.shape}")
+    if faces.ndim != 2 or faces.shape[1] != 3 or (faces.size and not np.issubdtype(faces.dtype, np.integer)):
+        raise MeshInputError(f"faces must be an (m, 3) integer array, not {faces.dtype} {faces.shape}")
+    if not np.isfinite(vertices).all():
+        bad = int(np.flatnonzero(~np.isfinite(vertices).all(axis=1))[0])
+        raise MeshInputError(f"vertex {bad} has a non-finite coordinate", element=("vertex", bad))
+    if faces.size and (faces.min() < 0 or faces.max() >= len(vertices)):
+        bad = int(np.flatnonzero(((faces < 0) | (faces >= len(vertices))).any(axis=1))[0])
+        raise MeshInputError(
+            f"face {bad} {faces[bad].tolist()} has an index outside 0..{len(vertices) - 1}", element=("face", bad)
+        )
+    return vertices, faces
 
 
 def write_obj(
@@ -273,20 +390,7 @@ def write_obj(
     Raises:
         MeshInputError: wrong shapes, non-finite coordinates or out-of-range indices.
     """
-    vertices = np.asarray(vertices, dtype=np.float64)
-    faces = np.asarray(faces)
-    if vertices.ndim != 2 or vertices.shape[1] != 3:
-        raise MeshInputError(f"vertices must have shape (n, 3), not {vertices.shape}")
-    if faces.ndim != 2 or faces.shape[1] != 3 or (faces.size and not np.issubdtype(faces.dtype, np.integer)):
-        raise MeshInputError(f"faces must be an (m, 3) integer array, not {faces.dtype} {faces.shape}")
-    if not np.isfinite(vertices).all():
-        bad = int(np.flatnonzero(~np.isfinite(vertices).all(axis=1))[0])
-        raise MeshInputError(f"vertex {bad} has a non-finite coordinate", element=("vertex", bad))
-    if faces.size and (faces.min() < 0 or faces.max() >= len(vertices)):
-        bad = int(np.flatnonzero(((faces < 0) | (faces >= len(vertices))).any(axis=1))[0])
-        raise MeshInputError(
-            f"face {bad} {faces[bad].tolist()} has an index outside 0..{len(vertices) - 1}", element=("face", bad)
-        )
+    vertices, faces = checked_arrays(vertices, faces)
 
     parts = []
     if header:

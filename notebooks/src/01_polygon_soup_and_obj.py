@@ -63,7 +63,8 @@ plotter.show()
 # counter-clockwise when you look at the face from outside.**
 #
 # That is all a mesh file needs. Everything else in the file (colours, texture
-# coordinates, normals, group names) is optional, and our reader skips it.
+# coordinates, normals, group names) is optional, and our reader skips it; a line that
+# is not OBJ at all (a mistyped `vx`, bare numbers) is an error naming its line.
 
 # %% [markdown]
 # ## Reading it
@@ -433,8 +434,9 @@ print(hx.HalfedgeMesh.from_faces(data.vertices, data.faces))
 # ## Summary
 #
 # - An OBJ file is `v x y z` lines and `f i j k ...` lines; face numbers start at **1**,
-#   negative ones count back from the newest vertex, `#` starts a comment, and other
-#   records are skipped.
+#   negative ones count back from the newest vertex, `#` starts a comment, other OBJ
+#   records (`vt`, `vn`, `g`, `usemtl` ...) are skipped, and a line that is not OBJ is
+#   an error.
 # - Polygons are cut into fans `(a, b, c), (a, c, d), ...`; `triangulate=False` refuses
 #   them instead.
 # - Errors are `hx.MeshInputError` with the file's line number in `.line` and in the

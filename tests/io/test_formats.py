@@ -183,3 +183,124 @@ def test_a_failed_save_leaves_an_existing_file_untouched(tmp_path, spot, monkeyp
         save(spot, target)
     assert target.read_bytes() == b"the old file"
     assert os.listdir(tmp_path) == ["spot.ply"]
+
+
+# ---------------------------------------------------------------- what each format can hold
+
+SUFFIXES_WRITTEN = (".obj", ".ply", ".stl", ".off", ".glb", ".gltf")
+
+
+def two_triangles_sharing_an_edge() -> HalfedgeMesh:
+    return HalfedgeMesh.from_faces([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]], [[0, 1, 2], [2, 1, 3]])
+
+
+@pytest.mark.parametrize("suffix", SUFFIXES_WRITTEN)
+@pytest.mark.parametrize("bad", [np.nan, np.inf])
+def test_every_format_refuses_a_non_finite_coordinate_and_writes_nothing(tmp_path, suffix, bad):
+    mesh = two_triangles_sharing_an_edge()
+    mesh.positions[2, 1] = bad
+    with pytest.raises(MeshInputError, match="vertex 2 has a non-finite coordinate") as error:
+        save(mesh, tmp_path / f"out{suffix}")
+    assert error.value.element == ("vertex", 2)
+    assert os.listdir(tmp_path) == []
+
+
+@pytest.mark.parametrize("suffix", [".ply", ".stl", ".glb", ".gltf"])
+def test_float32_formats_refuse_coordinates_float32_turns_into_inf(tmp_path, suffix):
+    mesh = two_triangles_sharing_an_edge()
+    mesh.positions[3] = [1e39, 1, 0]
+    with pytest.raises(MeshInputError, match=f"vertex 3 has a coordinate beyond float32's range .* {suffix}"):
+        save(mesh, tmp_path / f"out{suffix}")
+    assert os.listdir(tmp_path) == []
+
+
+@pytest.mark.parametrize("suffix", [".obj", ".off"])
+def test_float64_text_formats_keep_coordinates_beyond_float32(tmp_path, suffix):
+    mesh = two_triangles_sharing_an_edge()
+    mesh.positions[3] = [1e39, 1, 0]
+    save(mesh, tmp_path / f"out{suffix}")
+    np.testing.assert_array_equal(load(tmp_path / f"out{suffix}").to_arrays()[0], mesh.to_arrays()[0])
+
+
+@pytest.mark.parametrize("suffix", [".glb", ".gltf", ".ply", ".stl"])
+def test_float32_formats_store_float32_positions_as_documented(tmp_path, spot, suffix):
+    mesh = spot.copy()
+    mesh.positions[:] += 1 / 3  # digits float32 cannot hold
+    save(mesh, tmp_path / f"spot{suffix}")
+    again = load(tmp_path / f"spot{suffix}").to_arrays()[0]
+    exact = mesh.to_arrays()[0]
+    if suffix == ".stl":  # merging corners may renumber the vertices: compare sorted rows
+        again, exact = np.unique(again, axis=0), np.unique(exact, axis=0)
+    np.testing.assert_array_equal(again, exact.astype(np.float32).astype(np.float64))
+    assert not np.array_equal(again, exact)
+
+
+def test_stl_refuses_vertices_at_one_position_which_would_load_back_merged(tmp_path):
+    # A non-manifold vertex split by repair: two vertices at the same place.
+    bowtie = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [-1, 0, 0], [-1, -1, 0]]
+    vertices, faces = np.array(bowtie, dtype=float), np.array([[0, 1, 2], [0, 3, 4]])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", MeshWarning)
+        (tmp_path / "bowtie.obj").write_text(
+            "".join(f"v {x} {y} {z}\n" for x, y, z in vertices) + "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in faces)
+        )
+        repaired = load(tmp_path / "bowtie.obj", repair=True)
+    assert repaired.n_vertices == 6  # vertex 0 was split into two copies
+    with pytest.raises(MeshInputError, match=r"vertices 0 and 5 have the same position; .stl stores no shared"):
+        save(repaired, tmp_path / "out.stl")
+    assert sorted(os.listdir(tmp_path)) == ["bowtie.obj"]
+    save(repaired, tmp_path / "out.ply")  # an indexed format keeps them apart
+    assert load(tmp_path / "out.ply").n_vertices == 6
+
+
+def test_stl_refuses_vertices_that_only_float32_makes_equal(tmp_path):
+    mesh = two_triangles_sharing_an_edge()
+    mesh.positions[3] = [1 + 1e-12, 0, 0]  # distinct from vertex 1 in float64, not in float32
+    assert not np.array_equal(mesh.positions[3], mesh.positions[1])
+    with pytest.raises(MeshInputError, match="vertices 1 and 3 have the same position"):
+        save(mesh, tmp_path / "out.stl")
+
+
+def test_load_arrays_gives_what_load_builds_from(tmp_path, spot):
+    from halfedge_edu.io import load_arrays
+
+    save(spot, tmp_path / "spot.stl")
+    vertices, faces, face_lines = load_arrays(tmp_path / "spot.stl")
+    assert face_lines is None
+    assert (len(vertices), len(faces)) == (spot.n_vertices, spot.n_faces)  # corners merged back
+    save(spot, tmp_path / "spot.obj")
+    vertices, faces, face_lines = load_arrays(tmp_path / "spot.obj")
+    np.testing.assert_array_equal(faces, spot.to_arrays()[1])
+    assert face_lines.min() > spot.n_vertices  # every f line comes after the v lines
+
+
+@pytest.mark.parametrize("suffix", [".obj", ".ply", ".stl"])
+def test_load_refuses_a_fifo_and_a_device_for_every_format(tmp_path, suffix):
+    os.mkfifo(tmp_path / f"pipe{suffix}")
+    (tmp_path / f"zero{suffix}").symlink_to("/dev/zero")
+    with pytest.raises(MeshInputError, match="is a FIFO"):
+        load(tmp_path / f"pipe{suffix}")
+    with pytest.raises(MeshInputError, match="is a device"):
+        load(tmp_path / f"zero{suffix}")
+
+
+# ---------------------------------------------------------------- the temporary file
+
+def test_an_output_name_of_255_bytes_can_be_written(tmp_path, spot):
+    target = tmp_path / ("m" * 251 + ".ply")
+    save(spot, target)
+    assert os.listdir(tmp_path) == [target.name]
+    assert load(target).n_faces == spot.n_faces
+
+
+def test_a_permission_error_names_the_target_not_the_temporary_file(tmp_path, spot, monkeypatch):
+    import halfedge_edu.io.obj as obj
+
+    def refused(path, *args, **kwargs):
+        raise PermissionError(13, "Permission denied", str(path))
+
+    monkeypatch.setattr(obj.os, "open", refused)
+    with pytest.raises(PermissionError) as error:
+        save(spot, tmp_path / "spot.ply")
+    assert error.value.filename == str(tmp_path / "spot.ply")
+    assert ".tmp" not in str(error.value)

@@ -9,10 +9,15 @@ Each file starts with three comment lines, for example::
 (``with no line`` for problems that belong to no line: an empty or binary file.)
 The files are read with ``hx.load``, so problems found while building the mesh
 (degenerate faces, flipped faces, non-manifold edges) must name the line too.
+
+Some files are in the encodings and line endings the reader decides about (a UTF-8
+byte-order mark, CR or mixed line ends, Latin-1, UTF-16, UTF-32): their headers are
+written in the same encoding, and read back here with the encoding the file is in.
 """
 
 from __future__ import annotations
 
+import codecs
 import re
 from pathlib import Path
 
@@ -25,13 +30,27 @@ CORPUS = Path(__file__).resolve().parents[1] / "data" / "malformed"
 FILES = sorted(CORPUS.glob("*.obj"))
 
 
+def file_lines(path: Path) -> list[str]:
+    """The file's lines as an editor shows them, whatever its encoding and line ends."""
+    data = path.read_bytes()
+    if data.startswith((codecs.BOM_UTF32_LE, codecs.BOM_UTF32_BE)):
+        text = data.decode("utf-32")
+    elif data.startswith((codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)):
+        text = data.decode("utf-16")
+    elif data[1:2] == b"\x00" and data[:1] == b"#":  # UTF-16 little-endian without a mark
+        text = data.decode("utf-16-le")
+    else:
+        text = data.decode("utf-8", errors="replace")
+    return re.split(r"\r\n|\r|\n", text.removeprefix("\ufeff"))
+
+
 def expectation(path: Path) -> tuple[int | None, str]:
     """(line, message part) announced in the file's header; (None, ...) for no line."""
-    header = path.read_bytes().split(b"\n", 3)[:2]
-    if not header[0].startswith(b"# expect:"):  # the empty file cannot carry a header
+    header = file_lines(path)[:2]
+    if not header[0].startswith("# expect:"):  # the empty file cannot carry a header
         return None, "no faces"
-    where = re.search(r"at line (\d+)|with no line", header[0].decode())
-    message = header[1].decode().removeprefix("# message:").strip()
+    where = re.search(r"at line (\d+)|with no line", header[0])
+    message = header[1].removeprefix("# message:").strip()
     return (int(where.group(1)) if where.group(1) else None), message
 
 
@@ -41,6 +60,9 @@ def test_the_corpus_has_a_file_for_each_kind_of_error():
         "zero_index", "index_out_of_range", "negative_index_before_first_vertex", "unparsable_coordinate",
         "unparsable_face_index", "vertex_too_few_coordinates", "face_too_few_vertices", "nan_coordinate",
         "inf_coordinate", "binary_file", "empty", "no_faces", "degenerate_face", "flipped_face", "nonmanifold_edge",
+        "utf8_bom_index_out_of_range", "cr_only_zero_index", "mixed_line_ends_bad_coordinate", "crlf_zero_index",
+        "latin1_in_a_face", "utf16_le_bom", "utf16_be_bom", "utf16_le_no_bom", "utf32_bom", "unknown_record",
+        "bare_numbers",
     }
     assert wanted <= names
 
@@ -57,12 +79,12 @@ def test_malformed_file_raises_with_the_announced_line(path):
 
 
 @pytest.mark.parametrize(
-    "path", [p for p in FILES if expectation(p)[0] is not None and "found when building" not in p.read_text(errors="replace")],
+    "path", [p for p in FILES if expectation(p)[0] is not None and "found when building" not in "".join(file_lines(p))],
     ids=lambda p: p.stem,
 )
 def test_parse_errors_quote_the_offending_line(path):
     line, _ = expectation(path)
-    text = path.read_text().splitlines()[line - 1].split("#")[0].strip()
+    text = file_lines(path)[line - 1].split("#")[0].strip()
     with pytest.raises(MeshInputError) as error:
         load(path)
     assert text in str(error.value)

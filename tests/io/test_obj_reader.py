@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+import os
 import time
 from pathlib import Path
 
@@ -166,3 +167,98 @@ def _seconds(function) -> float:
     start = time.perf_counter()
     function()
     return time.perf_counter() - start
+
+
+# ---------------------------------------------------------------- encodings and line ends
+
+TRIANGLE = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"
+
+
+def test_a_utf8_byte_order_mark_is_dropped_and_the_first_vertex_kept():
+    data = read_obj(io.BytesIO(b"\xef\xbb\xbf" + TRIANGLE.encode()))
+    assert len(data.vertices) == 3
+    np.testing.assert_array_equal(data.vertices[0], [0, 0, 0])
+    assert data.faces.tolist() == [[0, 1, 2]]
+
+
+def test_a_byte_order_mark_in_a_text_stream_is_dropped_too():
+    assert len(read_text("\ufeff" + TRIANGLE).vertices) == 3
+
+
+@pytest.mark.parametrize("line_end", ["\r", "\r\n"], ids=["cr-only", "crlf"])
+def test_cr_and_crlf_line_ends_read_like_lf_with_the_same_line_numbers(line_end):
+    text = "# a comment\n" + SQUARE + "f 1 2 3\n\nf 1 3 4\n"
+    other = read_obj(io.BytesIO(text.replace("\n", line_end).encode()))
+    lf = read_text(text)
+    np.testing.assert_array_equal(other.vertices, lf.vertices)
+    np.testing.assert_array_equal(other.faces, lf.faces)
+    assert other.face_lines.tolist() == lf.face_lines.tolist() == [6, 8]
+
+
+def test_mixed_line_ends_are_each_one_line_end():
+    data = read_obj(io.BytesIO(b"v 0 0 0\r\nv 1 0 0\rv 0 1 0\nf 1 2 3\r"))
+    assert data.faces.tolist() == [[0, 1, 2]]
+    assert data.face_lines.tolist() == [4]
+
+
+@pytest.mark.parametrize(
+    "codec, prefix, name",
+    [
+        ("utf-16-le", b"\xff\xfe", "UTF-16"),
+        ("utf-16-be", b"\xfe\xff", "UTF-16"),
+        ("utf-16-le", b"", "UTF-16"),
+        ("utf-16-be", b"", "UTF-16"),
+        ("utf-32-le", b"\xff\xfe\x00\x00", "UTF-32"),
+    ],
+    ids=["utf16-le-bom", "utf16-be-bom", "utf16-le", "utf16-be", "utf32-le-bom"],
+)
+def test_utf16_and_utf32_are_refused_by_name(codec, prefix, name):
+    with pytest.raises(MeshInputError, match=f"the file is {name} text; save it as UTF-8") as error:
+        read_obj(io.BytesIO(prefix + TRIANGLE.encode(codec)))
+    assert error.value.line is None
+
+
+def test_other_nul_bytes_are_still_a_binary_file():
+    with pytest.raises(MeshInputError, match="binary file"):
+        read_obj(io.BytesIO(b"v 0 0 0\nv 1 0 0\x00\x00\x01\nv 0 1 0\nf 1 2 3\n"))
+
+
+# ---------------------------------------------------------------- records: skipped or refused
+
+@pytest.mark.parametrize(
+    "record", ["vt 0.5 0.5", "vn 0 0 1", "vp 0.2", "g body", "o cow", "s 1", "mg 1", "usemtl skin",
+               "mtllib cow.mtl", "l 1 2", "p 1", "cstype bspline", "deg 3", "curv 0 1 1 2", "end", "lod 2"],
+)
+def test_obj_records_without_triangles_are_skipped(record):
+    data = read_text(f"v 0 0 0\n{record}\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    assert len(data.vertices) == 3 and data.faces.tolist() == [[0, 1, 2]]
+
+
+@pytest.mark.parametrize("line", ["vx 0 1 0", "V 0 1 0", "0 1 0", "vertex 0 1 0", "\u200bv 0 1 0"])
+def test_any_other_record_is_an_error_naming_its_line(line):
+    with pytest.raises(MeshInputError, match="is not an OBJ record") as error:
+        read_text(f"v 0 0 0\nv 1 0 0\n{line}\nv 0 1 0\nf 1 2 3\n")
+    assert error.value.line == 3
+    assert "line 3" in str(error.value)
+
+
+# ---------------------------------------------------------------- only regular files
+
+def test_a_fifo_is_refused_without_blocking(tmp_path):
+    fifo = tmp_path / "pipe.obj"
+    os.mkfifo(fifo)
+    with pytest.raises(MeshInputError, match="pipe.obj: is a FIFO .*not a regular file"):
+        read_obj(fifo)
+
+
+def test_a_link_to_a_device_is_refused_without_reading(tmp_path):
+    link = tmp_path / "zero.obj"
+    link.symlink_to("/dev/zero")
+    with pytest.raises(MeshInputError, match="zero.obj: is a device or socket, not a regular file"):
+        read_obj(link)
+
+
+def test_a_link_to_a_regular_file_is_read(tmp_path):
+    (tmp_path / "real.obj").write_text(TRIANGLE)
+    (tmp_path / "link.obj").symlink_to(tmp_path / "real.obj")
+    assert read_obj(tmp_path / "link.obj").faces.tolist() == [[0, 1, 2]]
