@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .arrays import undirected_keys
 from .errors import MeshInvariantError
 from .rings import ring_lengths
 
@@ -236,9 +237,7 @@ def validate(mesh: "HalfedgeMesh") -> None:
     ends = origin.reshape(-1, 2)
     if hs is not None:
         ends = ends[~edge_deleted]
-    low = np.minimum(ends[:, 0], ends[:, 1]).astype(np.int64)
-    high = np.maximum(ends[:, 0], ends[:, 1]).astype(np.int64)
-    key = np.sort(low * n_v + high)
+    key = np.sort(undirected_keys(ends[:, 0], ends[:, 1], n_v))
     repeated = _first(key[1:] == key[:-1], None)
     if repeated is not None:
         a, b = divmod(int(key[repeated]), n_v)

@@ -11,18 +11,20 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import halfedge_edu as hx
+from halfedge_edu.core.arrays import edge_table
 from tests import strategies as shapes
 
 remesh_module = importlib.import_module("halfedge_edu.algorithms.remesh")
 remesh = remesh_module.remesh
 remesh_step_by_step = remesh_module.remesh_step_by_step
+remesh_history = remesh_module.remesh_history
 quality_report = remesh_module.quality_report
 SPLIT_ABOVE, COLLAPSE_BELOW = remesh_module.SPLIT_ABOVE, remesh_module.COLLAPSE_BELOW
 
 
 def edge_lengths(mesh: hx.HalfedgeMesh) -> np.ndarray:
     vertices, faces = mesh.to_arrays()
-    edges = remesh_module._edge_table(faces, len(vertices)).edges
+    edges = edge_table(faces, len(vertices)).edges
     return np.linalg.norm(vertices[edges[:, 0]] - vertices[edges[:, 1]], axis=1)
 
 
@@ -33,7 +35,7 @@ def mean_edge_length(mesh: hx.HalfedgeMesh) -> float:
 def boundary_segments(mesh: hx.HalfedgeMesh) -> np.ndarray:
     """(S, 2, 3) the boundary edges of ``mesh`` as segments."""
     vertices, faces = mesh.to_arrays()
-    table = remesh_module._edge_table(faces, len(vertices))
+    table = edge_table(faces, len(vertices))
     return vertices[table.edges[table.count == 1]]
 
 
@@ -55,7 +57,7 @@ def bunny_remeshed():
 @pytest.fixture(scope="module")
 def spot_history():
     spot = hx.sample("spot")
-    return spot, remesh(spot, iterations=3, return_history=True)
+    return spot, (remesh(spot, iterations=3), remesh_history(spot, iterations=3))
 
 
 # ---- what is kept --------------------------------------------------------------------
@@ -278,7 +280,7 @@ def test_flip_pass_lowers_the_total_degree_deviation_and_keeps_counts():
     vertices, faces = sphere.to_arrays()
 
     def deviation(f):
-        degree = np.bincount(remesh_module._edge_table(f, len(vertices)).edges.reshape(-1), minlength=len(vertices))
+        degree = np.bincount(edge_table(f, len(vertices)).edges.reshape(-1), minlength=len(vertices))
         return np.abs(degree - 6).sum()
 
     flipped, n_flipped = remesh_module._flip_pass(vertices, faces, np.random.default_rng(0), np.cos(np.radians(20.0)))
@@ -296,7 +298,7 @@ def test_tangential_smoothing_keeps_a_flat_patch_in_its_plane_and_its_rim_fixed(
     inside = ~patch.vertex_is_boundary()
     vertices = vertices.copy()
     vertices[inside, :2] += rng.normal(scale=0.1, size=(inside.sum(), 2))
-    smoothed = remesh_module._tangential_smoothing(vertices, faces)
+    smoothed = remesh_module.tangential_smoothing(vertices, faces)
     assert np.allclose(smoothed[:, 2], 0.0)
     assert np.array_equal(smoothed[~inside], vertices[~inside])
     # In the plane the tangential step is the plain step to the neighbours' centroid.
@@ -309,7 +311,7 @@ def test_tangential_smoothing_does_not_move_a_vertex_along_its_normal():
     # A regular icosahedron: each vertex's neighbour centroid lies straight below it.
     mesh = hx.sample("icosphere", subdivisions=0)
     vertices, faces = mesh.to_arrays()
-    assert np.allclose(remesh_module._tangential_smoothing(vertices, faces), vertices)
+    assert np.allclose(remesh_module.tangential_smoothing(vertices, faces), vertices)
 
 
 def test_closest_points_on_triangles_match_trimesh_in_every_region():
