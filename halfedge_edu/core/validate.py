@@ -7,6 +7,7 @@ anything follows them.
 
 | rule                      | what must hold                                              |
 |---------------------------|-------------------------------------------------------------|
+| deletion-count            | the deleted flags agree with the mesh's element counts      |
 | deleted-reference         | live elements point only at live elements, within range     |
 | next-prev-inverse         | prev(next(h)) == h and next(prev(h)) == h                   |
 | twin-involution           | twin(h) = h ^ 1 runs the other way: origin(twin(h)) != origin(h) |
@@ -51,9 +52,29 @@ def validate(mesh: "HalfedgeMesh") -> None:
     vertex_deleted, face_deleted = mesh.vertex_deleted, mesh.face_deleted
     edge_deleted = mesh.edge_deleted
 
+    # ---- deletion-count ---------------------------------------------------------------
+    # The flags themselves say what is deleted, not the counters the operations keep: a
+    # flag set by hand must not hide behind counters that say "nothing deleted".
+    flagged = {kind: int(np.count_nonzero(flags))            # counts bytes, no int conversion
+               for kind, flags in (("vertex", vertex_deleted), ("edge", edge_deleted), ("face", face_deleted))}
+    counted = {"vertex": n_v - mesh.n_vertices, "edge": n_h // 2 - mesh.n_edges, "face": n_f - mesh.n_faces}
+    for kind in ("vertex", "edge", "face"):
+        if flagged[kind] != counted[kind]:
+            flags = {"vertex": vertex_deleted, "edge": edge_deleted, "face": face_deleted}[kind]
+            first = _first(flags, None)
+            raise MeshInvariantError(
+                "deletion-count",
+                (kind, first if first is not None else 0),
+                f"{flagged[kind]} {kind} slots are flagged deleted, but the mesh counts "
+                f"{counted[kind]} deleted {kind}s"
+                + (f" (the first flagged is {kind} {first})" if first is not None else "")
+                + "; delete elements with the mesh's operations, which keep both in step",
+            )
+    garbage = any(flagged.values())
+
     # Which elements to check: every slot when nothing is deleted (no gather needed),
     # otherwise the live ones, as index arrays.
-    if mesh.has_garbage:
+    if garbage:
         hs = np.flatnonzero(~np.repeat(edge_deleted, 2))
         vs = np.flatnonzero(~vertex_deleted)
         fs = np.flatnonzero(~face_deleted)
@@ -69,7 +90,7 @@ def validate(mesh: "HalfedgeMesh") -> None:
     def check_pointer(values, size, deleted, owner_kind, owner_indices, field, target_kind, allow_none=False):
         # Fast path: two reductions say "all in range" without building a mask.
         if len(values) == 0 or (
-            values.min() >= (-1 if allow_none else 0) and values.max() < size and not mesh.has_garbage
+            values.min() >= (-1 if allow_none else 0) and values.max() < size and not garbage
         ):
             return
         in_range = (values >= 0) & (values < size)
