@@ -39,6 +39,7 @@ lengths, degrees, angles).
 
 from __future__ import annotations
 
+import inspect
 import math
 from dataclasses import dataclass
 from typing import Iterator, NamedTuple
@@ -579,22 +580,21 @@ def remesh(
     return _to_mesh(vertices, faces)
 
 
-def remesh_history(
-    mesh: HalfedgeMesh,
-    target_length: float | None = None,
-    iterations: int = 5,
-    *,
-    project: bool = True,
-    progress: bool = False,
-) -> list[RemeshStep]:
+def remesh_history(mesh: HalfedgeMesh, target_length: float | None = None, **options) -> list[RemeshStep]:
     """Every :class:`RemeshStep` of :func:`remesh_step_by_step`, as one list.
 
-    The last step's mesh is what :func:`remesh` returns for the same arguments. A
-    separate function rather than a flag on :func:`remesh`, so that each function
-    always returns one type. The arguments are those of :func:`remesh`.
+    Takes exactly the arguments of :func:`remesh` (``options`` are its other keyword
+    arguments, with its defaults); the last step's mesh is what :func:`remesh` returns
+    for them. A separate function rather than a flag on :func:`remesh`, so that each
+    function always returns one type.
     """
-    target_length, iterations = _check_arguments(target_length, iterations)
-    return list(_steps(mesh, target_length, iterations, project, progress))
+    # Bind to remesh's own signature: one place holds the options and their defaults,
+    # and a misspelt option is a TypeError naming it.
+    arguments = inspect.signature(remesh).bind(mesh, target_length, **options)
+    arguments.apply_defaults()
+    given = arguments.arguments
+    target_length, iterations = _check_arguments(given["target_length"], given["iterations"])
+    return list(_steps(mesh, target_length, iterations, given["project"], given["progress"]))
 
 
 def remesh_step_by_step(

@@ -30,6 +30,7 @@ collapses about one candidate in ten.
 
 from __future__ import annotations
 
+import inspect
 import warnings
 from dataclasses import dataclass
 from typing import NamedTuple
@@ -296,23 +297,20 @@ def simplify(
     return _simplify(mesh, target_faces, boundary_weight, max_normal_angle, candidate_fraction, progress).mesh
 
 
-def simplify_with_report(
-    mesh: HalfedgeMesh,
-    target_faces: int,
-    *,
-    boundary_weight: float = 100.0,
-    max_normal_angle: float = 80.0,
-    candidate_fraction: float = 0.25,
-    progress: bool = False,
-) -> SimplifyResult:
+def simplify_with_report(mesh: HalfedgeMesh, target_faces: int, **options) -> SimplifyResult:
     """:func:`simplify`, and what it did: a :class:`SimplifyResult` ``(mesh, report)``.
 
-    The same work and the same mesh as :func:`simplify` with the same arguments; the
+    Takes exactly the arguments of :func:`simplify` (``options`` are its keyword
+    arguments, with its defaults) and does the same work, so the mesh is the same; the
     :class:`SimplifyReport` adds the face counts, the number of rounds and whether the
     target was reached. Two functions instead of a flag, so that each one always
     returns the same type.
     """
-    return _simplify(mesh, target_faces, boundary_weight, max_normal_angle, candidate_fraction, progress)
+    # Bind to simplify's own signature: one place holds the options and their defaults,
+    # and a misspelt option is a TypeError naming it.
+    arguments = inspect.signature(simplify).bind(mesh, target_faces, **options)
+    arguments.apply_defaults()
+    return _simplify(**arguments.arguments)
 
 
 def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max_normal_angle: float,

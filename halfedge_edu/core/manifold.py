@@ -55,13 +55,9 @@ class ManifoldReport:
     n_vertices: int = 0
 
     def __bool__(self) -> bool:
-        return not (
-            len(self.nonmanifold_edges)
-            or len(self.inconsistent_edges)
-            or len(self.nonmanifold_vertices)
-            or len(self.degenerate_faces)
-            or len(self.duplicate_faces)
-        )
+        problems = (self.nonmanifold_edges, self.inconsistent_edges, self.nonmanifold_vertices,
+                    self.degenerate_faces, self.duplicate_faces)
+        return not any(len(found) for found in problems)
 
     @property
     def is_manifold(self) -> bool:

@@ -61,12 +61,8 @@ class RepairReport:
     vertex_origin: np.ndarray
 
     def __bool__(self) -> bool:
-        return bool(
-            len(self.dropped_degenerate)
-            or len(self.dropped_duplicate)
-            or len(self.flipped_faces)
-            or len(self.vertex_copies)
-        )
+        changes = (self.dropped_degenerate, self.dropped_duplicate, self.flipped_faces, self.vertex_copies)
+        return any(len(done) for done in changes)
 
     @property
     def split_vertices(self) -> np.ndarray:

@@ -214,6 +214,11 @@ def test_history_starts_with_the_input_and_lists_every_phase_in_order(spot_histo
     assert all(np.array_equal(x, y) for x, y in zip(history[-1].mesh.to_arrays(), result.to_arrays()))
 
 
+def test_remesh_history_takes_only_the_options_of_remesh():
+    with pytest.raises(TypeError, match="iteration"):
+        remesh_history(hx.sample("cube"), iteration=2)
+
+
 def test_step_by_step_ends_where_remesh_ends():
     mesh = hx.sample("spot")
     steps = list(remesh_step_by_step(mesh, iterations=1, project=False))

@@ -153,6 +153,16 @@ def test_reaches_the_target_exactly_or_one_below_and_stays_valid(fraction):
     assert result.is_closed
 
 
+def test_simplify_with_report_gives_the_mesh_simplify_gives_and_takes_only_its_options():
+    mesh = hx.sample("spot")
+    result = simplify_with_report(mesh, 900, max_normal_angle=60.0)
+    alone = simplify(mesh, 900, max_normal_angle=60.0)
+    assert all(np.array_equal(x, y) for x, y in zip(result.mesh.to_arrays(), alone.to_arrays()))
+    assert (result.report.faces_before, result.report.faces_after) == (mesh.n_faces, alone.n_faces)
+    with pytest.raises(TypeError, match="max_normal_angel"):
+        simplify_with_report(mesh, 900, max_normal_angel=60.0)
+
+
 def test_bunny_keeps_its_holes_and_genus():
     mesh = hx.sample("bunny")
     result, report = simplify_with_report(mesh, 3000)
