@@ -107,13 +107,15 @@ def no_turned_faces(
     remove: np.ndarray,
     max_normal_cos: float,
 ) -> np.ndarray:
-    """(k,) True where moving both ends of edge ``keep[i] - remove[i]`` to ``points[i]`` turns no face over.
+    """(k,) True where moving both ends of edge ``keep[i] - remove[i]`` to ``points[i]``
+    turns no face over.
 
     ``faces_around`` is each vertex's faces as CSR, from
     :func:`halfedge_edu.core.arrays.vertex_faces`; ``max_normal_cos`` the cosine of the
-    largest allowed swing of a face normal. The faces around ``keep`` and around ``remove`` get a corner moved to the new point;
-    the two faces holding both ends vanish and are skipped. A face "turns over" when its
-    normal swings by more than the allowed angle or its area drops to (almost) nothing.
+    largest allowed swing of a face normal. The faces around ``keep`` and around
+    ``remove`` get a corner moved to the new point; the two faces holding both ends
+    vanish and are skipped. A face "turns over" when its normal swings by more than the
+    allowed angle or its area drops to (almost) nothing.
     """
     face_offsets, face_of_corner = faces_around                        # from vertex_faces()
     owners, corner_lists, movers = [], [], []

@@ -60,7 +60,8 @@ def test_csr_rows_hold_each_vertex_neighbours_and_faces(drawn):
     for v in range(n):
         expected = {w for key in edges_by_hand(faces) for w in key if v in key and w != v}
         assert sorted(neighbours[offsets[v]:offsets[v + 1]].tolist()) == sorted(expected)
-        assert sorted(around[face_offsets[v]:face_offsets[v + 1]].tolist()) == np.flatnonzero((faces == v).any(axis=1)).tolist()
+        faces_at_v = np.flatnonzero((faces == v).any(axis=1)).tolist()
+        assert sorted(around[face_offsets[v]:face_offsets[v + 1]].tolist()) == faces_at_v
     rows = np.array([n - 1, 0, n - 1])
     owner, items = expand(offsets, neighbours, rows)
     for i, v in enumerate(rows):
