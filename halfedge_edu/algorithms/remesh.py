@@ -26,9 +26,10 @@ on whole face arrays, with numpy:
 * the split handles all long edges at once: each triangle with 1, 2 or 3 split edges
   is cut by a fixed template (one 2-to-1 cut, a corner plus a quad, or 4 triangles),
   the way "red-green" refinement does it, and the pass repeats until nothing is long;
-* the collapses run in *rounds* with :mod:`simplify`'s machinery: each round checks
-  every short edge (link condition, boundary rules, degrees, the 4/3 L rule, no face
-  turned over) and collapses a set of them far enough apart to be done together;
+* the collapses run in *rounds*, as ``simplify``'s do (:mod:`.collapse_rounds`): each
+  round checks every short edge (link condition, boundary rules, degrees, the 4/3 L
+  rule, no face turned over) and collapses a set of them far enough apart to be done
+  together;
 * the flips run in passes: every interior edge's degree gain is computed at once, and
   a set of improving flips that share no vertex is flipped together.
 

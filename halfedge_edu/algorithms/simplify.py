@@ -25,7 +25,9 @@ boundary), no interior edge between two boundary vertices, no opposite vertex le
 too few edges; and a geometric check the topology does not see: no face around the
 edge may turn over (its normal may not swing by more than ``max_normal_angle``).
 Both checks run only on the edges a round picks, not on every candidate: a round
-collapses about one candidate in ten.
+collapses about one candidate in ten. The checks and the choice of a round live in
+:mod:`.collapse_rounds`, shared with ``remesh``; the array tools (edge tables, CSR
+adjacency) in :mod:`halfedge_edu.core.arrays`.
 """
 
 from __future__ import annotations

@@ -17,7 +17,9 @@ the same few ideas, kept here once:
   (compressed sparse rows): row v is ``values[offsets[v]:offsets[v + 1]]``
   (:func:`vertex_neighbours`, :func:`vertex_faces`), and :func:`expand` gathers many
   rows at once without a Python loop.
-* **Compaction.** After faces are removed, drop the vertices no face uses and renumber
+* **Merging and compaction.** Collapsing edges on a face array is a relabelling: every
+  removed vertex becomes the one it merges into, and the faces that held both go
+  (:func:`merge_vertices`); then drop the vertices no face uses and renumber
   (:func:`compact`).
 * **Face cross products.** ``(b - a) x (c - a)`` of every face: its direction is the
   face normal, its length twice the area (:func:`face_cross`).
