@@ -50,7 +50,8 @@ import numpy as np
 from ..core.mesh import HalfedgeMesh
 from ._progress import progress_range
 from ..core.arrays import (
-    EdgeTable, compact, cross_rows, edge_table, expand, merge_vertices, vertex_faces, vertex_neighbours,
+    EdgeTable, compact, cross_rows, edge_table, expand, face_cross, merge_vertices, vertex_faces,
+    vertex_neighbours,
 )
 from .collapse_rounds import choose_round, collapse_topology_ok, no_turned_faces
 from .normals import area_weighted_vertex_normals
@@ -72,6 +73,9 @@ MAX_COLLAPSE_NORMAL_ANGLE = 30.0
 MAX_FLIP_DIHEDRAL = 20.0
 #: Candidate input triangles examined per vertex when projecting (the nearest centroids).
 PROJECTION_CANDIDATES = 6
+#: A face counts as flat (no area) when twice its area is at most this times its
+#: squared longest edge; the projection never leaves a face flat that was not.
+MIN_RELATIVE_AREA = 1e-10
 
 PHASES = ("split", "collapse", "flip", "smooth", "project")
 
@@ -491,14 +495,41 @@ class _Surface:
                              lambda p, s: closest_points_on_segments(p, segments[s, 0], segments[s, 1]))
 
 
+def _nearly_flat(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """(m,) True for faces of (almost) no area: twice the area at most
+    ``MIN_RELATIVE_AREA`` times the squared longest edge (two corners on one point, or
+    three on a line). Measured against the face's own size, so it does not depend on
+    the mesh's scale."""
+    corners = vertices[faces]                                          # (m, 3, 3)
+    double_area = np.linalg.norm(face_cross(corners), axis=1)
+    sides = corners - np.roll(corners, 1, axis=1)                      # (m, 3, 3)
+    longest = np.einsum("fkd,fkd->fk", sides, sides).max(axis=1)       # (m,) squared
+    return double_area <= MIN_RELATIVE_AREA * longest
+
+
 def _project(vertices, faces, surface: _Surface) -> np.ndarray:
+    """Put every vertex on the nearest point of the input surface (boundary vertices on
+    its boundary), except where that would flatten a face.
+
+    Where the input folds (a crease, a thin part), two corners of one face can land on
+    the same nearest point, or three on one line, and the face would be left with no
+    area. The corners of such a face keep their positions from before the projection;
+    that may flatten a face next to them in turn, so this repeats until no face is
+    flattened (each pass puts back at least one more vertex, so it ends).
+    """
     on_boundary = edge_table(faces, len(vertices)).boundary_vertices(len(vertices))
     result = vertices.copy()
     inside = np.flatnonzero(~on_boundary)
     result[inside] = surface.project(vertices[inside])
     if on_boundary.any() and surface.segment_tree is not None:
         result[on_boundary] = surface.project_to_boundary(vertices[on_boundary])
-    return result
+    flat_before = _nearly_flat(vertices, faces)
+    while True:
+        flattened = _nearly_flat(result, faces) & ~flat_before
+        if not flattened.any():
+            return result
+        put_back = faces[flattened].reshape(-1)
+        result[put_back] = vertices[put_back]
 
 
 # ----------------------------------------------------------------------------------------

@@ -349,3 +349,46 @@ def test_quality_report_counts_boundary_vertices_against_four():
     degree = patch.vertex_degrees()
     ideal = np.where(patch.vertex_is_boundary(), 4, 6)
     assert report.degree_deviation == pytest.approx(np.abs(degree - ideal).mean())
+
+
+# ---- no face flattened -----------------------------------------------------------------
+
+def creased(vertices: np.ndarray, where: float, slope: float) -> np.ndarray:
+    """The surface folded into a V along the plane x = where: a sharp crease, as in CAD parts."""
+    folded = vertices.copy()
+    folded[:, 2] += slope * np.abs(folded[:, 0] - where)
+    return folded
+
+
+def smallest_relative_area(mesh: hx.HalfedgeMesh) -> float:
+    """min over faces of twice the area over the squared longest edge (0 for a flat face)."""
+    vertices, faces = mesh.to_arrays()
+    corners = vertices[faces]
+    double_area = np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]), axis=1)
+    sides = corners - np.roll(corners, 1, axis=1)
+    return float((double_area / np.einsum("fkd,fkd->fk", sides, sides).max(axis=1)).min())
+
+
+# Found by the property below: the projection put two corners of a face on one point.
+FLATTENED_BY_PROJECTION = [
+    (shapes.torus(3, 4), -0.07089300133418885, 0.7306825413832303, 1.0),
+    (shapes.uv_sphere(7, 2), 0.20318755459481097, 2.2212737489525076, 2.0),
+    (shapes.torus(5, 4), 0.2036425120535994, 2.3054965138525536, 2.0),
+]
+
+
+@pytest.mark.parametrize("arrays, where, slope, scale", FLATTENED_BY_PROJECTION)
+def test_projection_onto_a_crease_flattens_no_face(arrays, where, slope, scale):
+    mesh = hx.HalfedgeMesh.from_faces(creased(arrays[0], where, slope), arrays[1])
+    result = remesh(mesh, scale * mean_edge_length(mesh), iterations=3)
+    result.validate()
+    assert smallest_relative_area(result) > remesh_module.MIN_RELATIVE_AREA
+
+
+@given(case=shapes.cases(), where=st.floats(-0.5, 0.5), slope=st.floats(0.5, 3.0),
+       scale=st.sampled_from([0.5, 1.0, 2.0]))
+def test_remesh_never_makes_a_zero_area_face_on_creased_meshes(case, where, slope, scale):
+    mesh = hx.HalfedgeMesh.from_faces(creased(case.vertices, where, slope), case.faces)
+    assert smallest_relative_area(mesh) > remesh_module.MIN_RELATIVE_AREA
+    result = remesh(mesh, scale * mean_edge_length(mesh), iterations=3)
+    assert smallest_relative_area(result) > remesh_module.MIN_RELATIVE_AREA
