@@ -29,6 +29,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..core import HalfedgeMesh
+from ..core.arrays import face_cross
 
 VERTEX_WEIGHTINGS = ("area", "angle", "uniform")
 
@@ -41,14 +42,9 @@ def face_corners(mesh: HalfedgeMesh) -> np.ndarray:
     return points
 
 
-def _face_cross(points: np.ndarray) -> np.ndarray:
-    """(F, 3) ``(b - a) x (c - a)`` for corner positions ``points`` (F, 3, 3)."""
-    return np.cross(points[:, 1] - points[:, 0], points[:, 2] - points[:, 0])
-
-
 def _unit_rows(vectors: np.ndarray) -> np.ndarray:
     """Each row divided by its length; rows of length zero stay zero (no NaN)."""
-    length = np.sqrt(np.einsum("ij,ij->i", vectors, vectors))      # (n,)
+    length = np.linalg.norm(vectors, axis=1)                       # (n,)
     safe = np.where(length > 0, length, 1.0)
     return vectors / safe[:, None]
 
@@ -61,12 +57,12 @@ def face_normals(mesh: HalfedgeMesh) -> np.ndarray:
         zero (never NaN). For a mesh without deleted faces, row ``f`` is face ``f``,
         in the same order as the faces of ``mesh.to_arrays()``.
     """
-    return _unit_rows(_face_cross(face_corners(mesh)))
+    return _unit_rows(face_cross(face_corners(mesh)))
 
 
 def face_areas(mesh: HalfedgeMesh) -> np.ndarray:
     """(n_face_slots,) area of every face (zero for deleted faces)."""
-    cross = _face_cross(face_corners(mesh))
+    cross = face_cross(face_corners(mesh))
     return 0.5 * np.sqrt(np.einsum("ij,ij->i", cross, cross))
 
 
@@ -83,6 +79,24 @@ def corner_angles(mesh: HalfedgeMesh) -> np.ndarray:
     sine = np.linalg.norm(np.cross(along, back), axis=2)           # (F, 3) |u x w|
     cosine = np.einsum("fkd,fkd->fk", along, back)                 # (F, 3) u . w
     return np.arctan2(sine, cosine)
+
+
+def area_weighted_vertex_normals(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """(n, 3) unit vertex normals of a face array, each face counting by its area.
+
+    The array form of ``vertex_normals(mesh, "area")``, for code that works on
+    ``(vertices (n, 3), faces (m, 3))`` without building a mesh (``remesh`` does, every
+    iteration). The sum of the *unnormalized* face cross products around a vertex is
+    the area-weighted sum, so no face normal is normalized on the way. Vertices no
+    face uses get a zero row.
+    """
+    cross = face_cross(vertices[faces])                            # (m, 3), length 2 * area
+    corner_vertex = faces.reshape(-1)                              # (3m,) vertex of each corner
+    summed = np.empty((len(vertices), 3))
+    for axis in range(3):
+        summed[:, axis] = np.bincount(corner_vertex, weights=np.repeat(cross[:, axis], 3),
+                                      minlength=len(vertices))
+    return _unit_rows(summed)
 
 
 def vertex_normals(mesh: HalfedgeMesh, weighting: str = "area") -> np.ndarray:
@@ -106,10 +120,10 @@ def vertex_normals(mesh: HalfedgeMesh, weighting: str = "area") -> np.ndarray:
         raise ValueError(f"weighting must be one of {VERTEX_WEIGHTINGS}, got {weighting!r}")
     corners = mesh.face_vertices()                                 # (F, 3) int
     live = ~mesh.face_deleted
-    cross = _face_cross(face_corners(mesh))                        # (F, 3), length 2 * area
     if weighting == "area":
-        contribution = np.repeat(cross[:, None, :], 3, axis=1)     # (F, 3 corners, 3)
-    elif weighting == "angle":
+        return area_weighted_vertex_normals(mesh.positions, corners[live])
+    cross = face_cross(face_corners(mesh))                         # (F, 3), length 2 * area
+    if weighting == "angle":
         contribution = corner_angles(mesh)[:, :, None] * _unit_rows(cross)[:, None, :]
     else:
         contribution = np.repeat(_unit_rows(cross)[:, None, :], 3, axis=1)

@@ -26,19 +26,21 @@ on whole face arrays, with numpy:
 * the split handles all long edges at once: each triangle with 1, 2 or 3 split edges
   is cut by a fixed template (one 2-to-1 cut, a corner plus a quad, or 4 triangles),
   the way "red-green" refinement does it, and the pass repeats until nothing is long;
-* the collapses run in *rounds* with :mod:`simplify`'s machinery: each round checks
-  every short edge (link condition, boundary rules, degrees, the 4/3 L rule, no face
-  turned over) and collapses a set of them far enough apart to be done together;
+* the collapses run in *rounds*, as ``simplify``'s do (:mod:`.collapse_rounds`): each
+  round checks every short edge (link condition, boundary rules, degrees, the 4/3 L
+  rule, no face turned over) and collapses a set of them far enough apart to be done
+  together;
 * the flips run in passes: every interior edge's degree gain is computed at once, and
   a set of improving flips that share no vertex is flipped together.
 
 :func:`remesh` returns the result; :func:`remesh_step_by_step` yields the mesh after each
-phase, for a stepper; :func:`quality_report` measures what remeshing is for (edge
+phase, for a stepper, and :func:`remesh_history` lists them all; :func:`quality_report` measures what remeshing is for (edge
 lengths, degrees, angles).
 """
 
 from __future__ import annotations
 
+import inspect
 import math
 from dataclasses import dataclass
 from typing import Iterator, NamedTuple
@@ -47,7 +49,12 @@ import numpy as np
 
 from ..core.mesh import HalfedgeMesh
 from ._progress import progress_range
-from .simplify import _choose_round, _cross, _no_turned_faces, _topology_ok, expand, vertex_faces, vertex_neighbours
+from ..core.arrays import (
+    EdgeTable, compact, cross_rows, edge_table, expand, face_cross, merge_vertices, vertex_faces,
+    vertex_neighbours,
+)
+from .collapse_rounds import choose_round, collapse_topology_ok, no_turned_faces
+from .normals import area_weighted_vertex_normals
 
 #: Split edges longer than this times L; collapse edges shorter than ``COLLAPSE_BELOW * L``.
 SPLIT_ABOVE = 4.0 / 3.0
@@ -66,6 +73,9 @@ MAX_COLLAPSE_NORMAL_ANGLE = 30.0
 MAX_FLIP_DIHEDRAL = 20.0
 #: Candidate input triangles examined per vertex when projecting (the nearest centroids).
 PROJECTION_CANDIDATES = 6
+#: A face counts as flat (no area) when twice its area is at most this times its
+#: squared longest edge; the projection never leaves a face flat that was not.
+MIN_RELATIVE_AREA = 1e-10
 
 PHASES = ("split", "collapse", "flip", "smooth", "project")
 
@@ -79,62 +89,12 @@ class RemeshStep(NamedTuple):
 
 
 # ----------------------------------------------------------------------------------------
-# Edges of a face array, with the halfedges (face corners) that use them
+# Edge lengths (the edge tables themselves come from core.arrays)
 # ----------------------------------------------------------------------------------------
-
-class _EdgeTable(NamedTuple):
-    """Edges of a triangle array, each with the corners that use it.
-
-    ``edges`` (E, 2) low/high, sorted by ``low * n + high`` (the order of
-    :func:`simplify.unique_edges`); ``corner_edge`` (F, 3) the edge of halfedge
-    ``faces[f, k] -> faces[f, k+1]``; ``count`` (E,) 1 on the boundary, 2 inside;
-    ``first``/``second`` (E,) the halfedges (``3 f + k``) using the edge (second is
-    -1 on the boundary); ``keys`` (E,) the sorted keys.
-    """
-
-    edges: np.ndarray
-    corner_edge: np.ndarray
-    count: np.ndarray
-    first: np.ndarray
-    second: np.ndarray
-    keys: np.ndarray
-
-
-def _edge_table(faces: np.ndarray, n: int) -> _EdgeTable:
-    tail = faces.reshape(-1)
-    head = faces[:, [1, 2, 0]].reshape(-1)
-    key = np.minimum(tail, head) * n + np.maximum(tail, head)          # (3F,)
-    order = np.argsort(key)
-    sorted_key = key[order]
-    starts = np.flatnonzero(np.r_[True, sorted_key[1:] != sorted_key[:-1]])
-    count = np.diff(np.r_[starts, len(key)])
-    keys = sorted_key[starts]
-    edge_of_sorted = np.cumsum(np.r_[False, sorted_key[1:] != sorted_key[:-1]])
-    corner_edge = np.empty(len(key), dtype=np.int64)
-    corner_edge[order] = edge_of_sorted
-    second = np.where(count == 2, order[np.minimum(starts + 1, len(key) - 1)], -1)
-    edges = np.stack([keys // n, keys % n], axis=1)
-    return _EdgeTable(edges, corner_edge.reshape(-1, 3), count, order[starts], second, keys)
-
-
-def _boundary_vertices(table: _EdgeTable, n: int) -> np.ndarray:
-    """(n,) True for vertices on a boundary edge."""
-    on_boundary = np.zeros(n, dtype=bool)
-    on_boundary[table.edges[table.count == 1].reshape(-1)] = True
-    return on_boundary
-
 
 def _edge_lengths(vertices: np.ndarray, edges: np.ndarray) -> np.ndarray:
     d = vertices[edges[:, 0]] - vertices[edges[:, 1]]
     return np.sqrt(np.einsum("ij,ij->i", d, d))
-
-
-def _compact(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Drop vertices no face uses; faces renumbered, relative order kept."""
-    used = np.zeros(len(vertices), dtype=bool)
-    used[faces.reshape(-1)] = True
-    new_index = np.cumsum(used) - 1
-    return vertices[used], new_index[faces]
 
 
 # ----------------------------------------------------------------------------------------
@@ -149,7 +109,7 @@ def _split_pass(vertices: np.ndarray, faces: np.ndarray, max_length: float):
     one template per count covers all cases. Orientation is kept.
     """
     n = len(vertices)
-    table = _edge_table(faces, n)
+    table = edge_table(faces, n)
     long = _edge_lengths(vertices, table.edges) > max_length
     n_split = int(long.sum())
     if n_split == 0:
@@ -202,7 +162,7 @@ def _split_long_edges(vertices, faces, target_length):
 # Phase 2: collapse
 # ----------------------------------------------------------------------------------------
 
-def _boundary_corner(vertices, table: _EdgeTable, n: int) -> np.ndarray:
+def _boundary_corner(vertices, table: EdgeTable, n: int) -> np.ndarray:
     """(n,) how sharply the boundary turns at each vertex: ``|u1 + u2|`` for the unit
     vectors to its two boundary neighbours (0 on a straight boundary, up to 2)."""
     b_edges = table.edges[table.count == 1]
@@ -256,10 +216,10 @@ def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Re
     none is not collapsed this time.
     """
     n = len(vertices)
-    table = _edge_table(faces, n)
+    table = edge_table(faces, n)
     edges = table.edges
     boundary_edge = table.count == 1
-    boundary_vertex = _boundary_vertices(table, n)
+    boundary_vertex = table.boundary_vertices(n)
     length = _edge_lengths(vertices, edges)
     short = np.flatnonzero(length < COLLAPSE_BELOW * target_length)
     stale = refused.still_refused(table.keys[short], edges[short, 0], edges[short, 1])
@@ -279,7 +239,7 @@ def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Re
 
     degree = np.bincount(edges.reshape(-1), minlength=n)
     neighbours = vertex_neighbours(edges, n)
-    valid, opposite_owner, opposite_vertex = _topology_ok(
+    valid, opposite_owner, opposite_vertex = collapse_topology_ok(
         n, edges[candidates], along, boundary_vertex, degree, neighbours
     )
 
@@ -308,13 +268,13 @@ def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Re
     turned = np.zeros(len(candidates), dtype=bool)
     faces_around = vertex_faces(faces, n)
 
-    def no_turned_faces(indices: np.ndarray) -> np.ndarray:
-        ok = _no_turned_faces(vertices, faces, faces_around, points[indices], keep[indices],
+    def check_turned_faces(indices: np.ndarray) -> np.ndarray:
+        ok = no_turned_faces(vertices, faces, faces_around, points[indices], keep[indices],
                               remove[indices], max_normal_cos)
         turned[indices[~ok]] = True
         return ok
 
-    def topology_ok(indices: np.ndarray):
+    def check_topology(indices: np.ndarray):
         # Checked above for every candidate (the placement needed it); hand back the picked.
         picked = np.zeros(len(candidates), dtype=bool)
         picked[indices] = True
@@ -322,7 +282,7 @@ def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Re
         return valid[indices], opposite_owner[mine], opposite_vertex[mine]
 
     if valid.any():
-        chosen = _choose_round(edges, candidates, valid, n, topology_ok, no_turned_faces,
+        chosen = choose_round(edges, candidates, valid, n, check_topology, check_turned_faces,
                                known_opposites=(opposite_owner, opposite_vertex))
     else:
         chosen = np.zeros(len(candidates), dtype=bool)
@@ -330,11 +290,7 @@ def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Re
     if chosen.any():
         vertices = vertices.copy()
         vertices[keep[chosen]] = points[chosen]
-        relabel = np.arange(n)
-        relabel[remove[chosen]] = keep[chosen]
-        faces = relabel[faces]
-        degenerate = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 2] == faces[:, 0])
-        faces = faces[~degenerate]
+        faces = merge_vertices(faces, remove[chosen], keep[chosen], n)
     refused.update(refused_keys, keep[chosen], faces)
     return vertices, faces, int(chosen.sum())
 
@@ -347,7 +303,7 @@ def _collapse_short_edges(vertices, faces, target_length):
         vertices, faces, n_collapsed = _collapse_round(vertices, faces, target_length, max_normal_cos, refused)
         if n_collapsed <= MIN_COLLAPSE_FRACTION * len(faces):
             break
-    return _compact(vertices, faces)
+    return compact(vertices, faces)[:2]
 
 
 # ----------------------------------------------------------------------------------------
@@ -369,14 +325,14 @@ def _flip_pass(vertices, faces, rng, max_crease_cos, selection_passes: int = 4):
     it (leaving fewer than 3), or both create the same new edge ``c-d``.
     """
     n = len(vertices)
-    table = _edge_table(faces, n)
+    table = edge_table(faces, n)
     inner = np.flatnonzero(table.count == 2)
     h1, h2 = table.first[inner], table.second[inner]
     f1, k1, f2, k2 = h1 // 3, h1 % 3, h2 // 3, h2 % 3
     a, b, c = faces[f1, k1], faces[f1, (k1 + 1) % 3], faces[f1, (k1 + 2) % 3]
     d = faces[f2, (k2 + 2) % 3]
 
-    boundary_vertex = _boundary_vertices(table, n)
+    boundary_vertex = table.boundary_vertices(n)
     degree = np.bincount(table.edges.reshape(-1), minlength=n)
     ideal = np.where(boundary_vertex, 4, 6)
     dev = lambda v, change: np.abs(degree[v] + change - ideal[v])  # noqa: E731
@@ -390,8 +346,8 @@ def _flip_pass(vertices, faces, rng, max_crease_cos, selection_passes: int = 4):
     # Geometry: no flip across a crease, and the new triangles may not fold over.
     which = np.flatnonzero(ok)
     pa, pb, pc, pd = (vertices[x[which]] for x in (a, b, c, d))
-    n1, n2 = _cross(pb - pa, pc - pa), _cross(pa - pb, pd - pb)
-    m1, m2 = _cross(pa - pc, pd - pc), _cross(pb - pd, pc - pd)
+    n1, n2 = cross_rows(pb - pa, pc - pa), cross_rows(pa - pb, pd - pb)
+    m1, m2 = cross_rows(pa - pc, pd - pc), cross_rows(pb - pd, pc - pd)
     u1, u2, w1, w2 = _unit(n1), _unit(n2), _unit(m1), _unit(m2)
     average = u1 + u2
     flat_enough = np.einsum("ij,ij->i", u1, u2) >= max_crease_cos
@@ -442,21 +398,10 @@ def _flip_to_regular_degrees(vertices, faces, rng):
 # Phase 4: tangential smoothing
 # ----------------------------------------------------------------------------------------
 
-def _area_weighted_normals(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
-    """(n, 3) unit vertex normals, each face counting by its area (see ``normals.py``)."""
-    p = vertices[faces]                                                # (F, 3, 3)
-    cross = _cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])               # (F, 3), length 2 * area
-    total = np.zeros((len(vertices), 3))
-    for axis in range(3):
-        total[:, axis] = np.bincount(faces.reshape(-1), weights=np.repeat(cross[:, axis], 3),
-                                     minlength=len(vertices))
-    return _unit(total)
-
-
-def _tangential_smoothing(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+def tangential_smoothing(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     """Move every interior vertex to its neighbours' centroid, in its tangent plane only."""
     n = len(vertices)
-    table = _edge_table(faces, n)
+    table = edge_table(faces, n)
     edges = table.edges
     degree = np.bincount(edges.reshape(-1), minlength=n)
     # All centroids first, from the old positions (Jacobi): sums over both directions of each edge.
@@ -465,10 +410,10 @@ def _tangential_smoothing(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray
         centroid[:, axis] = (np.bincount(edges[:, 0], weights=vertices[edges[:, 1], axis], minlength=n)
                              + np.bincount(edges[:, 1], weights=vertices[edges[:, 0], axis], minlength=n))
     centroid /= np.maximum(degree, 1)[:, None]
-    normal = _area_weighted_normals(vertices, faces)
+    normal = area_weighted_vertex_normals(vertices, faces)
     step = centroid - vertices
     step -= normal * np.einsum("ij,ij->i", step, normal)[:, None]     # drop the normal part
-    step[_boundary_vertices(table, n)] = 0.0
+    step[table.boundary_vertices(n)] = 0.0
     return vertices + step
 
 
@@ -522,7 +467,7 @@ class _Surface:
 
         self.corners = vertices[faces]                                 # (F, 3, 3)
         self.tree = cKDTree(self.corners.mean(axis=1))
-        table = _edge_table(faces, len(vertices))
+        table = edge_table(faces, len(vertices))
         segments = table.edges[table.count == 1]
         self.segments = vertices[segments]                             # (S, 2, 3)
         self.segment_tree = cKDTree(self.segments.mean(axis=1)) if len(segments) else None
@@ -550,14 +495,41 @@ class _Surface:
                              lambda p, s: closest_points_on_segments(p, segments[s, 0], segments[s, 1]))
 
 
+def _nearly_flat(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """(m,) True for faces of (almost) no area: twice the area at most
+    ``MIN_RELATIVE_AREA`` times the squared longest edge (two corners on one point, or
+    three on a line). Measured against the face's own size, so it does not depend on
+    the mesh's scale."""
+    corners = vertices[faces]                                          # (m, 3, 3)
+    double_area = np.linalg.norm(face_cross(corners), axis=1)
+    sides = corners - np.roll(corners, 1, axis=1)                      # (m, 3, 3)
+    longest = np.einsum("fkd,fkd->fk", sides, sides).max(axis=1)       # (m,) squared
+    return double_area <= MIN_RELATIVE_AREA * longest
+
+
 def _project(vertices, faces, surface: _Surface) -> np.ndarray:
-    on_boundary = _boundary_vertices(_edge_table(faces, len(vertices)), len(vertices))
+    """Put every vertex on the nearest point of the input surface (boundary vertices on
+    its boundary), except where that would flatten a face.
+
+    Where the input folds (a crease, a thin part), two corners of one face can land on
+    the same nearest point, or three on one line, and the face would be left with no
+    area. The corners of such a face keep their positions from before the projection;
+    that may flatten a face next to them in turn, so this repeats until no face is
+    flattened (each pass puts back at least one more vertex, so it ends).
+    """
+    on_boundary = edge_table(faces, len(vertices)).boundary_vertices(len(vertices))
     result = vertices.copy()
     inside = np.flatnonzero(~on_boundary)
     result[inside] = surface.project(vertices[inside])
     if on_boundary.any() and surface.segment_tree is not None:
         result[on_boundary] = surface.project_to_boundary(vertices[on_boundary])
-    return result
+    flat_before = _nearly_flat(vertices, faces)
+    while True:
+        flattened = _nearly_flat(result, faces) & ~flat_before
+        if not flattened.any():
+            return result
+        put_back = faces[flattened].reshape(-1)
+        result[put_back] = vertices[put_back]
 
 
 # ----------------------------------------------------------------------------------------
@@ -578,7 +550,7 @@ def _phases(mesh: HalfedgeMesh, target_length, iterations, project, progress) ->
     """Yield ``(iteration, phase, vertices, faces)`` after every phase (arrays, not meshes)."""
     vertices, faces = mesh.to_arrays()
     if target_length is None:
-        target_length = float(_edge_lengths(vertices, _edge_table(faces, len(vertices)).edges).mean())
+        target_length = float(_edge_lengths(vertices, edge_table(faces, len(vertices)).edges).mean())
     surface = _Surface(vertices, faces) if project else None
     rng = np.random.default_rng(0)
     for iteration in progress_range(iterations, progress, "remesh"):
@@ -588,7 +560,7 @@ def _phases(mesh: HalfedgeMesh, target_length, iterations, project, progress) ->
         yield iteration + 1, "collapse", vertices, faces
         faces = _flip_to_regular_degrees(vertices, faces, rng)
         yield iteration + 1, "flip", vertices, faces
-        vertices = _tangential_smoothing(vertices, faces)
+        vertices = tangential_smoothing(vertices, faces)
         yield iteration + 1, "smooth", vertices, faces
         if surface is not None:
             vertices = _project(vertices, faces, surface)
@@ -602,8 +574,7 @@ def remesh(
     *,
     project: bool = True,
     progress: bool = False,
-    return_history: bool = False,
-):
+) -> HalfedgeMesh:
     """Isotropic remeshing: edges of about ``target_length``, vertex degrees near 6.
 
     Args:
@@ -616,11 +587,10 @@ def remesh(
             k-d tree), which is the true nearest point almost always. Without it,
             midpoints of splits and tangential moves drift slightly inside curved regions.
         progress: show a progress bar (tqdm) over the iterations.
-        return_history: also return the list of :class:`RemeshStep`
-            ``(iteration, phase, mesh)`` that :func:`remesh_step_by_step` yields.
 
     Returns:
-        A new :class:`HalfedgeMesh` (and the history, if asked).
+        A new :class:`HalfedgeMesh`. For the mesh after every phase, call
+        :func:`remesh_history` (all at once) or :func:`remesh_step_by_step` (one by one).
 
     What is kept: the genus, the number of boundary loops and components, orientation;
     boundary vertices only move along the input's boundary (boundary edges are split at
@@ -636,13 +606,27 @@ def remesh(
     degrees, but smoothing may still move vertices across a crease and round it off.
     """
     target_length, iterations = _check_arguments(target_length, iterations)
-    if return_history:
-        history = list(_steps(mesh, target_length, iterations, project, progress))
-        return history[-1].mesh.copy(), history
     vertices, faces = mesh.to_arrays()
     for _, _, vertices, faces in _phases(mesh, target_length, iterations, project, progress):
         pass
     return _to_mesh(vertices, faces)
+
+
+def remesh_history(mesh: HalfedgeMesh, target_length: float | None = None, **options) -> list[RemeshStep]:
+    """Every :class:`RemeshStep` of :func:`remesh_step_by_step`, as one list.
+
+    Takes exactly the arguments of :func:`remesh` (``options`` are its other keyword
+    arguments, with its defaults); the last step's mesh is what :func:`remesh` returns
+    for them. A separate function rather than a flag on :func:`remesh`, so that each
+    function always returns one type.
+    """
+    # Bind to remesh's own signature: one place holds the options and their defaults,
+    # and a misspelt option is a TypeError naming it.
+    arguments = inspect.signature(remesh).bind(mesh, target_length, **options)
+    arguments.apply_defaults()
+    given = arguments.arguments
+    target_length, iterations = _check_arguments(given["target_length"], given["iterations"])
+    return list(_steps(mesh, target_length, iterations, given["project"], given["progress"]))
 
 
 def remesh_step_by_step(
@@ -670,7 +654,7 @@ def _steps(mesh, target_length, iterations, project, progress) -> Iterator[Remes
 
 
 def _to_mesh(vertices: np.ndarray, faces: np.ndarray) -> HalfedgeMesh:
-    vertices, faces = _compact(vertices, faces)
+    vertices, faces, _ = compact(vertices, faces)
     return HalfedgeMesh.from_faces(vertices, faces)
 
 
@@ -721,10 +705,10 @@ def quality_report(mesh: HalfedgeMesh, bins: int = 30) -> MeshQuality:
             smallest-angle histogram (0 to 60 degrees) have.
     """
     vertices, faces = mesh.to_arrays()
-    table = _edge_table(faces, len(vertices))
+    table = edge_table(faces, len(vertices))
     lengths = _edge_lengths(vertices, table.edges)
     degree = np.bincount(table.edges.reshape(-1), minlength=len(vertices))
-    ideal = np.where(_boundary_vertices(table, len(vertices)), 4, 6)
+    ideal = np.where(table.boundary_vertices(len(vertices)), 4, 6)
     p = vertices[faces]                                                 # (F, 3, 3)
     along, back = np.roll(p, -1, axis=1) - p, np.roll(p, 1, axis=1) - p
     angles = np.degrees(np.arctan2(np.linalg.norm(np.cross(along, back), axis=2),

@@ -25,18 +25,26 @@ boundary), no interior edge between two boundary vertices, no opposite vertex le
 too few edges; and a geometric check the topology does not see: no face around the
 edge may turn over (its normal may not swing by more than ``max_normal_angle``).
 Both checks run only on the edges a round picks, not on every candidate: a round
-collapses about one candidate in ten.
+collapses about one candidate in ten. The checks and the choice of a round live in
+:mod:`.collapse_rounds`, shared with ``remesh``; the array tools (edge tables, CSR
+adjacency) in :mod:`halfedge_edu.core.arrays`.
 """
 
 from __future__ import annotations
 
+import inspect
 import warnings
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
+from ..core.arrays import (
+    compact, edge_table, face_cross, merge_vertices, unique_edges, vertex_faces, vertex_neighbours,
+)
 from ..core.errors import MeshWarning
 from ..core.mesh import HalfedgeMesh
+from .collapse_rounds import choose_round, collapse_topology_ok, no_turned_faces
 
 
 @dataclass
@@ -57,6 +65,17 @@ class SimplifyReport:
         )
 
 
+class SimplifyResult(NamedTuple):
+    """What :func:`simplify_with_report` returns: the simplified mesh and its report.
+
+    A named tuple, so ``mesh, report = simplify_with_report(...)`` works as well as
+    ``result.mesh`` and ``result.report``.
+    """
+
+    mesh: HalfedgeMesh
+    report: SimplifyReport
+
+
 # ----------------------------------------------------------------------------------------
 # Quadrics
 # ----------------------------------------------------------------------------------------
@@ -67,8 +86,9 @@ def face_quadrics(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     Area weighting makes a big face count for more than a sliver, so the error does
     not depend on how finely a flat region happens to be triangulated.
     """
-    a, b, c = (vertices[faces[:, k]] for k in range(3))
-    cross = np.cross(b - a, c - a)                                   # (m, 3), length 2 * area
+    corners = vertices[faces]                                        # (m, 3, 3)
+    cross = face_cross(corners)                                      # (m, 3), length 2 * area
+    a = corners[:, 0]
     double_area = np.linalg.norm(cross, axis=1)
     normal = cross / np.maximum(double_area, 1e-300)[:, None]
     plane = np.concatenate([normal, -np.einsum("ij,ij->i", normal, a)[:, None]], axis=1)  # (m, 4)
@@ -83,8 +103,7 @@ def boundary_quadrics(vertices: np.ndarray, faces: np.ndarray, boundary_edges: n
     their shape. ``weight`` scales them against the surface quadrics.
     """
     start, end = vertices[boundary_edges[:, 0]], vertices[boundary_edges[:, 1]]
-    a, b, c = (vertices[faces[boundary_faces, k]] for k in range(3))
-    face_normal = np.cross(b - a, c - a)
+    face_normal = face_cross(vertices[faces[boundary_faces]])
     direction = end - start
     normal = np.cross(direction, face_normal)
     length = np.linalg.norm(normal, axis=1)
@@ -208,176 +227,6 @@ def optimal_points(quadric: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[n
     return points, np.maximum(quadric_cost(quadric, points), 0.0)
 
 
-# ----------------------------------------------------------------------------------------
-# Connectivity from the face array (rebuilt each round: a few sorts)
-# ----------------------------------------------------------------------------------------
-
-def unique_edges(faces: np.ndarray, n: int, *, with_faces: bool = True):
-    """Edges of a face array: ``(edges (E, 2) low/high, face_count (E,), one_face (E,))``.
-
-    With ``with_faces=False`` the third item is None, and the edges come from a plain
-    sort instead of the slower stable argsort that finding a face for each edge needs.
-    """
-    tail = faces.reshape(-1).astype(np.int64)
-    head = faces[:, [1, 2, 0]].reshape(-1).astype(np.int64)
-    key = np.minimum(tail, head) * n + np.maximum(tail, head)
-    if with_faces:
-        unique_key, first, count = np.unique(key, return_index=True, return_counts=True)
-    else:
-        unique_key, count = np.unique(key, return_counts=True)
-        first = None
-    edges = np.stack([unique_key // n, unique_key % n], axis=1)
-    return edges, count, (None if first is None else first // 3)
-
-
-def csr(rows: np.ndarray, values: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Group ``values`` by ``rows`` into CSR ``(offsets (n + 1,), values sorted by row)``.
-
-    The values within a row come in no particular order: numpy's quicksort groups them
-    about five times faster than its stable sort, and no caller needs the order.
-    """
-    order = np.argsort(rows)
-    offsets = np.zeros(n + 1, dtype=np.int64)
-    np.cumsum(np.bincount(rows, minlength=n), out=offsets[1:])
-    return offsets, values[order]
-
-
-def vertex_neighbours(edges: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Each vertex's neighbours as CSR ``(offsets (n + 1,), neighbours (2E,))``, from (E, 2) edges."""
-    both = np.concatenate([edges, edges[:, ::-1]])                  # every edge, both ways
-    return csr(both[:, 0], both[:, 1], n)
-
-
-def vertex_faces(faces: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Each vertex's faces as CSR ``(offsets (n + 1,), face indices (3F,))``, from (F, 3) faces."""
-    return csr(faces.reshape(-1), np.repeat(np.arange(len(faces)), 3), n)
-
-
-def expand(offsets: np.ndarray, values: np.ndarray, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """For each i, the CSR row ``rows[i]``: returns ``(owner i of each item, items)``."""
-    counts = offsets[rows + 1] - offsets[rows]
-    owner = np.repeat(np.arange(len(rows)), counts)
-    start = np.repeat(offsets[rows] - np.cumsum(counts) + counts, counts)
-    return owner, values[start + np.arange(counts.sum())]
-
-
-# ----------------------------------------------------------------------------------------
-# One round
-# ----------------------------------------------------------------------------------------
-
-def _topology_ok(n, edges, boundary_edge, boundary_vertex, degree, neighbours):
-    """Which candidate collapses the topology allows, and each one's opposite vertices.
-
-    Returns ``(ok (k,), opposite_owner, opposite_vertex)``: candidate i is allowed where
-    ``ok[i]``; its opposite vertices are ``opposite_vertex[opposite_owner == i]``. The
-    geometric check (:func:`_no_turned_faces`) comes later, only for chosen edges.
-    ``neighbours``: the vertex adjacency as CSR, from :func:`vertex_neighbours`.
-    """
-    k = len(edges)
-    a, b = edges[:, 0], edges[:, 1]
-
-    # Interior edge whose ends are both on the boundary: would pinch the surface.
-    ok = ~(~boundary_edge & boundary_vertex[a] & boundary_vertex[b])
-
-    # Link condition: common neighbours of a and b must be exactly the opposite vertices.
-    nbr_offsets, nbr = neighbours
-    owner_a, around_a = expand(nbr_offsets, nbr, a)
-    owner_b, around_b = expand(nbr_offsets, nbr, b)
-    owner = np.concatenate([owner_a, owner_b])
-    around = np.concatenate([around_a, around_b])
-    key = np.sort(owner * n + around)
-    shared = key[1:][key[1:] == key[:-1]]                          # keys seen twice
-    shared_owner, shared_vertex = shared // n, shared % n
-    n_shared = np.bincount(shared_owner, minlength=k)
-    ok &= n_shared == np.where(boundary_edge, 1, 2)
-
-    # An opposite vertex must keep enough edges: interior ones at least 3 after losing one.
-    needed = np.where(boundary_vertex[shared_vertex], 3, 4)
-    too_thin = degree[shared_vertex] < needed
-    ok[shared_owner[too_thin]] = False
-
-    return ok, shared_owner, shared_vertex
-
-
-def _cross(u: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """Row-wise cross product of (j, 3) arrays (faster than np.cross for many short rows)."""
-    return np.stack(
-        [u[:, 1] * v[:, 2] - u[:, 2] * v[:, 1],
-         u[:, 2] * v[:, 0] - u[:, 0] * v[:, 2],
-         u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]],
-        axis=1,
-    )
-
-
-def _no_turned_faces(vertices, faces, faces_around, points, keep, remove, max_normal_cos) -> np.ndarray:
-    """(k,) True where moving both ends of edge i to ``points[i]`` turns no face over.
-
-    The faces around ``keep`` and around ``remove`` get a corner moved to the new point;
-    the two faces holding both ends vanish and are skipped. A face "turns over" when its
-    normal swings by more than the allowed angle or its area drops to (almost) nothing.
-    """
-    face_offsets, face_of_corner = faces_around                        # from vertex_faces()
-    owners, corner_lists, movers = [], [], []
-    for end, other in ((keep, remove), (remove, keep)):
-        owner, face = expand(face_offsets, face_of_corner, end)
-        corners = faces[face]                                           # (j, 3)
-        survives = ~(corners == other[owner, None]).any(axis=1)        # faces holding both vanish
-        owners.append(owner[survives])
-        corner_lists.append(corners[survives])
-        movers.append(end[owner[survives]])
-    owner = np.concatenate(owners)
-    corners = np.concatenate(corner_lists)
-    mover = np.concatenate(movers)
-    before = vertices[corners]                                          # (j, 3 corners, 3)
-    after = before.copy()
-    after[corners == mover[:, None]] = points[owner]
-    n_before = _cross(before[:, 1] - before[:, 0], before[:, 2] - before[:, 0])
-    n_after = _cross(after[:, 1] - after[:, 0], after[:, 2] - after[:, 0])
-    length_before = np.sqrt(np.einsum("ij,ij->i", n_before, n_before))
-    length_after = np.sqrt(np.einsum("ij,ij->i", n_after, n_after))
-    cosine = np.einsum("ij,ij->i", n_before, n_after) / np.maximum(length_before * length_after, 1e-300)
-    turned = (cosine < max_normal_cos) | (length_after <= 1e-12 * np.maximum(length_before, 1e-300))
-    ok = np.ones(len(keep), dtype=bool)
-    ok[owner[turned]] = False
-    return ok
-
-
-def _one_collapse_per_opposite_vertex(chosen: np.ndarray, opposite_owner: np.ndarray,
-                                      opposite_vertex: np.ndarray) -> np.ndarray:
-    """Drop chosen candidates that share an opposite vertex with a cheaper chosen one.
-
-    Each collapse takes one edge from each opposite vertex; two collapses in one round
-    could take two from the same vertex and leave it with too few. ``chosen`` (k,) is a
-    mask over candidates, which are sorted cheapest first.
-    """
-    mine = chosen[opposite_owner]
-    owner, vertex = opposite_owner[mine], opposite_vertex[mine]
-    order = np.lexsort((owner, vertex))                 # by vertex, then cheapest owner
-    owner, vertex = owner[order], vertex[order]
-    repeated = np.zeros(len(vertex), dtype=bool)
-    repeated[1:] = vertex[1:] == vertex[:-1]
-    result = chosen.copy()
-    result[owner[repeated]] = False
-    return result
-
-
-def _independent(edges: np.ndarray, priority: np.ndarray, neighbours: np.ndarray, n: int) -> np.ndarray:
-    """(k,) True for edges that are the cheapest within one ring of both their ends.
-
-    ``m1[x]`` is the lowest priority among candidate edges at vertex x; ``m2[y]`` the
-    lowest ``m1`` over y and its neighbours. An edge taken only where it equals ``m2`` at
-    both ends is at least two edges away from every other taken edge, so the collapses
-    of one round touch disjoint neighbourhoods and can be applied together.
-    """
-    big = np.iinfo(np.int64).max
-    m1 = np.full(n, big)
-    np.minimum.at(m1, edges[:, 0], priority)
-    np.minimum.at(m1, edges[:, 1], priority)
-    m2 = m1.copy()
-    np.minimum.at(m2, neighbours[:, 0], m1[neighbours[:, 1]])
-    np.minimum.at(m2, neighbours[:, 1], m1[neighbours[:, 0]])
-    return (m2[edges[:, 0]] == priority) & (m2[edges[:, 1]] == priority)
-
 
 class _EdgePrices:
     """Collapse point and cost of every edge, kept from round to round.
@@ -421,62 +270,6 @@ class _EdgePrices:
         return points, cost, keep, remove
 
 
-def _choose_round(edges, candidates, open_, n, topology_ok, no_turned_faces, known_opposites=None,
-                  passes: int = 5):
-    """Mask over candidates: a set of allowed collapses that can all be done at once.
-
-    ``candidates`` index ``edges``, cheapest first; ``open_`` (k,) marks the ones worth
-    trying. Each pass picks the open candidates that are cheapest in their
-    neighbourhood (see :func:`_independent`) and checks only those: first
-    ``topology_ok(indices) -> (ok, opposite_owner, opposite_vertex)`` (the link
-    condition; ``opposite_owner`` holds candidate indices), then
-    ``no_turned_faces(indices) -> ok`` (the geometric check). Checking the picked few
-    instead of every candidate is what keeps a round cheap: a pass picks a few
-    candidates in a hundred. What passes is accepted; then every vertex within one
-    ring of an accepted edge is blocked, and so is every vertex that just lost an edge
-    as an opposite vertex, and the next pass picks among what is left. A few passes
-    come close to a maximal set, so fewer rounds are needed.
-
-    ``known_opposites``: ``(owner, vertex)`` arrays of opposite vertices the caller has
-    already found (candidate indices and vertices), so that candidates whose opposite
-    vertex has lost an edge drop out before a pass picks, not after.
-    """
-    chosen = np.zeros(len(candidates), dtype=bool)
-    open_ = open_.copy()
-    blocked = np.zeros(n, dtype=bool)            # within one ring of a chosen edge
-    opposite_used = np.zeros(n, dtype=bool)      # already lost an edge this round
-    empty = np.zeros(0, dtype=np.int64)
-    known_owner, known_vertex = known_opposites if known_opposites is not None else (empty, empty)
-    priority = np.arange(len(candidates), dtype=np.int64)   # candidates are cheapest first
-    cand_edges = edges[candidates]
-    for _ in range(passes):
-        open_ &= ~blocked[cand_edges[:, 0]] & ~blocked[cand_edges[:, 1]]
-        open_[known_owner[opposite_used[known_vertex]]] = False
-        if not open_.any():
-            break
-        still_open = np.flatnonzero(open_)
-        picked = still_open[_independent(cand_edges[still_open], priority[still_open], edges, n)]
-        ok, opposite_owner, opposite_vertex = topology_ok(picked)
-        known_owner = np.concatenate([known_owner, opposite_owner])     # repeats do no harm
-        known_vertex = np.concatenate([known_vertex, opposite_vertex])
-        open_[picked[~ok]] = False                        # refused for the whole round
-        passed = np.zeros(len(candidates), dtype=bool)
-        passed[picked[ok]] = True
-        passed = _one_collapse_per_opposite_vertex(passed, opposite_owner, opposite_vertex)
-        open_ &= ~passed
-        # The geometric check last, for the fewest; a refused one just drops out.
-        which = np.flatnonzero(passed)
-        passed[which[~no_turned_faces(which)]] = False
-        chosen |= passed
-        ends = np.zeros(n, dtype=bool)
-        ends[cand_edges[passed].reshape(-1)] = True
-        blocked |= ends
-        blocked[edges[ends[edges[:, 0]], 1]] = True
-        blocked[edges[ends[edges[:, 1]], 0]] = True
-        opposite_used[opposite_vertex[passed[opposite_owner]]] = True
-    return chosen
-
-
 def simplify(
     mesh: HalfedgeMesh,
     target_faces: int,
@@ -485,8 +278,7 @@ def simplify(
     max_normal_angle: float = 80.0,
     candidate_fraction: float = 0.25,
     progress: bool = False,
-    return_report: bool = False,
-):
+) -> HalfedgeMesh:
     """Simplify ``mesh`` to about ``target_faces`` faces by quadric-error edge collapses.
 
     Args:
@@ -499,11 +291,33 @@ def simplify(
         candidate_fraction: each round considers only this cheapest fraction of edges,
             which keeps the order close to the one-at-a-time priority queue.
         progress: show a progress bar (tqdm) of faces removed.
-        return_report: also return a :class:`SimplifyReport`.
 
     Returns:
-        A new :class:`HalfedgeMesh` (and the report, if asked).
+        A new :class:`HalfedgeMesh`. To learn how many rounds it took and whether it
+        reached the target, call :func:`simplify_with_report` instead.
     """
+    return _simplify(mesh, target_faces, boundary_weight, max_normal_angle, candidate_fraction, progress).mesh
+
+
+def simplify_with_report(mesh: HalfedgeMesh, target_faces: int, **options) -> SimplifyResult:
+    """:func:`simplify`, and what it did: a :class:`SimplifyResult` ``(mesh, report)``.
+
+    Takes exactly the arguments of :func:`simplify` (``options`` are its keyword
+    arguments, with its defaults) and does the same work, so the mesh is the same; the
+    :class:`SimplifyReport` adds the face counts, the number of rounds and whether the
+    target was reached. Two functions instead of a flag, so that each one always
+    returns the same type.
+    """
+    # Bind to simplify's own signature: one place holds the options and their defaults,
+    # and a misspelt option is a TypeError naming it.
+    arguments = inspect.signature(simplify).bind(mesh, target_faces, **options)
+    arguments.apply_defaults()
+    return _simplify(**arguments.arguments)
+
+
+def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max_normal_angle: float,
+              candidate_fraction: float, progress: bool) -> SimplifyResult:
+    """The work of :func:`simplify` and :func:`simplify_with_report`."""
     vertices, faces = mesh.to_arrays()
     vertices = vertices.copy()
     n = len(vertices)
@@ -514,11 +328,12 @@ def simplify(
     max_normal_cos = float(np.cos(np.radians(max_normal_angle)))
 
     quadrics = accumulate(face_quadrics(vertices, faces), faces, n)
-    edges, count, edge_face = unique_edges(faces, n)
-    on_boundary = count == 1
+    table = edge_table(faces, n)
+    on_boundary = table.count == 1
     if on_boundary.any():
-        bq = boundary_quadrics(vertices, faces, edges[on_boundary], edge_face[on_boundary], boundary_weight)
-        quadrics += accumulate(bq, edges[on_boundary], n)      # each to both ends
+        boundary_faces = table.first[on_boundary] // 3                 # the one face of each
+        bq = boundary_quadrics(vertices, faces, table.edges[on_boundary], boundary_faces, boundary_weight)
+        quadrics += accumulate(bq, table.edges[on_boundary], n)      # each to both ends
 
     # Costs are area x distance^2 (length^4); below this they count as nothing.
     cost_floor = 1e-12 * float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0))) ** 4
@@ -528,7 +343,7 @@ def simplify(
     moved = np.ones(n, dtype=bool)             # vertices whose price inputs changed
     while len(faces) > target_faces:
         rounds += 1
-        edges, count, _ = unique_edges(faces, n, with_faces=False)
+        edges, count = unique_edges(faces, n)
         boundary_edge = count == 1
         boundary_vertex = np.zeros(n, dtype=bool)
         boundary_vertex[edges[boundary_edge].reshape(-1)] = True
@@ -547,18 +362,18 @@ def simplify(
 
         neighbours = vertex_neighbours(edges, n)
 
-        def topology_ok(indices: np.ndarray):
+        def check_topology(indices: np.ndarray):
             chosen_edges = candidates[indices]
-            ok, owner, vertex = _topology_ok(n, edges[chosen_edges], boundary_edge[chosen_edges],
-                                             boundary_vertex, degree, neighbours)
+            ok, owner, vertex = collapse_topology_ok(n, edges[chosen_edges], boundary_edge[chosen_edges],
+                                                     boundary_vertex, degree, neighbours)
             return ok, indices[owner], vertex
 
         faces_around = vertex_faces(faces, n)
 
-        def no_turned_faces(indices: np.ndarray) -> np.ndarray:
+        def check_turned_faces(indices: np.ndarray) -> np.ndarray:
             chosen_edges = candidates[indices]
-            ok = _no_turned_faces(vertices, faces, faces_around, points[chosen_edges],
-                                  keep[chosen_edges], remove[chosen_edges], max_normal_cos)
+            ok = no_turned_faces(vertices, faces, faces_around, points[chosen_edges],
+                                 keep[chosen_edges], remove[chosen_edges], max_normal_cos)
             # Where the best point turns a face over, an endpoint may not: in a flat
             # region all three cost nothing, and moving onto a neighbour folds less
             # often than moving to the middle of a long edge. Accept an endpoint only
@@ -573,7 +388,7 @@ def simplify(
                 cheap = option_cost <= 2.0 * cost[retry] + cost_floor
                 passes = np.zeros(len(retry), dtype=bool)
                 if cheap.any():
-                    passes[cheap] = _no_turned_faces(
+                    passes[cheap] = no_turned_faces(
                         vertices, faces, faces_around, option[cheap], keep[retry[cheap]],
                         remove[retry[cheap]], max_normal_cos)
                 points[retry[passes]] = option[passes]
@@ -582,8 +397,8 @@ def simplify(
                 ok[still_bad[passes]] = True
             return ok
 
-        chosen_mask = _choose_round(edges, candidates, np.ones(len(candidates), dtype=bool), n,
-                                    topology_ok, no_turned_faces)
+        chosen_mask = choose_round(edges, candidates, np.ones(len(candidates), dtype=bool), n,
+                                   check_topology, check_turned_faces)
         chosen = candidates[chosen_mask]
         # Stop exactly at the target: take chosen edges in cost order until enough faces go.
         removes_faces = np.where(boundary_edge[chosen], 1, 2)
@@ -592,8 +407,8 @@ def simplify(
             # Nothing passed the geometric check, or only interior collapses are left with
             # one face to go (then one more collapse is the nearest we can get).
             everything = np.arange(len(candidates))
-            allowed = everything[topology_ok(everything)[0]]
-            allowed = allowed[no_turned_faces(allowed)][:1]
+            allowed = everything[check_topology(everything)[0]]
+            allowed = allowed[check_turned_faces(allowed)][:1]
             if len(allowed) == 0:
                 break
             chosen = candidates[allowed]
@@ -603,14 +418,10 @@ def simplify(
         quadrics[keep_c] += quadrics[remove_c]
         moved[:] = False
         moved[keep_c] = True
-        relabel = np.arange(n)
-        relabel[remove_c] = keep_c
-        faces = relabel[faces]
-        degenerate = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 2] == faces[:, 0])
-        removed_now = int(degenerate.sum())
-        faces = faces[~degenerate]
+        faces_left = len(faces)
+        faces = merge_vertices(faces, remove_c, keep_c, n)
         if bar is not None:
-            bar.update(removed_now)
+            bar.update(faces_left - len(faces))
 
     if bar is not None:
         bar.close()
@@ -620,15 +431,10 @@ def simplify(
             f"simplify stopped at {len(faces)} faces: no allowed collapse is left "
             f"(target was {target_faces})",
             MeshWarning,
-            stacklevel=2,
+            stacklevel=3,            # the caller of simplify or simplify_with_report
         )
-    used = np.unique(faces)
-    new_index = np.full(n, -1, dtype=np.int64)
-    new_index[used] = np.arange(len(used))
-    result = HalfedgeMesh.from_faces(vertices[used], new_index[faces])
-    if return_report:
-        return result, SimplifyReport(faces_before, len(faces), target_faces, rounds, reached)
-    return result
+    result = HalfedgeMesh.from_faces(*compact(vertices, faces)[:2])
+    return SimplifyResult(result, SimplifyReport(faces_before, len(faces), target_faces, rounds, reached))
 
 
 def _progress_bar(enabled: bool, total: int):

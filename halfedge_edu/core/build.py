@@ -32,6 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .arrays import compact, face_halfedges, sort_undirected
 from .errors import MeshInputError, MeshWarning
 from .rings import ring_lengths
 
@@ -153,7 +154,6 @@ def drop_unreferenced(positions: np.ndarray, faces: np.ndarray, *, warn: bool = 
     used[faces.ravel()] = True
     if used.all():
         return positions, faces, np.arange(len(positions))
-    kept = np.flatnonzero(used)
     if warn:
         dropped = np.flatnonzero(~used)
         shown = ", ".join(str(v) for v in dropped[:8]) + (", ..." if len(dropped) > 8 else "")
@@ -162,9 +162,8 @@ def drop_unreferenced(positions: np.ndarray, faces: np.ndarray, *, warn: bool = 
             MeshWarning,
             stacklevel=3,
         )
-    new_index = np.full(len(positions), -1, dtype=np.int64)
-    new_index[kept] = np.arange(len(kept))
-    return positions[kept], new_index[faces].astype(INDEX), kept
+    positions, faces, kept = compact(positions, faces)
+    return positions, faces.astype(INDEX), kept
 
 
 # --------------------------------------------------------------------------------------
@@ -316,9 +315,8 @@ def build_arrays(
 
     # Directed edge number p = 3 * face + corner runs from tail[p] to head[p].
     corners = np.asarray(faces, dtype=INDEX)                  # (m, 3)
-    tail = corners.reshape(-1)                                # (3m,)
-    head = corners[:, [1, 2, 0]].reshape(-1)                  # (3m,)
-    order, sorted_key = _sort_undirected(tail, head, n_vertices)
+    tail, head = face_halfedges(corners)                      # (3m,) each
+    order, sorted_key = sort_undirected(tail, head, n_vertices)
 
     # Equal keys sit next to each other, in the order the faces used them. A run of
     # two is an interior edge, a run of one a boundary edge, a longer run is an error.
@@ -422,36 +420,6 @@ def _vertex_namer(vertex_ids: np.ndarray | None):
     if vertex_ids is None:
         return int
     return lambda v: int(vertex_ids[v])
-
-
-def _sort_undirected(tail: np.ndarray, head: np.ndarray, n_vertices: int):
-    """Sort directed edges by their undirected key, keeping equal keys in input order.
-
-    The key of an edge is ``low * n_vertices + high`` with ``low < high`` its vertices.
-    Returns ``(order, sorted_key)``: ``order`` (3m,) lists directed-edge numbers so
-    that their keys ascend, ties in increasing directed-edge number (a stable order).
-
-    How: when it fits in 63 bits, the directed-edge number is packed into the low bits
-    of the key and the packed numbers are sorted with ``np.sort``, which is several
-    times faster than a stable ``argsort``; ties are then broken by the packed position,
-    which is exactly stability. Larger meshes fall back to ``argsort(kind="stable")``.
-    """
-    # In-place arithmetic: each new 3m-long int64 array costs ~30 MB at 1.3M faces.
-    key = np.minimum(tail, head, dtype=np.int64)
-    key *= n_vertices
-    key += np.maximum(tail, head)
-    n = len(key)
-    position_bits = max(1, int(n - 1).bit_length())
-    if (int(n_vertices) ** 2) < 2 ** (63 - position_bits):
-        packed = key
-        packed <<= position_bits
-        packed |= np.arange(n, dtype=np.int64)
-        packed.sort()
-        order = packed & ((1 << position_bits) - 1)
-        packed >>= position_bits
-        return order, packed
-    order = np.argsort(key, kind="stable")
-    return order, key[order]
 
 
 def _raise_crowded_edge(order, same_as_next, tail, head, face_lines, source, name=int):

@@ -16,9 +16,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .arrays import face_halfedges, sort_undirected
 from .errors import MeshInputError
 
-__all__ = ["ManifoldReport", "manifold_report", "check_faces_array", "face_halfedges", "corner_fans"]
+__all__ = ["ManifoldReport", "manifold_report", "check_faces_array", "corner_fans"]
 
 
 @dataclass
@@ -54,13 +55,9 @@ class ManifoldReport:
     n_vertices: int = 0
 
     def __bool__(self) -> bool:
-        return not (
-            len(self.nonmanifold_edges)
-            or len(self.inconsistent_edges)
-            or len(self.nonmanifold_vertices)
-            or len(self.degenerate_faces)
-            or len(self.duplicate_faces)
-        )
+        problems = (self.nonmanifold_edges, self.inconsistent_edges, self.nonmanifold_vertices,
+                    self.degenerate_faces, self.duplicate_faces)
+        return not any(len(found) for found in problems)
 
     @property
     def is_manifold(self) -> bool:
@@ -118,17 +115,6 @@ def check_faces_array(faces, n_vertices: int | None = None) -> tuple[np.ndarray,
     return faces, n_vertices
 
 
-def face_halfedges(faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The directed edges of each face, corner by corner.
-
-    Returns ``(tail, head)``, each (3m,): halfedge ``3f + k`` runs from corner ``k`` of
-    face ``f`` to corner ``k + 1``, that is ``faces[f, k] -> faces[f, (k + 1) % 3]``.
-    """
-    tail = faces.reshape(-1)  # (3m,)
-    head = faces[:, [1, 2, 0]].reshape(-1)  # (3m,)
-    return tail, head
-
-
 def corner_fans(faces: np.ndarray, joins: np.ndarray | None = None) -> np.ndarray:
     """Label each corner (``3f + k``) with the fan it belongs to.
 
@@ -151,9 +137,8 @@ def corner_fans(faces: np.ndarray, joins: np.ndarray | None = None) -> np.ndarra
         tail, head, corner, next_corner = tail[joins], head[joins], corner[joins], next_corner[joins]
 
     # Sort the halfedges by undirected edge; neighbours in that order share the edge.
-    low, high = np.minimum(tail, head), np.maximum(tail, head)
-    order = np.lexsort((high, low))
-    same_edge = (low[order][1:] == low[order][:-1]) & (high[order][1:] == high[order][:-1])
+    order, sorted_key = sort_undirected(tail, head, int(faces.max()) + 1 if faces.size else 1)
+    same_edge = sorted_key[1:] == sorted_key[:-1]
     first, second = order[:-1][same_edge], order[1:][same_edge]
     # The corner at the edge's lower vertex, and at its higher vertex, for each halfedge.
     low_corner = np.where(tail < head, corner, next_corner)
@@ -202,9 +187,8 @@ def manifold_report(faces, n_vertices: int | None = None) -> ManifoldReport:
     base = max(n_vertices, 1)
     tail, head = face_halfedges(clean)
     halfedge_face = good[np.arange(clean.size) // 3]  # (3g,) face of each halfedge, input numbering
-    undirected_key = np.minimum(tail, head) * base + np.maximum(tail, head)  # (3g,)
-    by_edge = np.argsort(undirected_key, kind="stable")
-    keys, starts, counts = np.unique(undirected_key[by_edge], return_index=True, return_counts=True)
+    by_edge, sorted_key = sort_undirected(tail, head, base)  # (3g,) uses of each edge together
+    keys, starts, counts = np.unique(sorted_key, return_index=True, return_counts=True)
     crowded = np.flatnonzero(counts > 2)
     edge_faces = [np.sort(halfedge_face[by_edge[starts[e]:starts[e] + counts[e]]]) for e in crowded]
     nonmanifold_edges = np.stack(np.divmod(keys[crowded], base), axis=1)  # (k, 2)

@@ -31,7 +31,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import MeshInputError
-from .manifold import check_faces_array, corner_fans, face_halfedges, manifold_report
+from .arrays import face_halfedges, sort_undirected
+from .manifold import check_faces_array, corner_fans, manifold_report
 
 __all__ = ["RepairReport", "repair_faces"]
 
@@ -60,12 +61,8 @@ class RepairReport:
     vertex_origin: np.ndarray
 
     def __bool__(self) -> bool:
-        return bool(
-            len(self.dropped_degenerate)
-            or len(self.dropped_duplicate)
-            or len(self.flipped_faces)
-            or len(self.vertex_copies)
-        )
+        changes = (self.dropped_degenerate, self.dropped_duplicate, self.flipped_faces, self.vertex_copies)
+        return any(len(done) for done in changes)
 
     @property
     def split_vertices(self) -> np.ndarray:
@@ -163,9 +160,8 @@ def _edge_pairs(faces: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """
     tail, head = face_halfedges(faces)
     base = max(int(faces.max()) + 1, 1) if faces.size else 1
-    key = np.minimum(tail, head) * base + np.maximum(tail, head)  # (3m,) undirected edge
-    order = np.argsort(key, kind="stable")
-    _, starts, counts = np.unique(key[order], return_index=True, return_counts=True)
+    order, sorted_key = sort_undirected(tail, head, base)  # (3m,) uses of each edge together
+    _, starts, counts = np.unique(sorted_key, return_index=True, return_counts=True)
     pairs = starts[counts == 2]
     first, second = order[pairs], order[pairs + 1]
     return first, second, tail[first] != tail[second]

@@ -7,6 +7,7 @@ anything follows them.
 
 | rule                      | what must hold                                              |
 |---------------------------|-------------------------------------------------------------|
+| deletion-count            | the deleted flags agree with the mesh's element counts      |
 | deleted-reference         | live elements point only at live elements, within range     |
 | next-prev-inverse         | prev(next(h)) == h and next(prev(h)) == h                   |
 | twin-involution           | twin(h) = h ^ 1 runs the other way: origin(twin(h)) != origin(h) |
@@ -22,10 +23,11 @@ anything follows them.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
+from .arrays import undirected_keys
 from .errors import MeshInvariantError
 from .rings import ring_lengths
 
@@ -41,6 +43,16 @@ def _first(bad: np.ndarray, indices) -> int | None:
     return int(position if indices is None else indices[position])
 
 
+def _refuse(found: int | None, rule: str, kind: str, sentence: Callable[[int], str]) -> None:
+    """Raise ``rule``'s error for element ``(kind, found)`` if :func:`_first` found one.
+
+    ``sentence(found)`` writes the message; it runs only when there is something to
+    report, so it may look up whatever it names.
+    """
+    if found is not None:
+        raise MeshInvariantError(rule, (kind, found), sentence(found))
+
+
 def validate(mesh: "HalfedgeMesh") -> None:
     """Raise :class:`MeshInvariantError` for the first broken rule, else return None."""
     n_v, n_h, n_f = mesh.n_vertex_slots, mesh.n_halfedge_slots, mesh.n_face_slots
@@ -50,9 +62,29 @@ def validate(mesh: "HalfedgeMesh") -> None:
     vertex_deleted, face_deleted = mesh.vertex_deleted, mesh.face_deleted
     edge_deleted = mesh.edge_deleted
 
+    # ---- deletion-count ---------------------------------------------------------------
+    # The flags themselves say what is deleted, not the counters the operations keep: a
+    # flag set by hand must not hide behind counters that say "nothing deleted".
+    flagged = {kind: int(np.count_nonzero(flags))            # counts bytes, no int conversion
+               for kind, flags in (("vertex", vertex_deleted), ("edge", edge_deleted), ("face", face_deleted))}
+    counted = {"vertex": n_v - mesh.n_vertices, "edge": n_h // 2 - mesh.n_edges, "face": n_f - mesh.n_faces}
+    for kind in ("vertex", "edge", "face"):
+        if flagged[kind] != counted[kind]:
+            flags = {"vertex": vertex_deleted, "edge": edge_deleted, "face": face_deleted}[kind]
+            first = _first(flags, None)
+            raise MeshInvariantError(
+                "deletion-count",
+                (kind, first if first is not None else 0),
+                f"{flagged[kind]} {kind} slots are flagged deleted, but the mesh counts "
+                f"{counted[kind]} deleted {kind}s"
+                + (f" (the first flagged is {kind} {first})" if first is not None else "")
+                + "; delete elements with the mesh's operations, which keep both in step",
+            )
+    garbage = any(flagged.values())
+
     # Which elements to check: every slot when nothing is deleted (no gather needed),
     # otherwise the live ones, as index arrays.
-    if mesh.has_garbage:
+    if garbage:
         hs = np.flatnonzero(~np.repeat(edge_deleted, 2))
         vs = np.flatnonzero(~vertex_deleted)
         fs = np.flatnonzero(~face_deleted)
@@ -68,7 +100,7 @@ def validate(mesh: "HalfedgeMesh") -> None:
     def check_pointer(values, size, deleted, owner_kind, owner_indices, field, target_kind, allow_none=False):
         # Fast path: two reductions say "all in range" without building a mask.
         if len(values) == 0 or (
-            values.min() >= (-1 if allow_none else 0) and values.max() < size and not mesh.has_garbage
+            values.min() >= (-1 if allow_none else 0) and values.max() < size and not garbage
         ):
             return
         in_range = (values >= 0) & (values < size)
@@ -94,111 +126,64 @@ def validate(mesh: "HalfedgeMesh") -> None:
     check_pointer(h_origin, n_v, vertex_deleted, "halfedge", hs, "vertex", "vertex")
     check_pointer(h_face, n_f, face_deleted, "halfedge", hs, "face", "face", allow_none=True)
     check_pointer(f_he, n_h, halfedge_deleted, "face", fs, "halfedge", "halfedge")
-    orphan = _first(v_he == -1, vs)
-    if orphan is not None:
-        raise MeshInvariantError(
-            "vertex-halfedge-origin",
-            ("vertex", orphan),
-            f"vertex {orphan} has no halfedge: no edge uses it (an orphan vertex). "
-            f"Delete it, or link it into the mesh.",
-        )
+    _refuse(_first(v_he == -1, vs), "vertex-halfedge-origin", "vertex", lambda orphan: (
+        f"vertex {orphan} has no halfedge: no edge uses it (an orphan vertex). "
+        f"Delete it, or link it into the mesh."))
     check_pointer(v_he, n_h, halfedge_deleted, "vertex", vs, "halfedge", "halfedge")
 
     # ---- next-prev-inverse ------------------------------------------------------------
     # Checking prev(next(h)) == h for every h is enough: it makes `next` one-to-one, so a
     # permutation, and `prev` its inverse; next(prev(h)) == h then follows.
-    h = _first(prv[h_next] != h_index, hs)
-    if h is not None:
-        raise MeshInvariantError(
-            "next-prev-inverse",
-            ("halfedge", h),
-            f"halfedge {h}: next is {int(nxt[h])} but that halfedge's prev is {int(prv[nxt[h]])}, "
-            f"not {h}; next and prev must undo each other",
-        )
+    _refuse(_first(prv[h_next] != h_index, hs), "next-prev-inverse", "halfedge", lambda h: (
+        f"halfedge {h}: next is {int(nxt[h])} but that halfedge's prev is {int(prv[nxt[h]])}, "
+        f"not {h}; next and prev must undo each other"))
 
     # ---- twin-involution --------------------------------------------------------------
     h_tip = origin[h_index ^ 1]
-    h = _first(h_origin == h_tip, hs)
-    if h is not None:
-        raise MeshInvariantError(
-            "twin-involution",
-            ("halfedge", h),
-            f"halfedge {h} and its twin {h ^ 1} both start at vertex {int(origin[h])}; "
-            f"twins must run in opposite directions along edge {h >> 1}",
-        )
+    _refuse(_first(h_origin == h_tip, hs), "twin-involution", "halfedge", lambda h: (
+        f"halfedge {h} and its twin {h ^ 1} both start at vertex {int(origin[h])}; "
+        f"twins must run in opposite directions along edge {h >> 1}"))
 
     # ---- next-origin ------------------------------------------------------------------
-    h = _first(origin[h_next] != h_tip, hs)
-    if h is not None:
-        raise MeshInvariantError(
-            "next-origin",
-            ("halfedge", h),
-            f"halfedge {h} ends at vertex {int(origin[h ^ 1])}, but its next ({int(nxt[h])}) "
-            f"starts at vertex {int(origin[nxt[h]])}; next must start where the halfedge ends",
-        )
+    _refuse(_first(origin[h_next] != h_tip, hs), "next-origin", "halfedge", lambda h: (
+        f"halfedge {h} ends at vertex {int(origin[h ^ 1])}, but its next ({int(nxt[h])}) "
+        f"starts at vertex {int(origin[nxt[h]])}; next must start where the halfedge ends"))
 
     # ---- next-cycle -------------------------------------------------------------------
     interior = h_face >= 0
     next_face = face[h_next]
-    h = _first(interior & (next_face != h_face), hs)
-    if h is not None:
-        raise MeshInvariantError(
-            "next-cycle",
-            ("halfedge", h),
-            f"halfedge {h} is in face {int(face[h])} but its next ({int(nxt[h])}) is in "
-            f"face {int(face[nxt[h]])}; a face's halfedges must all belong to it",
-        )
-    h = _first(~interior & (next_face != -1), hs)
-    if h is not None:
-        raise MeshInvariantError(
-            "next-cycle",
-            ("halfedge", h),
-            f"boundary halfedge {h}'s next ({int(nxt[h])}) is inside face {int(face[nxt[h]])}; "
-            f"the next of a boundary halfedge must continue along the boundary",
-        )
+    _refuse(_first(interior & (next_face != h_face), hs), "next-cycle", "halfedge", lambda h: (
+        f"halfedge {h} is in face {int(face[h])} but its next ({int(nxt[h])}) is in "
+        f"face {int(face[nxt[h]])}; a face's halfedges must all belong to it"))
+    _refuse(_first(~interior & (next_face != -1), hs), "next-cycle", "halfedge", lambda h: (
+        f"boundary halfedge {h}'s next ({int(nxt[h])}) is inside face {int(face[nxt[h]])}; "
+        f"the next of a boundary halfedge must continue along the boundary"))
     # With prev the inverse of next, next(next(h)) == prev(h) says next^3(h) == h; with
     # next(h) != h the loop has exactly three halfedges.
-    h = _first(interior & ((nxt[h_next] != h_prev) | (h_next == h_index)), hs)
-    if h is not None:
-        raise MeshInvariantError(
-            "next-cycle",
-            ("halfedge", h),
-            f"halfedge {h}: next->next->next is {int(nxt[nxt[nxt[h]]])}, not {h}, so face "
-            f"{int(face[h])} is not a loop of three halfedges (a triangle)",
-        )
+    not_a_triangle = interior & ((nxt[h_next] != h_prev) | (h_next == h_index))
+    _refuse(_first(not_a_triangle, hs), "next-cycle", "halfedge", lambda h: (
+        f"halfedge {h}: next->next->next is {int(nxt[nxt[nxt[h]]])}, not {h}, so face "
+        f"{int(face[h])} is not a loop of three halfedges (a triangle)"))
 
     # ---- face-halfedge ----------------------------------------------------------------
-    f = _first(face[f_he] != (np.arange(n_f) if fs is None else fs), fs)
-    if f is not None:
-        raise MeshInvariantError(
-            "face-halfedge",
-            ("face", f),
-            f"face {f}'s halfedge is {int(face_he[f])}, which belongs to face "
-            f"{int(face[face_he[f]])}; a face's halfedge must lie in that face",
-        )
+    elsewhere = face[f_he] != (np.arange(n_f) if fs is None else fs)
+    _refuse(_first(elsewhere, fs), "face-halfedge", "face", lambda f: (
+        f"face {f}'s halfedge is {int(face_he[f])}, which belongs to face "
+        f"{int(face[face_he[f]])}; a face's halfedge must lie in that face"))
 
     # ---- edge-halfedge ----------------------------------------------------------------
     faceless = np.maximum(face[0::2], face[1::2]) < 0         # (n_edge_slots,)
     if hs is not None:
         faceless &= ~edge_deleted
-    e = _first(faceless, None)
-    if e is not None:
-        raise MeshInvariantError(
-            "edge-halfedge",
-            ("edge", e),
-            f"edge {e} (vertices {int(origin[2 * e])} and {int(origin[2 * e + 1])}) has no face "
-            f"on either side; every edge must border at least one face",
-        )
+    _refuse(_first(faceless, None), "edge-halfedge", "edge", lambda e: (
+        f"edge {e} (vertices {int(origin[2 * e])} and {int(origin[2 * e + 1])}) has no face "
+        f"on either side; every edge must border at least one face"))
 
     # ---- vertex-halfedge-origin -------------------------------------------------------
-    v = _first(origin[v_he] != (np.arange(n_v) if vs is None else vs), vs)
-    if v is not None:
-        raise MeshInvariantError(
-            "vertex-halfedge-origin",
-            ("vertex", v),
-            f"vertex {v}'s halfedge is {int(vertex_he[v])}, which starts at vertex "
-            f"{int(origin[vertex_he[v]])}; a vertex's halfedge must leave that vertex",
-        )
+    leaves_another = origin[v_he] != (np.arange(n_v) if vs is None else vs)
+    _refuse(_first(leaves_another, vs), "vertex-halfedge-origin", "vertex", lambda v: (
+        f"vertex {v}'s halfedge is {int(vertex_he[v])}, which starts at vertex "
+        f"{int(origin[vertex_he[v]])}; a vertex's halfedge must leave that vertex"))
 
     # ---- boundary-vertex-halfedge -----------------------------------------------------
     boundary_origins = h_origin[~interior]
@@ -236,9 +221,7 @@ def validate(mesh: "HalfedgeMesh") -> None:
     ends = origin.reshape(-1, 2)
     if hs is not None:
         ends = ends[~edge_deleted]
-    low = np.minimum(ends[:, 0], ends[:, 1]).astype(np.int64)
-    high = np.maximum(ends[:, 0], ends[:, 1]).astype(np.int64)
-    key = np.sort(low * n_v + high)
+    key = np.sort(undirected_keys(ends[:, 0], ends[:, 1], n_v))
     repeated = _first(key[1:] == key[:-1], None)
     if repeated is not None:
         a, b = divmod(int(key[repeated]), n_v)

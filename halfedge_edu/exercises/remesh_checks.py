@@ -26,7 +26,7 @@ from typing import Callable
 import numpy as np
 
 from halfedge_edu.algorithms.normals import vertex_normals
-from halfedge_edu.algorithms.remesh import _tangential_smoothing
+from halfedge_edu.algorithms.remesh import tangential_smoothing
 from halfedge_edu.core.mesh import HalfedgeMesh
 from halfedge_edu.data import sample
 
@@ -79,7 +79,7 @@ def tangential_smoothing_reference(mesh: HalfedgeMesh) -> np.ndarray:
 def _library(mesh: HalfedgeMesh) -> np.ndarray:
     """The remesher's own smoothing phase (on the compact arrays of a mesh without garbage)."""
     vertices, faces = mesh.to_arrays()
-    return _tangential_smoothing(vertices, faces)
+    return tangential_smoothing(vertices, faces)
 
 
 def _gauss_seidel(mesh: HalfedgeMesh) -> np.ndarray:

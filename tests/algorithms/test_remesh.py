@@ -11,18 +11,20 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import halfedge_edu as hx
+from halfedge_edu.core.arrays import edge_table
 from tests import strategies as shapes
 
 remesh_module = importlib.import_module("halfedge_edu.algorithms.remesh")
 remesh = remesh_module.remesh
 remesh_step_by_step = remesh_module.remesh_step_by_step
+remesh_history = remesh_module.remesh_history
 quality_report = remesh_module.quality_report
 SPLIT_ABOVE, COLLAPSE_BELOW = remesh_module.SPLIT_ABOVE, remesh_module.COLLAPSE_BELOW
 
 
 def edge_lengths(mesh: hx.HalfedgeMesh) -> np.ndarray:
     vertices, faces = mesh.to_arrays()
-    edges = remesh_module._edge_table(faces, len(vertices)).edges
+    edges = edge_table(faces, len(vertices)).edges
     return np.linalg.norm(vertices[edges[:, 0]] - vertices[edges[:, 1]], axis=1)
 
 
@@ -33,7 +35,7 @@ def mean_edge_length(mesh: hx.HalfedgeMesh) -> float:
 def boundary_segments(mesh: hx.HalfedgeMesh) -> np.ndarray:
     """(S, 2, 3) the boundary edges of ``mesh`` as segments."""
     vertices, faces = mesh.to_arrays()
-    table = remesh_module._edge_table(faces, len(vertices))
+    table = edge_table(faces, len(vertices))
     return vertices[table.edges[table.count == 1]]
 
 
@@ -55,7 +57,7 @@ def bunny_remeshed():
 @pytest.fixture(scope="module")
 def spot_history():
     spot = hx.sample("spot")
-    return spot, remesh(spot, iterations=3, return_history=True)
+    return spot, (remesh(spot, iterations=3), remesh_history(spot, iterations=3))
 
 
 # ---- what is kept --------------------------------------------------------------------
@@ -212,6 +214,11 @@ def test_history_starts_with_the_input_and_lists_every_phase_in_order(spot_histo
     assert all(np.array_equal(x, y) for x, y in zip(history[-1].mesh.to_arrays(), result.to_arrays()))
 
 
+def test_remesh_history_takes_only_the_options_of_remesh():
+    with pytest.raises(TypeError, match="iteration"):
+        remesh_history(hx.sample("cube"), iteration=2)
+
+
 def test_step_by_step_ends_where_remesh_ends():
     mesh = hx.sample("spot")
     steps = list(remesh_step_by_step(mesh, iterations=1, project=False))
@@ -278,7 +285,7 @@ def test_flip_pass_lowers_the_total_degree_deviation_and_keeps_counts():
     vertices, faces = sphere.to_arrays()
 
     def deviation(f):
-        degree = np.bincount(remesh_module._edge_table(f, len(vertices)).edges.reshape(-1), minlength=len(vertices))
+        degree = np.bincount(edge_table(f, len(vertices)).edges.reshape(-1), minlength=len(vertices))
         return np.abs(degree - 6).sum()
 
     flipped, n_flipped = remesh_module._flip_pass(vertices, faces, np.random.default_rng(0), np.cos(np.radians(20.0)))
@@ -296,7 +303,7 @@ def test_tangential_smoothing_keeps_a_flat_patch_in_its_plane_and_its_rim_fixed(
     inside = ~patch.vertex_is_boundary()
     vertices = vertices.copy()
     vertices[inside, :2] += rng.normal(scale=0.1, size=(inside.sum(), 2))
-    smoothed = remesh_module._tangential_smoothing(vertices, faces)
+    smoothed = remesh_module.tangential_smoothing(vertices, faces)
     assert np.allclose(smoothed[:, 2], 0.0)
     assert np.array_equal(smoothed[~inside], vertices[~inside])
     # In the plane the tangential step is the plain step to the neighbours' centroid.
@@ -309,7 +316,7 @@ def test_tangential_smoothing_does_not_move_a_vertex_along_its_normal():
     # A regular icosahedron: each vertex's neighbour centroid lies straight below it.
     mesh = hx.sample("icosphere", subdivisions=0)
     vertices, faces = mesh.to_arrays()
-    assert np.allclose(remesh_module._tangential_smoothing(vertices, faces), vertices)
+    assert np.allclose(remesh_module.tangential_smoothing(vertices, faces), vertices)
 
 
 def test_closest_points_on_triangles_match_trimesh_in_every_region():
@@ -342,3 +349,46 @@ def test_quality_report_counts_boundary_vertices_against_four():
     degree = patch.vertex_degrees()
     ideal = np.where(patch.vertex_is_boundary(), 4, 6)
     assert report.degree_deviation == pytest.approx(np.abs(degree - ideal).mean())
+
+
+# ---- no face flattened -----------------------------------------------------------------
+
+def creased(vertices: np.ndarray, where: float, slope: float) -> np.ndarray:
+    """The surface folded into a V along the plane x = where: a sharp crease, as in CAD parts."""
+    folded = vertices.copy()
+    folded[:, 2] += slope * np.abs(folded[:, 0] - where)
+    return folded
+
+
+def smallest_relative_area(mesh: hx.HalfedgeMesh) -> float:
+    """min over faces of twice the area over the squared longest edge (0 for a flat face)."""
+    vertices, faces = mesh.to_arrays()
+    corners = vertices[faces]
+    double_area = np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]), axis=1)
+    sides = corners - np.roll(corners, 1, axis=1)
+    return float((double_area / np.einsum("fkd,fkd->fk", sides, sides).max(axis=1)).min())
+
+
+# Found by the property below: the projection put two corners of a face on one point.
+FLATTENED_BY_PROJECTION = [
+    (shapes.torus(3, 4), -0.07089300133418885, 0.7306825413832303, 1.0),
+    (shapes.uv_sphere(7, 2), 0.20318755459481097, 2.2212737489525076, 2.0),
+    (shapes.torus(5, 4), 0.2036425120535994, 2.3054965138525536, 2.0),
+]
+
+
+@pytest.mark.parametrize("arrays, where, slope, scale", FLATTENED_BY_PROJECTION)
+def test_projection_onto_a_crease_flattens_no_face(arrays, where, slope, scale):
+    mesh = hx.HalfedgeMesh.from_faces(creased(arrays[0], where, slope), arrays[1])
+    result = remesh(mesh, scale * mean_edge_length(mesh), iterations=3)
+    result.validate()
+    assert smallest_relative_area(result) > remesh_module.MIN_RELATIVE_AREA
+
+
+@given(case=shapes.cases(), where=st.floats(-0.5, 0.5), slope=st.floats(0.5, 3.0),
+       scale=st.sampled_from([0.5, 1.0, 2.0]))
+def test_remesh_never_makes_a_zero_area_face_on_creased_meshes(case, where, slope, scale):
+    mesh = hx.HalfedgeMesh.from_faces(creased(case.vertices, where, slope), case.faces)
+    assert smallest_relative_area(mesh) > remesh_module.MIN_RELATIVE_AREA
+    result = remesh(mesh, scale * mean_edge_length(mesh), iterations=3)
+    assert smallest_relative_area(result) > remesh_module.MIN_RELATIVE_AREA

@@ -16,6 +16,7 @@ from halfedge_edu.algorithms.simplify import (
     optimal_points,
     quadric_cost,
     simplify,
+    simplify_with_report,
     solve_symmetric_3x3,
 )
 from halfedge_edu.algorithms.simplify_queue import _best_point
@@ -152,9 +153,19 @@ def test_reaches_the_target_exactly_or_one_below_and_stays_valid(fraction):
     assert result.is_closed
 
 
+def test_simplify_with_report_gives_the_mesh_simplify_gives_and_takes_only_its_options():
+    mesh = hx.sample("spot")
+    result = simplify_with_report(mesh, 900, max_normal_angle=60.0)
+    alone = simplify(mesh, 900, max_normal_angle=60.0)
+    assert all(np.array_equal(x, y) for x, y in zip(result.mesh.to_arrays(), alone.to_arrays()))
+    assert (result.report.faces_before, result.report.faces_after) == (mesh.n_faces, alone.n_faces)
+    with pytest.raises(TypeError, match="max_normal_angel"):
+        simplify_with_report(mesh, 900, max_normal_angel=60.0)
+
+
 def test_bunny_keeps_its_holes_and_genus():
     mesh = hx.sample("bunny")
-    result, report = simplify(mesh, 3000, return_report=True)
+    result, report = simplify_with_report(mesh, 3000)
     result.validate()
     assert report.reached_target
     assert 2999 <= result.n_faces <= 3000
@@ -198,7 +209,7 @@ def test_a_flat_patch_stays_flat_and_keeps_its_outline():
 def test_tetrahedron_cannot_go_lower_and_says_so():
     mesh = hx.sample("tetrahedron")
     with pytest.warns(hx.MeshWarning, match="no allowed collapse"):
-        result, report = simplify(mesh, 2, return_report=True)
+        result, report = simplify_with_report(mesh, 2)
     assert result.n_faces == 4
     assert not report.reached_target
     result.validate()
@@ -239,7 +250,7 @@ def test_any_mesh_stays_valid_with_its_genus_and_boundary_loops(case, fraction):
     target = max(1, int(fraction * mesh.n_faces))
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        result, report = simplify(mesh, target, return_report=True)
+        result, report = simplify_with_report(mesh, target)
     result.validate()
     assert (result.genus, result.n_boundary_loops) == (case.genus, case.n_boundary_loops)
     assert result.n_faces == report.faces_after <= mesh.n_faces

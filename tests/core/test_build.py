@@ -57,14 +57,14 @@ def test_vectorized_build_equals_reference_loop(drawn):
 def test_both_sorting_paths_order_directed_edges_alike(drawn):
     # Small meshes pack the position into the key; huge vertex counts fall back to a
     # stable argsort. Both must list directed edges by (low, high) vertex, ties in order.
-    from halfedge_edu.core.build import _sort_undirected
+    from halfedge_edu.core.arrays import sort_undirected
 
     _, faces = drawn
     tail = faces.reshape(-1).astype(np.int32)
     head = faces[:, [1, 2, 0]].reshape(-1).astype(np.int32)
     expected = np.lexsort((np.arange(len(tail)), np.maximum(tail, head), np.minimum(tail, head)))
-    packed_order, _ = _sort_undirected(tail, head, int(faces.max()) + 1)
-    fallback_order, _ = _sort_undirected(tail, head, 2**31 - 1)
+    packed_order, _ = sort_undirected(tail, head, int(faces.max()) + 1)
+    fallback_order, _ = sort_undirected(tail, head, 2**31 - 1)
     assert np.array_equal(packed_order, expected)
     assert np.array_equal(fallback_order, expected)
 

@@ -12,6 +12,7 @@ import re
 import numpy as np
 import pytest
 from hypothesis import given
+from hypothesis import strategies as st
 
 import halfedge_edu as hx
 from halfedge_edu.core import validate as validate_module
@@ -255,8 +256,15 @@ def two_edges_between_two_vertices():
     return hx.HalfedgeMesh(arrays), "duplicate-edge", ("edge", (0, 1)), "vertices 0 and 1"
 
 
+def face_flagged_deleted_by_hand():
+    # No earlier deletions: the counters say "nothing deleted", the flag says otherwise.
+    mesh = _mesh(shapes.grid(2, 2))
+    mesh.face_deleted[3] = True
+    return mesh, "deletion-count", ("face", 3), "face 3"
+
+
 CASES = [
-    next_out_of_range, prev_negative, origin_is_a_deleted_vertex, face_out_of_range, face_was_deleted,
+    face_flagged_deleted_by_hand, next_out_of_range, prev_negative, origin_is_a_deleted_vertex, face_out_of_range, face_was_deleted,
     next_is_a_deleted_halfedge, face_halfedge_out_of_range, vertex_halfedge_out_of_range, orphan_vertex,
     vertex_without_halfedge, next_skips_a_halfedge, prev_points_elsewhere, twins_start_at_the_same_vertex,
     origin_moved_to_a_third_vertex, halfedge_in_the_wrong_face, face_loop_of_six, face_halfedge_in_another_face,
@@ -309,3 +317,24 @@ def test_any_broken_next_pointer_is_caught(drawn):
     with pytest.raises(hx.MeshInvariantError) as caught:
         mesh.validate()
     assert (caught.value.rule, caught.value.element) == ("next-prev-inverse", ("halfedge", h))
+
+
+@given(drawn=meshes(), kind=st.sampled_from(["vertex", "edge", "face"]), pick=st.integers(0, 10**6))
+def test_any_deleted_flag_set_by_hand_is_caught_before_to_arrays_can_mislead(drawn, kind, pick):
+    mesh = build(drawn)
+    flags = {"vertex": mesh.vertex_deleted, "edge": mesh.edge_deleted, "face": mesh.face_deleted}[kind]
+    index = pick % len(flags)
+    flags[index] = True
+    with pytest.raises(hx.MeshInvariantError) as caught:
+        mesh.validate()
+    assert (caught.value.rule, caught.value.element) == ("deletion-count", (kind, index))
+
+
+def test_a_flag_moved_by_hand_after_a_real_deletion_is_caught(two_spheres):
+    # The counts agree (one face deleted, one flagged) but the flagged face is still in use.
+    two_spheres.delete_face(8)
+    two_spheres.face_deleted[8] = False
+    two_spheres.face_deleted[0] = True
+    with pytest.raises(hx.MeshInvariantError) as caught:
+        two_spheres.validate()
+    assert caught.value.rule == "deleted-reference"

@@ -1,0 +1,252 @@
+"""Rounds of edge collapses on face arrays: which collapses are allowed, which go together.
+
+``simplify`` and ``remesh`` both shrink a mesh by collapsing many edges at once. This
+module holds the two questions they share, asked of plain arrays (positions (n, 3),
+faces (m, 3), the edges of :func:`halfedge_edu.core.arrays.unique_edges`):
+
+1. **May edge a-b collapse?** :func:`collapse_topology_ok` answers for many edges at
+   once with the same rules as :meth:`HalfedgeMesh.can_collapse` (the tests hold the
+   two equal on every edge of random meshes): the link condition (the ends share
+   exactly the vertices opposite the edge: two inside, one on the boundary), no
+   interior edge between two boundary vertices, and no opposite vertex left with too
+   few edges. :func:`no_turned_faces` adds what the topology cannot see: no face
+   around the edge may turn over when both ends move to the new point.
+2. **Which allowed collapses can be done together?** :func:`choose_round` picks a set
+   of cheap candidates far enough apart (no two within one ring, see
+   :func:`independent_edges`) that doing them all at once is the same as doing them one
+   after the other.
+
+Checking is the expensive part, so :func:`choose_round` checks only the few candidates
+it picks, pass after pass, instead of every candidate.
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+import numpy as np
+
+from ..core.arrays import cross_rows, expand
+
+__all__ = [
+    "choose_round", "collapse_topology_ok", "independent_edges", "no_turned_faces",
+    "one_collapse_per_opposite_vertex",
+]
+
+
+def collapse_topology_ok(
+    n: int,
+    edges: np.ndarray,
+    boundary_edge: np.ndarray,
+    boundary_vertex: np.ndarray,
+    degree: np.ndarray,
+    neighbours: tuple[np.ndarray, np.ndarray],
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Which of k edges the topology allows to collapse, and each one's opposite vertices.
+
+    Args:
+        n: the number of vertices.
+        edges: (k, 2) the edges to check, as vertex pairs.
+        boundary_edge: (k,) True for the edges among them that lie on the boundary.
+        boundary_vertex: (n,) True for boundary vertices.
+        degree: (n,) how many edges each vertex has.
+        neighbours: the vertex adjacency as CSR, from
+            :func:`halfedge_edu.core.arrays.vertex_neighbours`.
+
+    Returns:
+        ``(ok (k,), opposite_owner, opposite_vertex)``: edge i may collapse where
+        ``ok[i]``; the vertices it shares with both ends (for an allowed edge: the
+        vertices opposite it) are ``opposite_vertex[opposite_owner == i]``.
+
+    The rules are those of :meth:`HalfedgeMesh.can_collapse`, written for arrays:
+
+    * an interior edge whose two ends are on the boundary would pinch the surface;
+    * the ends may share only the opposite vertices (two inside, one on the boundary):
+      a third common neighbour would become a doubled edge. This one count also
+      refuses two triangles glued back to back and the edge of a lone triangle;
+    * each opposite vertex loses an edge, and must keep at least 3 (2 on the
+      boundary): this refuses the edges of a tetrahedron.
+
+    How the common neighbours are found without a loop: gather the neighbours of
+    every ``a`` and every ``b`` (:func:`expand`), label each with the edge it belongs
+    to as ``edge * n + vertex``, sort; a label seen twice is a vertex next to both ends.
+    The geometric check (:func:`no_turned_faces`) comes later, only for chosen edges.
+    """
+    k = len(edges)
+    a, b = edges[:, 0], edges[:, 1]
+
+    # Interior edge whose ends are both on the boundary: would pinch the surface.
+    ok = ~(~boundary_edge & boundary_vertex[a] & boundary_vertex[b])
+
+    # Link condition: common neighbours of a and b must be exactly the opposite vertices.
+    nbr_offsets, nbr = neighbours
+    owner_a, around_a = expand(nbr_offsets, nbr, a)
+    owner_b, around_b = expand(nbr_offsets, nbr, b)
+    owner = np.concatenate([owner_a, owner_b])
+    around = np.concatenate([around_a, around_b])
+    key = np.sort(owner * n + around)
+    shared = key[1:][key[1:] == key[:-1]]                          # keys seen twice
+    shared_owner, shared_vertex = shared // n, shared % n
+    n_shared = np.bincount(shared_owner, minlength=k)
+    ok &= n_shared == np.where(boundary_edge, 1, 2)
+
+    # An opposite vertex must keep enough edges: interior ones at least 3 after losing one.
+    needed = np.where(boundary_vertex[shared_vertex], 3, 4)
+    too_thin = degree[shared_vertex] < needed
+    ok[shared_owner[too_thin]] = False
+
+    return ok, shared_owner, shared_vertex
+
+
+def no_turned_faces(
+    vertices: np.ndarray,
+    faces: np.ndarray,
+    faces_around: tuple[np.ndarray, np.ndarray],
+    points: np.ndarray,
+    keep: np.ndarray,
+    remove: np.ndarray,
+    max_normal_cos: float,
+) -> np.ndarray:
+    """(k,) True where moving both ends of edge ``keep[i] - remove[i]`` to ``points[i]``
+    turns no face over.
+
+    ``faces_around`` is each vertex's faces as CSR, from
+    :func:`halfedge_edu.core.arrays.vertex_faces`; ``max_normal_cos`` the cosine of the
+    largest allowed swing of a face normal. The faces around ``keep`` and around
+    ``remove`` get a corner moved to the new point; the two faces holding both ends
+    vanish and are skipped. A face "turns over" when its normal swings by more than the
+    allowed angle or its area drops to (almost) nothing.
+    """
+    face_offsets, face_of_corner = faces_around                        # from vertex_faces()
+    owners, corner_lists, movers = [], [], []
+    for end, other in ((keep, remove), (remove, keep)):
+        owner, face = expand(face_offsets, face_of_corner, end)
+        corners = faces[face]                                           # (j, 3)
+        survives = ~(corners == other[owner, None]).any(axis=1)        # faces holding both vanish
+        owners.append(owner[survives])
+        corner_lists.append(corners[survives])
+        movers.append(end[owner[survives]])
+    owner = np.concatenate(owners)
+    corners = np.concatenate(corner_lists)
+    mover = np.concatenate(movers)
+    before = vertices[corners]                                          # (j, 3 corners, 3)
+    after = before.copy()
+    after[corners == mover[:, None]] = points[owner]
+    n_before = cross_rows(before[:, 1] - before[:, 0], before[:, 2] - before[:, 0])
+    n_after = cross_rows(after[:, 1] - after[:, 0], after[:, 2] - after[:, 0])
+    length_before = np.sqrt(np.einsum("ij,ij->i", n_before, n_before))
+    length_after = np.sqrt(np.einsum("ij,ij->i", n_after, n_after))
+    cosine = np.einsum("ij,ij->i", n_before, n_after) / np.maximum(length_before * length_after, 1e-300)
+    turned = (cosine < max_normal_cos) | (length_after <= 1e-12 * np.maximum(length_before, 1e-300))
+    ok = np.ones(len(keep), dtype=bool)
+    ok[owner[turned]] = False
+    return ok
+
+
+def one_collapse_per_opposite_vertex(chosen: np.ndarray, opposite_owner: np.ndarray,
+                                      opposite_vertex: np.ndarray) -> np.ndarray:
+    """Drop chosen candidates that share an opposite vertex with a cheaper chosen one.
+
+    Each collapse takes one edge from each opposite vertex; two collapses in one round
+    could take two from the same vertex and leave it with too few. ``chosen`` (k,) is a
+    mask over candidates, which are sorted cheapest first.
+    """
+    mine = chosen[opposite_owner]
+    owner, vertex = opposite_owner[mine], opposite_vertex[mine]
+    order = np.lexsort((owner, vertex))                 # by vertex, then cheapest owner
+    owner, vertex = owner[order], vertex[order]
+    repeated = np.zeros(len(vertex), dtype=bool)
+    repeated[1:] = vertex[1:] == vertex[:-1]
+    result = chosen.copy()
+    result[owner[repeated]] = False
+    return result
+
+
+def independent_edges(edges: np.ndarray, priority: np.ndarray, all_edges: np.ndarray, n: int) -> np.ndarray:
+    """(k,) True for the ``edges`` (k, 2) that are the cheapest within one ring of both their ends.
+
+    ``priority`` (k,) distinct, lowest first; ``all_edges`` (E, 2) every edge of the
+    mesh (the rings run along them); ``n`` the number of vertices.
+
+    ``m1[x]`` is the lowest priority among candidate edges at vertex x; ``m2[y]`` the
+    lowest ``m1`` over y and its neighbours. An edge taken only where it equals ``m2`` at
+    both ends is at least two edges away from every other taken edge, so the collapses
+    of one round touch disjoint neighbourhoods and can be applied together.
+    """
+    big = np.iinfo(np.int64).max
+    m1 = np.full(n, big)
+    np.minimum.at(m1, edges[:, 0], priority)
+    np.minimum.at(m1, edges[:, 1], priority)
+    m2 = m1.copy()
+    np.minimum.at(m2, all_edges[:, 0], m1[all_edges[:, 1]])
+    np.minimum.at(m2, all_edges[:, 1], m1[all_edges[:, 0]])
+    return (m2[edges[:, 0]] == priority) & (m2[edges[:, 1]] == priority)
+
+
+def choose_round(
+    edges: np.ndarray,
+    candidates: np.ndarray,
+    open_: np.ndarray,
+    n: int,
+    check_topology: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray]],
+    check_turned_faces: Callable[[np.ndarray], np.ndarray],
+    known_opposites: tuple[np.ndarray, np.ndarray] | None = None,
+    passes: int = 5,
+) -> np.ndarray:
+    """(k,) mask over candidates: a set of allowed collapses that can all be done at once.
+
+    ``edges`` (E, 2) every edge; ``candidates`` (k,) index ``edges``, cheapest first;
+    ``open_`` (k,) marks the ones worth trying. The two checks are the caller's, so
+    each algorithm decides where a collapse puts its vertex: they take candidate
+    indices (into ``candidates``) and return answers for those. Each pass picks the
+    open candidates that are cheapest in their neighbourhood (see
+    :func:`independent_edges`) and checks only those: first
+    ``check_topology(indices) -> (ok, opposite_owner, opposite_vertex)`` (usually
+    :func:`collapse_topology_ok`; ``opposite_owner`` holds candidate indices), then
+    ``check_turned_faces(indices) -> ok`` (usually :func:`no_turned_faces`). Checking the picked few
+    instead of every candidate is what keeps a round cheap: a pass picks a few
+    candidates in a hundred. What passes is accepted; then every vertex within one
+    ring of an accepted edge is blocked, and so is every vertex that just lost an edge
+    as an opposite vertex, and the next pass picks among what is left. A few passes
+    come close to a maximal set, so fewer rounds are needed.
+
+    ``known_opposites``: ``(owner, vertex)`` arrays of opposite vertices the caller has
+    already found (candidate indices and vertices), so that candidates whose opposite
+    vertex has lost an edge drop out before a pass picks, not after.
+    """
+    chosen = np.zeros(len(candidates), dtype=bool)
+    open_ = open_.copy()
+    blocked = np.zeros(n, dtype=bool)            # within one ring of a chosen edge
+    opposite_used = np.zeros(n, dtype=bool)      # already lost an edge this round
+    empty = np.zeros(0, dtype=np.int64)
+    known_owner, known_vertex = known_opposites if known_opposites is not None else (empty, empty)
+    priority = np.arange(len(candidates), dtype=np.int64)   # candidates are cheapest first
+    cand_edges = edges[candidates]
+    for _ in range(passes):
+        open_ &= ~blocked[cand_edges[:, 0]] & ~blocked[cand_edges[:, 1]]
+        open_[known_owner[opposite_used[known_vertex]]] = False
+        if not open_.any():
+            break
+        still_open = np.flatnonzero(open_)
+        picked = still_open[independent_edges(cand_edges[still_open], priority[still_open], edges, n)]
+        ok, opposite_owner, opposite_vertex = check_topology(picked)
+        known_owner = np.concatenate([known_owner, opposite_owner])     # repeats do no harm
+        known_vertex = np.concatenate([known_vertex, opposite_vertex])
+        open_[picked[~ok]] = False                        # refused for the whole round
+        passed = np.zeros(len(candidates), dtype=bool)
+        passed[picked[ok]] = True
+        passed = one_collapse_per_opposite_vertex(passed, opposite_owner, opposite_vertex)
+        open_ &= ~passed
+        # The geometric check last, for the fewest; a refused one just drops out.
+        which = np.flatnonzero(passed)
+        passed[which[~check_turned_faces(which)]] = False
+        chosen |= passed
+        ends = np.zeros(n, dtype=bool)
+        ends[cand_edges[passed].reshape(-1)] = True
+        blocked |= ends
+        blocked[edges[ends[edges[:, 0]], 1]] = True
+        blocked[edges[ends[edges[:, 1]], 0]] = True
+        opposite_used[opposite_vertex[passed[opposite_owner]]] = True
+    return chosen
+
+

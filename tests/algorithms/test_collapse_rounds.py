@@ -1,0 +1,135 @@
+"""The vectorized collapse test agrees with ``can_collapse``; a round's collapses can all be done at once."""
+
+from __future__ import annotations
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import halfedge_edu as hx
+from halfedge_edu.algorithms.collapse_rounds import (
+    choose_round, collapse_topology_ok, independent_edges, no_turned_faces,
+)
+from halfedge_edu.core.arrays import compact, merge_vertices, unique_edges, vertex_faces, vertex_neighbours
+from tests import strategies as shapes
+
+
+def roughened(case: shapes.MeshCase, seed: int, n_collapses: int) -> hx.HalfedgeMesh:
+    """The case's mesh after up to ``n_collapses`` random allowed collapses, compacted.
+
+    The generators make tidy meshes; random collapses add what the rules are about:
+    vertices of degree 3, neighbours shared across an edge, ends on the boundary.
+    """
+    mesh = hx.HalfedgeMesh.from_faces(case.vertices, case.faces)
+    rng = np.random.default_rng(seed)
+    for _ in range(n_collapses):
+        live = np.flatnonzero(~mesh.edge_deleted)
+        allowed = [int(e) for e in rng.permutation(live)[:20] if mesh.can_collapse(int(e))]
+        if not allowed:
+            break
+        mesh.collapse(allowed[0])
+    mesh.garbage_collect()
+    return mesh
+
+
+def topology_inputs(vertices: np.ndarray, faces: np.ndarray):
+    """What :func:`collapse_topology_ok` needs about a face array, for every edge."""
+    n = len(vertices)
+    edges, count = unique_edges(faces, n)
+    boundary_vertex = np.zeros(n, dtype=bool)
+    boundary_vertex[edges[count == 1].reshape(-1)] = True
+    degree = np.bincount(edges.reshape(-1), minlength=n)
+    return n, edges, count == 1, boundary_vertex, degree, vertex_neighbours(edges, n)
+
+
+@settings(max_examples=150)
+@given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1), n_collapses=st.integers(0, 25))
+def test_collapse_topology_ok_equals_can_collapse_on_every_edge(case, seed, n_collapses):
+    mesh = roughened(case, seed, n_collapses)
+    vertices, faces = mesh.to_arrays()               # compact: mesh vertex i is row i
+    n, edges, boundary_edge, boundary_vertex, degree, neighbours = topology_inputs(vertices, faces)
+
+    ok, _, _ = collapse_topology_ok(n, edges, boundary_edge, boundary_vertex, degree, neighbours)
+
+    ends = np.sort(mesh.halfedge_vertex.reshape(-1, 2), axis=1)     # edge e: halfedges 2e, 2e + 1
+    row = np.searchsorted(edges[:, 0] * n + edges[:, 1], ends[:, 0] * n + ends[:, 1])
+    expected = np.array([bool(mesh.can_collapse(e)) for e in range(mesh.n_edges)])
+    assert np.array_equal(ok[row], expected), [
+        (e, mesh.can_collapse(e).rule) for e in np.flatnonzero(ok[row] != expected)
+    ]
+
+
+def test_collapse_topology_ok_names_the_opposite_vertices():
+    # A square of two triangles 0-1-2, 0-2-3: the diagonal 0-2 has 1 and 3 opposite.
+    vertices = np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]])
+    faces = np.array([[0, 1, 2], [0, 2, 3]])
+    n, edges, boundary_edge, boundary_vertex, degree, neighbours = topology_inputs(vertices, faces)
+    diagonal = np.flatnonzero((edges == [0, 2]).all(axis=1))
+    ok, owner, vertex = collapse_topology_ok(n, edges[diagonal], boundary_edge[diagonal],
+                                             boundary_vertex, degree, neighbours)
+    assert sorted(vertex[owner == 0].tolist()) == [1, 3]
+    assert not ok[0]          # an interior edge between two boundary vertices
+
+
+def test_no_turned_faces_refuses_a_point_across_the_ring_and_accepts_the_midpoint():
+    # A flat hexagonal fan around vertex 0; collapse 0 -> 1.
+    angles = np.radians(np.arange(6) * 60.0)
+    vertices = np.vstack([[0.0, 0, 0], np.stack([np.cos(angles), np.sin(angles), np.zeros(6)], axis=1)])
+    faces = np.array([[0, 1 + i, 1 + (i + 1) % 6] for i in range(6)])
+    around = vertex_faces(faces, len(vertices))
+    keep, remove = np.array([1, 1]), np.array([0, 0])
+    points = np.array([[0.5, 0.0, 0.0], [-3.0, 0.0, 0.0]])
+    ok = no_turned_faces(vertices, faces, around, points, keep, remove, np.cos(np.radians(80.0)))
+    assert ok.tolist() == [True, False]
+
+
+def test_independent_edges_are_at_least_two_edges_apart():
+    vertices, faces = shapes.grid(6, 6)
+    n = len(vertices)
+    edges, _ = unique_edges(faces, n)
+    picked = independent_edges(edges, np.arange(len(edges)), edges, n)
+    assert picked.any()
+    taken = edges[picked]
+    ring = np.zeros((len(taken), n), dtype=bool)          # each taken edge's ends and neighbours
+    for i, (a, b) in enumerate(taken):
+        near = (edges == a).any(axis=1) | (edges == b).any(axis=1)
+        ring[i, edges[near].reshape(-1)] = True
+    for i in range(len(taken)):
+        for j in range(len(taken)):
+            assert i == j or not ring[i, taken[j]].any()
+
+
+@settings(max_examples=60)
+@given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1))
+def test_a_round_chosen_with_the_real_checks_collapses_all_at_once_into_a_valid_mesh(case, seed):
+    vertices, faces = case.vertices, case.faces
+    n, edges, boundary_edge, boundary_vertex, degree, neighbours = topology_inputs(vertices, faces)
+    candidates = np.random.default_rng(seed).permutation(len(edges))      # any order of "cost"
+    keep, remove = edges[candidates, 0], edges[candidates, 1]
+    points = 0.5 * (vertices[keep] + vertices[remove])
+    around = vertex_faces(faces, n)
+
+    def check_topology(indices):
+        ok, owner, vertex = collapse_topology_ok(n, edges[candidates[indices]], boundary_edge[candidates[indices]],
+                                                 boundary_vertex, degree, neighbours)
+        return ok, indices[owner], vertex
+
+    def check_turned_faces(indices):
+        return no_turned_faces(vertices, faces, around, points[indices], keep[indices], remove[indices],
+                               np.cos(np.radians(80.0)))
+
+    chosen = choose_round(edges, candidates, np.ones(len(candidates), dtype=bool), n,
+                          check_topology, check_turned_faces)
+    before = hx.HalfedgeMesh.from_faces(vertices, faces)
+    for index in np.flatnonzero(chosen):                  # each one alone is allowed
+        a, b = keep[index], remove[index]
+        edge = next(h >> 1 for h in range(before.n_halfedges)
+                    if {int(before.halfedge_vertex[h]), int(before.halfedge_vertex[h ^ 1])} == {int(a), int(b)})
+        assert before.can_collapse(edge)
+    moved = vertices.copy()
+    moved[keep[chosen]] = points[chosen]
+    merged = merge_vertices(faces, remove[chosen], keep[chosen], n)
+    after = hx.HalfedgeMesh.from_faces(*compact(moved, merged)[:2])
+    after.validate()
+    assert after.n_faces == len(faces) - int(np.where(boundary_edge[candidates[chosen]], 1, 2).sum())
+    assert (after.genus, after.n_boundary_loops) == (before.genus, before.n_boundary_loops)
