@@ -56,10 +56,7 @@ class OpCheck:
 
         The error carries the same ``reason``, plus ``rule`` and ``elements``.
         """
-        error = TopologyError(self.reason)
-        error.rule = self.rule
-        error.elements = self.elements
-        return error
+        return TopologyError(self.reason, rule=self.rule, elements=self.elements)
 
     def __repr__(self) -> str:
         if self.allowed:
