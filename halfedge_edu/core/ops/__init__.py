@@ -10,12 +10,12 @@ step (``log.py``); ``link.py`` holds the one-ring and link helpers of chapter 08
 from .check import OpCheck
 from .collapse import can_collapse, collapse
 from .flip import can_flip, flip
-from .link import Link, LinkCondition, link_condition, link_of_edge, link_of_vertex
+from .link import Link, LinkCondition, link_condition, link_of_edge, link_of_vertex, link_violation
 from .log import OperationLog, PointerChange
 from .split import can_split, split
 
 __all__ = [
     "Link", "LinkCondition", "OpCheck", "OperationLog", "PointerChange",
     "can_collapse", "can_flip", "can_split", "collapse", "flip", "split",
-    "link_condition", "link_of_edge", "link_of_vertex",
+    "link_condition", "link_of_edge", "link_of_vertex", "link_violation",
 ]

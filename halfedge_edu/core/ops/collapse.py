@@ -78,8 +78,9 @@ The rules (``can_collapse``), each with the name its refusal carries in ``.rule`
   leave two triangles glued back to back (a 2-face "pillow", not a surface any other
   operation here accepts). We refuse it, as the full link condition does: the edge
   ``vL - vR`` lies in the links of both ``vA`` and ``vB`` but not in the link of the
-  edge. Together, these rules are the link condition of ``link.py`` with the
-  boundary counted as one extra vertex.
+  edge. Together, these four rules are the link condition of ``link.py`` with the
+  boundary counted as one extra vertex: the check asks ``link_violation`` there, the
+  one implementation of the condition, and names the rule from what it found.
 
 The check walks the one-rings of ``vA`` and ``vB``, and the collapse the one-ring of
 ``vB``: O(degree) work, whatever the size of the mesh.
@@ -91,7 +92,7 @@ from typing import TYPE_CHECKING
 
 from ..elements import Vertex
 from .check import OpCheck, edge_argument, position_argument
-from .link import one_ring, outgoing
+from .link import BOUNDARY, link_violation, outgoing
 from .log import OperationLog, Writer, writer_for
 
 if TYPE_CHECKING:
@@ -115,14 +116,22 @@ def _listed(vertices) -> str:
 
 
 def _check(mesh: "HalfedgeMesh", h_BA: int) -> OpCheck:
+    """The rules, in the module docstring's order: back to back, then the link condition.
+
+    :func:`~halfedge_edu.core.ops.link.link_violation` decides the link condition; its
+    answer (what ``link(a) ∩ link(b)`` has beyond ``link(ab)``) tells which rule it is:
+    the boundary vertex shared by an interior edge (both ends on the boundary), the
+    edge from the boundary to the opposite vertex (a lone triangle), shared neighbours
+    (the link condition proper) or, with none of those, the edge ``vL - vR`` (the
+    tetrahedron).
+    """
     origin_of, next_of, prev_of = mesh._halfedge_vertex.item, mesh._halfedge_next.item, mesh._halfedge_prev.item
-    face_of, vertex_halfedge_of = mesh._halfedge_face.item, mesh._vertex_halfedge.item
+    face_of = mesh._halfedge_face.item
     e, h_AB = h_BA >> 1, h_BA ^ 1
-    vB, vA = origin_of(h_BA), origin_of(h_AB)
     a, b = origin_of(2 * e), origin_of(2 * e + 1)  # the edge's own order, for messages
     fL, fR = face_of(h_BA), face_of(h_AB)
-    vL = origin_of(prev_of(h_BA)) if fL >= 0 else -1
-    vR = origin_of(prev_of(h_AB)) if fR >= 0 else -1
+    vL = origin_of(prev_of(h_BA)) if fL >= 0 else BOUNDARY
+    vR = origin_of(prev_of(h_AB)) if fR >= 0 else BOUNDARY
     edge_words = f"edge {e} (vertices {a} and {b})"
 
     if fL >= 0 and fR >= 0 and vL == vR:
@@ -132,18 +141,9 @@ def _check(mesh: "HalfedgeMesh", h_BA: int) -> OpCheck:
             f"to back, and collapsing the edge would leave no triangle at all.",
             (("edge", e), ("vertex", vL)),
         )
-    if fL < 0 or fR < 0:
-        inside = h_BA if fL >= 0 else h_AB
-        if face_of(next_of(inside) ^ 1) < 0 and face_of(prev_of(inside) ^ 1) < 0:
-            f = face_of(inside)
-            corners = _listed((origin_of(inside), origin_of(next_of(inside)), origin_of(prev_of(inside))))
-            return OpCheck.refuse(
-                "lone-triangle",
-                f"face {f} (vertices {corners}) has all three edges on the boundary: it is a lone "
-                f"triangle, and collapsing its {edge_words} would leave a bare edge with no face.",
-                (("edge", e), ("face", f)),
-            )
-    elif face_of(vertex_halfedge_of(vA)) < 0 and face_of(vertex_halfedge_of(vB)) < 0:
+    extra = link_violation(mesh, e)
+    opposite = sorted(v for v in (vL, vR) if v != BOUNDARY)
+    if BOUNDARY in extra.vertices:
         return OpCheck.refuse(
             "both-ends-on-boundary",
             f"{edge_words} is interior (it has a triangle on each side) but both its ends are on "
@@ -151,29 +151,32 @@ def _check(mesh: "HalfedgeMesh", h_BA: int) -> OpCheck:
             f"surface into a figure 8 there (a non-manifold vertex).",
             (("edge", e), ("vertex", a), ("vertex", b)),
         )
-
-    ring_A, ring_B = one_ring(mesh, vA), one_ring(mesh, vB)
-    neighbours_of_B = set(ring_B)
-    shared = sorted(v for v in ring_A if v in neighbours_of_B)
-    opposite = sorted(v for v in (vL, vR) if v >= 0)
-    extra = [v for v in shared if v not in opposite]
-    if extra:
+    if len(opposite) == 1 and (BOUNDARY, opposite[0]) in extra.edges:
+        inside = h_BA if fL >= 0 else h_AB
+        f = face_of(inside)
+        corners = _listed((origin_of(inside), origin_of(next_of(inside)), origin_of(prev_of(inside))))
+        return OpCheck.refuse(
+            "lone-triangle",
+            f"face {f} (vertices {corners}) has all three edges on the boundary: it is a lone "
+            f"triangle, and collapsing its {edge_words} would leave a bare edge with no face.",
+            (("edge", e), ("face", f)),
+        )
+    if extra.vertices:
+        shared = sorted(extra.vertices.union(opposite))
         allowed = (
             f"only the vertices opposite the edge ({_listed(opposite)}) may be shared"
             if len(opposite) == 2
             else f"only the vertex opposite this boundary edge ({opposite[0]}) may be shared"
         )
-        at = " and ".join(str(v) for v in extra)
+        in_extra = sorted(extra.vertices)
         return OpCheck.refuse(
             "link-condition",
             f"vertices {a} and {b} share {len(shared)} neighbours ({_listed(shared)}), but {allowed}: "
-            f"collapsing {edge_words} would pinch the surface at {at} (its edges to {a} and to "
-            f"{b} would become one doubled edge).",
-            (("edge", e),) + tuple(("vertex", v) for v in extra),
+            f"collapsing {edge_words} would pinch the surface at {' and '.join(map(str, in_extra))} (its "
+            f"edges to {a} and to {b} would become one doubled edge).",
+            (("edge", e),) + tuple(("vertex", v) for v in in_extra),
         )
-    interior_A = face_of(vertex_halfedge_of(vA)) >= 0
-    interior_B = face_of(vertex_halfedge_of(vB)) >= 0
-    if len(ring_A) == 3 and len(ring_B) == 3 and interior_A and interior_B:
+    if extra.edges:
         return OpCheck.refuse(
             "tetrahedron",
             f"vertices {a} and {b} have only 3 edges each and share their other neighbours {vL} "
