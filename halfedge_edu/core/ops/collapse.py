@@ -227,7 +227,7 @@ def collapse(mesh: "HalfedgeMesh", edge, position=None, *, log: OperationLog | N
     compacted by ``garbage_collect()``.
     """
     e, h_BA = edge_argument(mesh, edge, "collapse")
-    position = position_argument(position, "collapse")
+    position = position_argument(mesh, e, position, "collapse")
     check = _check(mesh, h_BA)
     if not check:
         raise check.error()
@@ -253,9 +253,6 @@ def collapse(mesh: "HalfedgeMesh", edge, position=None, *, log: OperationLog | N
     moving = [h for h in ring_B if h != h_BA and h != h_B_L and h != h_B_R]
     boundary_of_B = vertex_halfedge_of(vB) if face_of(vertex_halfedge_of(vB)) < 0 else -1
     interior_A = face_of(vertex_halfedge_of(vA)) >= 0
-    if position is None:
-        positions = mesh._positions
-        position = 0.5 * (positions[origin_of(2 * e)] + positions[origin_of(2 * e + 1)])
     if log is not None:
         log.begin("collapse", e, h_BA)
         log.name(

@@ -206,6 +206,19 @@ class Writer:
         self.next[h] = n
         self.prev[n] = h
 
+    def cycle(self, a: int, b: int, c: int) -> None:
+        """Make ``a -> b -> c -> a`` the ``next`` loop of a triangle (and the ``prev`` loop back)."""
+        self.link(a, b)
+        self.link(b, c)
+        self.link(c, a)
+
+    def make_face(self, f: int, a: int, b: int, c: int) -> None:
+        """Face ``f`` is the triangle ``a -> b -> c``: :meth:`cycle`, then each halfedge's face is ``f``."""
+        self.cycle(a, b, c)
+        self.set_face(a, f)
+        self.set_face(b, f)
+        self.set_face(c, f)
+
     def set_vertex(self, h: int, v: int) -> None:
         """Halfedge ``h`` now leaves vertex ``v``."""
         self.origin[h] = v
