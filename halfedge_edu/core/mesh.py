@@ -650,9 +650,13 @@ class HalfedgeMesh:
         """Whether :meth:`collapse` is allowed (the link condition and boundary rules)."""
         return ops.can_collapse(self, edge)
 
-    def collapse(self, edge, position=None) -> Vertex:
-        """Merge the two ends of ``edge`` at ``position`` (midpoint by default); returns the survivor."""
-        return ops.collapse(self, edge, position)
+    def collapse(self, edge, position=None, *, check_link: bool = True) -> Vertex:
+        """Merge the two ends of ``edge`` at ``position`` (midpoint by default); returns the survivor.
+
+        ``check_link=False`` is a teaching switch: it skips the link condition, so the
+        result may not be a valid mesh (``validate()`` says why). See ``core/ops/collapse.py``.
+        """
+        return ops.collapse(self, edge, position, check_link=check_link)
 
 
 def _old_to_new(deleted: np.ndarray) -> np.ndarray:

@@ -88,7 +88,9 @@ The check walks the one-rings of ``vA`` and ``vB``, and the collapse the one-rin
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
+
+import numpy as np
 
 from ..elements import Vertex
 from .check import OpCheck, edge_argument, position_argument
@@ -98,7 +100,7 @@ from .log import OperationLog, Writer, writer_for
 if TYPE_CHECKING:
     from ..mesh import HalfedgeMesh
 
-__all__ = ["can_collapse", "collapse"]
+__all__ = ["CollapseRecord", "apply_collapse", "can_collapse", "collapse", "prepare_collapse"]
 
 
 def can_collapse(mesh: "HalfedgeMesh", edge) -> OpCheck:
@@ -115,8 +117,10 @@ def _listed(vertices) -> str:
     return ", ".join(str(v) for v in vertices)
 
 
-def _check(mesh: "HalfedgeMesh", h_BA: int) -> OpCheck:
+def _check(mesh: "HalfedgeMesh", h_BA: int, check_link: bool = True) -> OpCheck:
     """The rules, in the module docstring's order: back to back, then the link condition.
+
+    ``check_link=False`` (the teaching switch of :func:`collapse`) stops after back to back.
 
     :func:`~halfedge_edu.core.ops.link.link_violation` decides the link condition; its
     answer (what ``link(a) ∩ link(b)`` has beyond ``link(ab)``) tells which rule it is:
@@ -140,6 +144,11 @@ def _check(mesh: "HalfedgeMesh", h_BA: int) -> OpCheck:
             f"both triangles beside {edge_words} have vertex {vL} opposite it: they are glued back "
             f"to back, and collapsing the edge would leave no triangle at all.",
             (("edge", e), ("vertex", vL)),
+        )
+    if not check_link:
+        return OpCheck.ok(
+            f"{edge_words} may be collapsed without the link condition (check_link=False): the "
+            f"result may not be a valid mesh; mesh.validate() says why."
         )
     extra = link_violation(mesh, e)
     opposite = sorted(v for v in (vL, vR) if v != BOUNDARY)
@@ -204,35 +213,78 @@ def _take_place(mesh: "HalfedgeMesh", write: Writer, old: int, new: int) -> None
         write.set_face_halfedge(face, new)
 
 
-def collapse(mesh: "HalfedgeMesh", edge, position=None, *, log: OperationLog | None = None) -> Vertex:
-    """Collapse ``edge``: its two ends become one vertex at ``position`` (midpoint by default).
+class CollapseRecord(NamedTuple):
+    """A prepared collapse: every element it names, gathered before anything changes.
+
+    The first eighteen fields are the names of the picture in this module's docstring
+    (-1 for what does not exist at a boundary edge); :func:`apply_collapse` does the
+    collapse from them alone. Made by :func:`prepare_collapse`.
+    """
+
+    vA: int
+    vB: int
+    h_BA: int
+    h_AB: int
+    fL: int
+    vL: int
+    h_A_L: int
+    h_L_B: int
+    h_L_A: int
+    h_B_L: int
+    gL: int
+    fR: int
+    vR: int
+    h_B_R: int
+    h_R_A: int
+    h_R_B: int
+    h_A_R: int
+    gR: int
+    #: the halfedges that leave vB, apart from h_BA, h_B_L and h_B_R: they will leave vA
+    moving: tuple[int, ...]
+    #: vB's degree before the collapse
+    degree_B: int
+    #: vB's outgoing boundary halfedge, or -1 when vB is interior
+    boundary_of_B: int
+    #: whether vA is interior (not on the boundary) before the collapse
+    interior_A: bool
+    #: (3,) where vA goes
+    position: np.ndarray
+
+    @property
+    def edge(self) -> int:
+        """The collapsed edge."""
+        return self.h_BA >> 1
+
+    def names(self) -> dict[str, tuple[str, int]]:
+        """Name -> ``(kind, index)`` of the picture's elements, in order, for ``OperationLog.name``."""
+        kinds = {"v": "vertex", "h": "halfedge", "f": "face", "g": "face"}
+        return {name: (kinds[name[0]], index) for name, index in zip(self._fields[:18], self)}
+
+
+def prepare_collapse(mesh: "HalfedgeMesh", edge, position=None, *, check_link: bool = True) -> CollapseRecord | None:
+    """Gather a collapse of ``edge`` without changing anything: its record, or None when refused.
+
+    The first half of :func:`collapse` (the UChicago assignment's "prepare, then do"):
+    pass the record to :func:`apply_collapse` to do it. When the collapse is refused,
+    ``can_collapse(mesh, edge).reason`` says why.
 
     Args:
-        edge: an :class:`Edge` or edge index (its halfedge ``2e``'s origin is removed),
-            or a :class:`Halfedge` ``h`` (``h``'s origin is removed, its tip survives).
-        position: (3,) where the merged vertex goes; None for the edge's midpoint.
-        log: an :class:`OperationLog` to fill with the named elements (see the
-            picture in this module's docstring) and every pointer change; None records
-            nothing.
-
-    Returns:
-        The surviving vertex ``vA``.
+        edge, position: as for :func:`collapse`.
+        check_link: False skips the link condition (see :func:`collapse`).
 
     Raises:
-        TopologyError: the collapse is not allowed (the reason says why); the mesh is unchanged.
         IndexError: there is no such edge, or it was deleted.
-        ValueError: ``position`` is not three finite numbers (the mesh is unchanged).
-
-    Attention: the removed vertex, faces and edges are only flagged deleted; indices are
-    compacted by ``garbage_collect()``.
+        ValueError: ``position`` is not three finite numbers.
     """
     e, h_BA = edge_argument(mesh, edge, "collapse")
     position = position_argument(mesh, e, position, "collapse")
-    check = _check(mesh, h_BA)
-    if not check:
-        raise check.error()
+    if not _check(mesh, h_BA, check_link):
+        return None
+    return _gather(mesh, h_BA, position)
 
-    # Gather every named element before anything changes.
+
+def _gather(mesh: "HalfedgeMesh", h_BA: int, position: np.ndarray) -> CollapseRecord:
+    """Every named element of the collapse of ``h_BA`` (see the picture), before anything changes."""
     next_of, prev_of = mesh._halfedge_next.item, mesh._halfedge_prev.item
     origin_of, face_of = mesh._halfedge_vertex.item, mesh._halfedge_face.item
     vertex_halfedge_of = mesh._vertex_halfedge.item
@@ -250,66 +302,123 @@ def collapse(mesh: "HalfedgeMesh", edge, position=None, *, log: OperationLog | N
         h_R_B, h_A_R = h_B_R ^ 1, h_R_A ^ 1
         vR, gR = origin_of(h_R_A), face_of(h_R_B)
     ring_B = outgoing(mesh, vB)
-    moving = [h for h in ring_B if h != h_BA and h != h_B_L and h != h_B_R]
+    moving = tuple(h for h in ring_B if h != h_BA and h != h_B_L and h != h_B_R)
     boundary_of_B = vertex_halfedge_of(vB) if face_of(vertex_halfedge_of(vB)) < 0 else -1
     interior_A = face_of(vertex_halfedge_of(vA)) >= 0
+    return CollapseRecord(
+        vA, vB, h_BA, h_AB, fL, vL, h_A_L, h_L_B, h_L_A, h_B_L, gL,
+        fR, vR, h_B_R, h_R_A, h_R_B, h_A_R, gR, moving, len(ring_B), boundary_of_B, interior_A, position,
+    )
+
+
+def apply_collapse(mesh: "HalfedgeMesh", record: CollapseRecord, *, log: OperationLog | None = None) -> Vertex:
+    """Do a collapse that :func:`prepare_collapse` gathered: the second half of :func:`collapse`.
+
+    ``mesh`` must be as it was when the record was prepared.
+
+    Returns:
+        The surviving vertex ``vA``.
+
+    Raises:
+        ValueError: the record does not fit the mesh any more (its edge was deleted or
+            its ends changed since it was prepared); the mesh is unchanged.
+    """
+    r = record
+    e = r.edge
+    if mesh._edge_deleted[e] or mesh._halfedge_vertex.item(r.h_BA) != r.vB or mesh._halfedge_vertex.item(r.h_AB) != r.vA:
+        raise ValueError(f"apply_collapse: the mesh changed since the collapse of edge {e} was prepared; prepare it again")
+    next_of, prev_of = mesh._halfedge_next.item, mesh._halfedge_prev.item
+    vertex_halfedge_of = mesh._vertex_halfedge.item
     if log is not None:
-        log.begin("collapse", e, h_BA)
-        log.name(
-            vA=("vertex", vA), vB=("vertex", vB), h_BA=("halfedge", h_BA), h_AB=("halfedge", h_AB),
-            fL=("face", fL), vL=("vertex", vL), h_A_L=("halfedge", h_A_L), h_L_B=("halfedge", h_L_B),
-            h_L_A=("halfedge", h_L_A), h_B_L=("halfedge", h_B_L), gL=("face", gL),
-            fR=("face", fR), vR=("vertex", vR), h_B_R=("halfedge", h_B_R), h_R_A=("halfedge", h_R_A),
-            h_R_B=("halfedge", h_R_B), h_A_R=("halfedge", h_A_R), gR=("face", gR),
-        )
-        log.notes.append(f"vB = vertex {vB} is removed; vA = vertex {vA} survives")
-        if len(ring_B) == 3 and boundary_of_B < 0:
+        log.begin("collapse", e, r.h_BA)
+        log.name(**r.names())
+        log.notes.append(f"vB = vertex {r.vB} is removed; vA = vertex {r.vA} survives")
+        if r.degree_B == 3 and r.boundary_of_B < 0:
             log.notes.append(
-                f"vB has degree 3: gL and gR are the same face {gL}, which survives as (vA, vL, vR); "
+                f"vB has degree 3: gL and gR are the same face {r.gL}, which survives as (vA, vL, vR); "
                 f"no other halfedge leaves vB"
             )
         else:
-            log.notes.append(f"vB has degree {len(ring_B)}: {len(moving)} more halfedges leave it and move to vA")
-        if fL < 0 or fR < 0:
-            log.notes.append(f"edge {e} is on the boundary: only {'fR' if fL < 0 else 'fL'} is removed")
+            log.notes.append(f"vB has degree {r.degree_B}: {len(r.moving)} more halfedges leave it and move to vA")
+        if r.fL < 0 or r.fR < 0:
+            log.notes.append(f"edge {e} is on the boundary: only {'fR' if r.fL < 0 else 'fL'} is removed")
     write = writer_for(mesh, log)
 
     write.phase("vA moves to the new position")
-    write.set_position(vA, position)
+    write.set_position(r.vA, r.position)
 
     write.phase("vB's other halfedges now leave vA")
-    for h in moving:
-        write.set_vertex(h, vA)
+    for h in r.moving:
+        write.set_vertex(h, r.vA)
 
-    if fL >= 0:
+    if r.fL >= 0:
         write.phase("fL goes: h_A_L takes the place of h_B_L (in gL); edge vB - vL will be deleted")
-        _take_place(mesh, write, h_B_L, h_A_L)
-        if vertex_halfedge_of(vL) == h_L_B:
-            write.set_vertex_halfedge(vL, h_L_A)
-    if fR >= 0:
+        _take_place(mesh, write, r.h_B_L, r.h_A_L)
+        if vertex_halfedge_of(r.vL) == r.h_L_B:
+            write.set_vertex_halfedge(r.vL, r.h_L_A)
+    if r.fR >= 0:
         write.phase("fR goes: h_R_A takes the place of h_R_B (in gR); edge vB - vR will be deleted")
-        _take_place(mesh, write, h_R_B, h_R_A)
-        if vertex_halfedge_of(vR) == h_R_B:
-            write.set_vertex_halfedge(vR, h_R_A)
-    if fL < 0 or fR < 0:
+        _take_place(mesh, write, r.h_R_B, r.h_R_A)
+        if vertex_halfedge_of(r.vR) == r.h_R_B:
+            write.set_vertex_halfedge(r.vR, r.h_R_A)
+    if r.fL < 0 or r.fR < 0:
         write.phase("the collapsed edge leaves the boundary loop")
-        on_boundary = h_BA if fL < 0 else h_AB
+        on_boundary = r.h_BA if r.fL < 0 else r.h_AB
         write.link(prev_of(on_boundary), next_of(on_boundary))
 
     write.phase("vA's halfedge: its boundary halfedge if the merged vertex is on the boundary")
-    if boundary_of_B >= 0 and (interior_A or fR < 0):
-        write.set_vertex_halfedge(vA, h_A_L if boundary_of_B == h_B_L else boundary_of_B)
-    elif vertex_halfedge_of(vA) == h_AB:
-        write.set_vertex_halfedge(vA, h_A_R)
+    if r.boundary_of_B >= 0 and (r.interior_A or r.fR < 0):
+        write.set_vertex_halfedge(r.vA, r.h_A_L if r.boundary_of_B == r.h_B_L else r.boundary_of_B)
+    elif vertex_halfedge_of(r.vA) == r.h_AB:
+        write.set_vertex_halfedge(r.vA, r.h_A_R)
 
     write.phase("delete vB, the faces fL and fR, the edge and vB's edges to vL and vR")
-    for f in (fL, fR):
+    for f in (r.fL, r.fR):
         if f >= 0:
             write.delete_face(f)
     write.delete_edge(e)
-    for h in (h_L_B, h_B_R):
+    for h in (r.h_L_B, r.h_B_R):
         if h >= 0:
             write.delete_edge(h >> 1)
-    write.delete_vertex(vB)
+    write.delete_vertex(r.vB)
     write.touch()
-    return Vertex(mesh, vA)
+    return Vertex(mesh, r.vA)
+
+
+def collapse(mesh: "HalfedgeMesh", edge, position=None, *, log: OperationLog | None = None,
+             check_link: bool = True) -> Vertex:
+    """Collapse ``edge``: its two ends become one vertex at ``position`` (midpoint by default).
+
+    It checks (:func:`can_collapse`), gathers (:func:`prepare_collapse`'s record) and
+    applies (:func:`apply_collapse`).
+
+    Args:
+        edge: an :class:`Edge` or edge index (its halfedge ``2e``'s origin is removed),
+            or a :class:`Halfedge` ``h`` (``h``'s origin is removed, its tip survives).
+        position: (3,) where the merged vertex goes; None for the edge's midpoint.
+        log: an :class:`OperationLog` to fill with the named elements (see the
+            picture in this module's docstring) and every pointer change; None records
+            nothing.
+        check_link: a teaching switch. False skips the link condition (the rules
+            ``link-condition``, ``tetrahedron``, ``both-ends-on-boundary`` and
+            ``lone-triangle``) and collapses anyway, to see what goes wrong: the result
+            may then not be a valid mesh, and ``mesh.validate()`` says why (for example
+            ``duplicate-edge``). Only ``back-to-back`` is still refused.
+
+    Returns:
+        The surviving vertex ``vA``.
+
+    Raises:
+        TopologyError: the collapse is not allowed (the reason says why); the mesh is unchanged.
+        IndexError: there is no such edge, or it was deleted.
+        ValueError: ``position`` is not three finite numbers (the mesh is unchanged).
+
+    Attention: the removed vertex, faces and edges are only flagged deleted; indices are
+    compacted by ``garbage_collect()``.
+    """
+    e, h_BA = edge_argument(mesh, edge, "collapse")
+    position = position_argument(mesh, e, position, "collapse")
+    check = _check(mesh, h_BA, check_link)
+    if not check:
+        raise check.error()
+    return apply_collapse(mesh, _gather(mesh, h_BA, position), log=log)
