@@ -155,7 +155,7 @@ def check_tangential_smoothing(tangential_smoothing: Callable) -> CheckResult:
             mesh must not change.
 
     Returns:
-        A :class:`~halfedge_edu.exercises.checks.CheckResult`; at the first vertex that
+        A :class:`~halfedge_edu.exercises.harness.CheckResult`; at the first vertex that
         differs it says what is wrong in words, and ``result.show()`` draws that vertex's
         one-ring.
     """
