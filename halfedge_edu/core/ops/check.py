@@ -116,8 +116,8 @@ def position_argument(mesh: "HalfedgeMesh", e: int, position, operation: str) ->
         ValueError: not three numbers, or not finite.
     """
     if position is None:
-        ends = mesh._halfedge_vertex[2 * e : 2 * e + 2]
-        return 0.5 * (mesh._positions[ends[0]] + mesh._positions[ends[1]])
+        origin_of, positions = mesh._halfedge_vertex.item, mesh._positions
+        return 0.5 * (positions[origin_of(2 * e)] + positions[origin_of(2 * e + 1)])
     try:
         point = np.array(position, dtype=np.float64)
     except (TypeError, ValueError):

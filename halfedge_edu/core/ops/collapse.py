@@ -323,66 +323,67 @@ def apply_collapse(mesh: "HalfedgeMesh", record: CollapseRecord, *, log: Operati
         ValueError: the record does not fit the mesh any more (its edge was deleted or
             its ends changed since it was prepared); the mesh is unchanged.
     """
-    r = record
-    e = r.edge
-    if mesh._edge_deleted[e] or mesh._halfedge_vertex.item(r.h_BA) != r.vB or mesh._halfedge_vertex.item(r.h_AB) != r.vA:
+    (vA, vB, h_BA, h_AB, fL, vL, h_A_L, h_L_B, h_L_A, h_B_L, gL,
+     fR, vR, h_B_R, h_R_A, h_R_B, h_A_R, gR, moving, degree_B, boundary_of_B, interior_A, position) = record
+    e = h_BA >> 1
+    if mesh._edge_deleted.item(e) or mesh._halfedge_vertex.item(h_BA) != vB or mesh._halfedge_vertex.item(h_AB) != vA:
         raise ValueError(f"apply_collapse: the mesh changed since the collapse of edge {e} was prepared; prepare it again")
     next_of, prev_of = mesh._halfedge_next.item, mesh._halfedge_prev.item
     vertex_halfedge_of = mesh._vertex_halfedge.item
     if log is not None:
-        log.begin("collapse", e, r.h_BA)
-        log.name(**r.names())
-        log.notes.append(f"vB = vertex {r.vB} is removed; vA = vertex {r.vA} survives")
-        if r.degree_B == 3 and r.boundary_of_B < 0:
+        log.begin("collapse", e, h_BA)
+        log.name(**record.names())
+        log.notes.append(f"vB = vertex {vB} is removed; vA = vertex {vA} survives")
+        if degree_B == 3 and boundary_of_B < 0:
             log.notes.append(
-                f"vB has degree 3: gL and gR are the same face {r.gL}, which survives as (vA, vL, vR); "
+                f"vB has degree 3: gL and gR are the same face {gL}, which survives as (vA, vL, vR); "
                 f"no other halfedge leaves vB"
             )
         else:
-            log.notes.append(f"vB has degree {r.degree_B}: {len(r.moving)} more halfedges leave it and move to vA")
-        if r.fL < 0 or r.fR < 0:
-            log.notes.append(f"edge {e} is on the boundary: only {'fR' if r.fL < 0 else 'fL'} is removed")
+            log.notes.append(f"vB has degree {degree_B}: {len(moving)} more halfedges leave it and move to vA")
+        if fL < 0 or fR < 0:
+            log.notes.append(f"edge {e} is on the boundary: only {'fR' if fL < 0 else 'fL'} is removed")
     write = writer_for(mesh, log)
 
     write.phase("vA moves to the new position")
-    write.set_position(r.vA, r.position)
+    write.set_position(vA, position)
 
     write.phase("vB's other halfedges now leave vA")
-    for h in r.moving:
-        write.set_vertex(h, r.vA)
+    for h in moving:
+        write.set_vertex(h, vA)
 
-    if r.fL >= 0:
+    if fL >= 0:
         write.phase("fL goes: h_A_L takes the place of h_B_L (in gL); edge vB - vL will be deleted")
-        _take_place(mesh, write, r.h_B_L, r.h_A_L)
-        if vertex_halfedge_of(r.vL) == r.h_L_B:
-            write.set_vertex_halfedge(r.vL, r.h_L_A)
-    if r.fR >= 0:
+        _take_place(mesh, write, h_B_L, h_A_L)
+        if vertex_halfedge_of(vL) == h_L_B:
+            write.set_vertex_halfedge(vL, h_L_A)
+    if fR >= 0:
         write.phase("fR goes: h_R_A takes the place of h_R_B (in gR); edge vB - vR will be deleted")
-        _take_place(mesh, write, r.h_R_B, r.h_R_A)
-        if vertex_halfedge_of(r.vR) == r.h_R_B:
-            write.set_vertex_halfedge(r.vR, r.h_R_A)
-    if r.fL < 0 or r.fR < 0:
+        _take_place(mesh, write, h_R_B, h_R_A)
+        if vertex_halfedge_of(vR) == h_R_B:
+            write.set_vertex_halfedge(vR, h_R_A)
+    if fL < 0 or fR < 0:
         write.phase("the collapsed edge leaves the boundary loop")
-        on_boundary = r.h_BA if r.fL < 0 else r.h_AB
+        on_boundary = h_BA if fL < 0 else h_AB
         write.link(prev_of(on_boundary), next_of(on_boundary))
 
     write.phase("vA's halfedge: its boundary halfedge if the merged vertex is on the boundary")
-    if r.boundary_of_B >= 0 and (r.interior_A or r.fR < 0):
-        write.set_vertex_halfedge(r.vA, r.h_A_L if r.boundary_of_B == r.h_B_L else r.boundary_of_B)
-    elif vertex_halfedge_of(r.vA) == r.h_AB:
-        write.set_vertex_halfedge(r.vA, r.h_A_R)
+    if boundary_of_B >= 0 and (interior_A or fR < 0):
+        write.set_vertex_halfedge(vA, h_A_L if boundary_of_B == h_B_L else boundary_of_B)
+    elif vertex_halfedge_of(vA) == h_AB:
+        write.set_vertex_halfedge(vA, h_A_R)
 
     write.phase("delete vB, the faces fL and fR, the edge and vB's edges to vL and vR")
-    for f in (r.fL, r.fR):
+    for f in (fL, fR):
         if f >= 0:
             write.delete_face(f)
     write.delete_edge(e)
-    for h in (r.h_L_B, r.h_B_R):
+    for h in (h_L_B, h_B_R):
         if h >= 0:
             write.delete_edge(h >> 1)
-    write.delete_vertex(r.vB)
+    write.delete_vertex(vB)
     write.touch()
-    return Vertex(mesh, r.vA)
+    return Vertex(mesh, vA)
 
 
 def collapse(mesh: "HalfedgeMesh", edge, position=None, *, log: OperationLog | None = None,

@@ -279,7 +279,7 @@ class Writer:
 class LoggingWriter(Writer):
     """A :class:`Writer` that notes every change in an :class:`OperationLog` first.
 
-    Every named setter goes through :meth:`set`, which notes the old value and writes
+    Every setter goes through :meth:`_write`, which notes the old value and writes
     only a real change.
     """
 
@@ -300,7 +300,10 @@ class LoggingWriter(Writer):
         self.log.phases.append((len(self.log.changes), title))
 
     def set(self, kind: str, index: int, field: str, value) -> None:
-        array = getattr(self, self.FIELDS[kind, field])
+        self._write(getattr(self, self.FIELDS[kind, field]), kind, index, field, value)
+
+    def _write(self, array, kind: str, index: int, field: str, value) -> None:
+        """Note ``kind index .field: old -> value``, then write it, unless nothing changes."""
         if field == "position":
             old, new = tuple(float(c) for c in array[index]), tuple(float(c) for c in value)
         else:
@@ -309,23 +312,23 @@ class LoggingWriter(Writer):
             array[index] = value
 
     def link(self, h: int, n: int) -> None:
-        self.set("halfedge", h, "next", n)
-        self.set("halfedge", n, "prev", h)
+        self._write(self.next, "halfedge", h, "next", n)
+        self._write(self.prev, "halfedge", n, "prev", h)
 
     def set_vertex(self, h: int, v: int) -> None:
-        self.set("halfedge", h, "vertex", v)
+        self._write(self.origin, "halfedge", h, "vertex", v)
 
     def set_face(self, h: int, f: int) -> None:
-        self.set("halfedge", h, "face", f)
+        self._write(self.face, "halfedge", h, "face", f)
 
     def set_vertex_halfedge(self, v: int, h: int) -> None:
-        self.set("vertex", v, "halfedge", h)
+        self._write(self.vertex_halfedge, "vertex", v, "halfedge", h)
 
     def set_face_halfedge(self, f: int, h: int) -> None:
-        self.set("face", f, "halfedge", h)
+        self._write(self.face_halfedge, "face", f, "halfedge", h)
 
     def set_position(self, v: int, position) -> None:
-        self.set("vertex", v, "position", position)
+        self._write(self.positions, "vertex", v, "position", position)
 
     def _created(self, kind: str, index: int) -> None:
         self._note(kind, index, "created", False, True)

@@ -50,7 +50,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from ..elements import Vertex
-from .check import OpCheck, edge_argument, position_argument, quad_around
+from .check import OpCheck, Quad, edge_argument, position_argument, quad_around
 from .log import OperationLog, writer_for
 
 if TYPE_CHECKING:
@@ -62,23 +62,28 @@ __all__ = ["can_split", "split"]
 def can_split(mesh: "HalfedgeMesh", edge) -> OpCheck:
     """Whether ``edge`` can be split: a truthy :class:`OpCheck`, or falsy with the reason."""
     e, _ = edge_argument(mesh, edge, "split")
-    return _check(mesh, e)
+    return _check(e, _faced_quad(mesh, e))
 
 
-def _check(mesh: "HalfedgeMesh", e: int) -> OpCheck:
-    quad = quad_around(mesh, 2 * e)
-    v0, v1, v2 = quad.v0, quad.v1, quad.v2
-    if quad.f0 < 0 or quad.f1 < 0:
-        return OpCheck.ok(f"boundary edge {e} (vertices {v0} and {v1}) can be split")
-    if v2 == quad.v3:
+def _check(e: int, quad: Quad) -> OpCheck:
+    a, b = (quad.v0, quad.v1) if quad.h0 == 2 * e else (quad.v1, quad.v0)  # the edge's own order
+    if quad.f1 < 0:
+        return OpCheck.ok(f"boundary edge {e} (vertices {a} and {b}) can be split")
+    if quad.v2 == quad.v3:
+        v2 = quad.v2
         return OpCheck.refuse(
             "back-to-back",
-            f"both triangles beside edge {e} (vertices {v0} and {v1}) have vertex {v2} opposite it: "
+            f"both triangles beside edge {e} (vertices {a} and {b}) have vertex {v2} opposite it: "
             f"they are glued back to back, and splitting the edge would join the new vertex to "
             f"vertex {v2} by two different edges.",
             (("edge", e), ("vertex", v2)),
         )
-    return OpCheck.ok(f"edge {e} (vertices {v0} and {v1}) can be split")
+    return OpCheck.ok(f"edge {e} (vertices {a} and {b}) can be split")
+
+
+def _faced_quad(mesh: "HalfedgeMesh", e: int) -> Quad:
+    """The :class:`Quad` of edge ``e`` from the side that has a face: at the boundary, h1 has none."""
+    return quad_around(mesh, 2 * e if mesh._halfedge_face.item(2 * e) >= 0 else 2 * e + 1)
 
 
 def split(mesh: "HalfedgeMesh", edge, position=None, *, log: OperationLog | None = None) -> Vertex:
@@ -99,13 +104,12 @@ def split(mesh: "HalfedgeMesh", edge, position=None, *, log: OperationLog | None
     """
     e, _ = edge_argument(mesh, edge, "split")
     position = position_argument(mesh, e, position, "split")
-    check = _check(mesh, e)
-    if not check:
-        raise check.error()
-
     # Gather, as for flip, from the side that has a face: at the boundary h1 has none,
     # and v3, f1 do not exist.
-    quad = quad_around(mesh, 2 * e if mesh._halfedge_face.item(2 * e) >= 0 else 2 * e + 1)
+    quad = _faced_quad(mesh, e)
+    check = _check(e, quad)
+    if not check:
+        raise check.error()
     h0, h1, h2, h3, h4, h5, v0, v1, v2, v3, f0, f1 = quad
     interior = f1 >= 0
     if log is not None:
