@@ -72,6 +72,20 @@ class _ElementList:
         return f"<{len(self)} live {self._kind.__name__.lower()}s>"
 
 
+class _LiveElements:
+    """``mesh.vertices`` and friends: the live elements of one kind, as an :class:`_ElementList`."""
+
+    def __init__(self, kind: type, deleted: str):
+        self.kind = kind
+        self.deleted = deleted  # the name of the mesh's (n_slots,) "is it deleted" array
+        self.__doc__ = f"The live {kind.__name__.lower()}s, as :class:`{kind.__name__}` handles."
+
+    def __get__(self, mesh: "HalfedgeMesh | None", owner: type | None = None) -> "_ElementList | _LiveElements":
+        if mesh is None:
+            return self
+        return _ElementList(mesh, self.kind, getattr(mesh, self.deleted))
+
+
 def _grown(array: np.ndarray, capacity: int, fill) -> np.ndarray:
     """A copy of ``array`` with room for ``capacity`` rows, the new rows set to ``fill``."""
     bigger = np.full((capacity,) + array.shape[1:], fill, dtype=array.dtype)
@@ -313,22 +327,10 @@ class HalfedgeMesh:
     def face(self, index: int) -> Face:
         return Face(self, self._check_index("face", index, self._n_face_slots, self._face_deleted))
 
-    @property
-    def vertices(self) -> _ElementList:
-        """The live vertices, as :class:`Vertex` handles."""
-        return _ElementList(self, Vertex, self.vertex_deleted)
-
-    @property
-    def halfedges(self) -> _ElementList:
-        return _ElementList(self, Halfedge, self.halfedge_deleted)
-
-    @property
-    def edges(self) -> _ElementList:
-        return _ElementList(self, Edge, self.edge_deleted)
-
-    @property
-    def faces(self) -> _ElementList:
-        return _ElementList(self, Face, self.face_deleted)
+    vertices = _LiveElements(Vertex, "vertex_deleted")
+    halfedges = _LiveElements(Halfedge, "halfedge_deleted")
+    edges = _LiveElements(Edge, "edge_deleted")
+    faces = _LiveElements(Face, "face_deleted")
 
     def find_halfedge(self, i: int, j: int) -> Halfedge | None:
         """The halfedge from vertex ``i`` to vertex ``j``, or None if they are not joined."""
