@@ -323,11 +323,17 @@ def apply_collapse(mesh: "HalfedgeMesh", record: CollapseRecord, *, log: Operati
         ValueError: the record does not fit the mesh any more (its edge was deleted or
             its ends changed since it was prepared); the mesh is unchanged.
     """
+    e, origin_of = record.edge, mesh._halfedge_vertex.item
+    if mesh._edge_deleted.item(e) or origin_of(record.h_BA) != record.vB or origin_of(record.h_AB) != record.vA:
+        raise ValueError(f"apply_collapse: the mesh changed since the collapse of edge {e} was prepared; prepare it again")
+    return _apply(mesh, record, log)
+
+
+def _apply(mesh: "HalfedgeMesh", record: CollapseRecord, log: OperationLog | None) -> Vertex:
+    """The collapse itself, from a record gathered on the mesh as it is (see the picture)."""
     (vA, vB, h_BA, h_AB, fL, vL, h_A_L, h_L_B, h_L_A, h_B_L, gL,
      fR, vR, h_B_R, h_R_A, h_R_B, h_A_R, gR, moving, degree_B, boundary_of_B, interior_A, position) = record
     e = h_BA >> 1
-    if mesh._edge_deleted.item(e) or mesh._halfedge_vertex.item(h_BA) != vB or mesh._halfedge_vertex.item(h_AB) != vA:
-        raise ValueError(f"apply_collapse: the mesh changed since the collapse of edge {e} was prepared; prepare it again")
     next_of, prev_of = mesh._halfedge_next.item, mesh._halfedge_prev.item
     vertex_halfedge_of = mesh._vertex_halfedge.item
     if log is not None:
@@ -390,8 +396,9 @@ def collapse(mesh: "HalfedgeMesh", edge, position=None, *, log: OperationLog | N
              check_link: bool = True) -> Vertex:
     """Collapse ``edge``: its two ends become one vertex at ``position`` (midpoint by default).
 
-    It checks (:func:`can_collapse`), gathers (:func:`prepare_collapse`'s record) and
-    applies (:func:`apply_collapse`).
+    It checks (as :func:`can_collapse`), gathers (the record :func:`prepare_collapse`
+    makes) and applies it (as :func:`apply_collapse`, without re-checking a record it
+    has just made).
 
     Args:
         edge: an :class:`Edge` or edge index (its halfedge ``2e``'s origin is removed),
@@ -422,4 +429,4 @@ def collapse(mesh: "HalfedgeMesh", edge, position=None, *, log: OperationLog | N
     check = _check(mesh, h_BA, check_link)
     if not check:
         raise check.error()
-    return apply_collapse(mesh, _gather(mesh, h_BA, position), log=log)
+    return _apply(mesh, _gather(mesh, h_BA, position), log)
