@@ -12,12 +12,19 @@ from __future__ import annotations
 class MeshInputError(ValueError):
     """Input that cannot be turned into a halfedge mesh.
 
+    Args:
+        message: what is wrong, naming the element (and the file line) where there is one.
+        element, line: as below; both keyword-only, both optional.
+
     Attributes:
         element: ``(kind, index)`` of the offending element, for example
             ``("face", 12)``, ``("edge", (3, 7))`` or ``("vertex", 5)``; None when the
             problem is not about one element (an unreadable file, say).
         line: the 1-based line of the source file where the problem is, or None.
     """
+
+    element: tuple | None
+    line: int | None
 
     def __init__(self, message: str, *, element: tuple | None = None, line: int | None = None):
         super().__init__(message)
@@ -28,11 +35,19 @@ class MeshInputError(ValueError):
 class MeshInvariantError(Exception):
     """A built mesh breaks one of the halfedge structure's rules.
 
-    Attributes:
+    Args:
         rule: a short name such as ``"twin-involution"`` or ``"next-cycle"``.
         element: ``(kind, index)`` of the first element found breaking it,
             for example ``("halfedge", 17)``.
+        message: the sentence a student can act on; ``str(error)`` is
+            ``"[rule] message"``.
+
+    Attributes:
+        rule, element: as given.
     """
+
+    rule: str
+    element: tuple
 
     def __init__(self, rule: str, element: tuple, message: str):
         super().__init__(f"[{rule}] {message}")
@@ -43,13 +58,30 @@ class MeshInvariantError(Exception):
 class TopologyError(ValueError):
     """A local operation (flip, split, collapse) that is not allowed on this element.
 
-    The mesh is left exactly as it was. ``reason`` is the same sentence that
-    ``mesh.can_flip(e).reason`` (or ``can_split`` / ``can_collapse``) gives.
+    The mesh is left exactly as it was.
+
+    Args:
+        reason: the same sentence that ``mesh.can_flip(e).reason`` (or ``can_split`` /
+            ``can_collapse``) gives; also ``str(error)``.
+        rule: the short name of the rule that refused the operation, for example
+            ``"link-condition"`` (the ``.rule`` of the refusing ``OpCheck``); None when
+            no named rule applies.
+        elements: ``(kind, index)`` pairs of the elements the reason is about, e.g.
+            ``(("edge", 5), ("vertex", 11))``, so a notebook can highlight them.
+
+    Attributes:
+        reason, rule, elements: as given.
     """
 
-    def __init__(self, reason: str):
+    reason: str
+    rule: str | None
+    elements: tuple
+
+    def __init__(self, reason: str, *, rule: str | None = None, elements: tuple = ()):
         super().__init__(reason)
         self.reason = reason
+        self.rule = rule
+        self.elements = elements
 
 
 class MeshWarning(UserWarning):

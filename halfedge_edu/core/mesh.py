@@ -72,11 +72,51 @@ class _ElementList:
         return f"<{len(self)} live {self._kind.__name__.lower()}s>"
 
 
+class _LiveElements:
+    """``mesh.vertices`` and friends: the live elements of one kind, as an :class:`_ElementList`."""
+
+    def __init__(self, kind: type, deleted: str):
+        self.kind = kind
+        self.deleted = deleted  # the name of the mesh's (n_slots,) "is it deleted" array
+        self.__doc__ = f"The live {kind.__name__.lower()}s, as :class:`{kind.__name__}` handles."
+
+    def __get__(self, mesh: "HalfedgeMesh | None", owner: type | None = None) -> "_ElementList | _LiveElements":
+        if mesh is None:
+            return self
+        return _ElementList(mesh, self.kind, getattr(mesh, self.deleted))
+
+
 def _grown(array: np.ndarray, capacity: int, fill) -> np.ndarray:
     """A copy of ``array`` with room for ``capacity`` rows, the new rows set to ``fill``."""
     bigger = np.full((capacity,) + array.shape[1:], fill, dtype=array.dtype)
     bigger[: len(array)] = array
     return bigger
+
+
+class _LiveSlots:
+    """One of the mesh's public arrays: a view of the slots in use of its storage array.
+
+    ``mesh.halfedge_next`` is ``mesh._halfedge_next[: mesh.n_halfedge_slots]``: the storage
+    array has spare capacity at the end, which the view leaves out. Writing into the
+    view edits the mesh.
+    """
+
+    #: kind -> (the mesh's count of slots in use, slots per counted element): a halfedge
+    #: array has two slots per edge.
+    _COUNTS = {"vertex": ("_n_vertex_slots", 1), "halfedge": ("_n_edge_slots", 2),
+               "edge": ("_n_edge_slots", 1), "face": ("_n_face_slots", 1)}
+
+    def __init__(self, kind: str, doc: str):
+        self.count, self.per_element = self._COUNTS[kind]
+        self.__doc__ = doc
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.storage = "_" + name  # positions -> _positions, halfedge_next -> _halfedge_next
+
+    def __get__(self, mesh: "HalfedgeMesh | None", owner: type | None = None) -> "np.ndarray | _LiveSlots":
+        if mesh is None:
+            return self
+        return getattr(mesh, self.storage)[: self.per_element * getattr(mesh, self.count)]
 
 
 class HalfedgeMesh:
@@ -162,55 +202,21 @@ class HalfedgeMesh:
     # The arrays (views of the slots in use)
     # ----------------------------------------------------------------------------------
 
-    @property
-    def positions(self) -> np.ndarray:
-        """(n_vertex_slots, 3) float64 positions; rows of deleted vertices are stale."""
-        return self._positions[: self._n_vertex_slots]
-
-    @property
-    def vertex_halfedge(self) -> np.ndarray:
-        """(n_vertex_slots,) an outgoing halfedge of each vertex (boundary one if any)."""
-        return self._vertex_halfedge[: self._n_vertex_slots]
-
-    @property
-    def vertex_deleted(self) -> np.ndarray:
-        return self._vertex_deleted[: self._n_vertex_slots]
-
-    @property
-    def halfedge_next(self) -> np.ndarray:
-        """(n_halfedge_slots,) next halfedge around the face (or boundary loop)."""
-        return self._halfedge_next[: 2 * self._n_edge_slots]
-
-    @property
-    def halfedge_prev(self) -> np.ndarray:
-        return self._halfedge_prev[: 2 * self._n_edge_slots]
-
-    @property
-    def halfedge_vertex(self) -> np.ndarray:
-        """(n_halfedge_slots,) the vertex each halfedge leaves (its origin)."""
-        return self._halfedge_vertex[: 2 * self._n_edge_slots]
-
-    @property
-    def halfedge_face(self) -> np.ndarray:
-        """(n_halfedge_slots,) face of each halfedge; -1 on the boundary."""
-        return self._halfedge_face[: 2 * self._n_edge_slots]
-
-    @property
-    def edge_deleted(self) -> np.ndarray:
-        return self._edge_deleted[: self._n_edge_slots]
+    positions = _LiveSlots("vertex", "(n_vertex_slots, 3) float64 positions; rows of deleted vertices are stale.")
+    vertex_halfedge = _LiveSlots("vertex", "(n_vertex_slots,) an outgoing halfedge of each vertex (boundary one if any).")
+    vertex_deleted = _LiveSlots("vertex", "(n_vertex_slots,) True for vertices flagged deleted.")
+    halfedge_next = _LiveSlots("halfedge", "(n_halfedge_slots,) next halfedge around the face (or boundary loop).")
+    halfedge_prev = _LiveSlots("halfedge", "(n_halfedge_slots,) previous halfedge around the face (or boundary loop).")
+    halfedge_vertex = _LiveSlots("halfedge", "(n_halfedge_slots,) the vertex each halfedge leaves (its origin).")
+    halfedge_face = _LiveSlots("halfedge", "(n_halfedge_slots,) face of each halfedge; -1 on the boundary.")
+    edge_deleted = _LiveSlots("edge", "(n_edge_slots,) True for edges (and so both their halfedges) flagged deleted.")
+    face_halfedge = _LiveSlots("face", "(n_face_slots,) one halfedge of each face.")
+    face_deleted = _LiveSlots("face", "(n_face_slots,) True for faces flagged deleted.")
 
     @property
     def halfedge_deleted(self) -> np.ndarray:
         """(n_halfedge_slots,) a halfedge is deleted when its edge is (a fresh array)."""
         return np.repeat(self.edge_deleted, 2)
-
-    @property
-    def face_halfedge(self) -> np.ndarray:
-        return self._face_halfedge[: self._n_face_slots]
-
-    @property
-    def face_deleted(self) -> np.ndarray:
-        return self._face_deleted[: self._n_face_slots]
 
     # ----------------------------------------------------------------------------------
     # Counts
@@ -321,22 +327,10 @@ class HalfedgeMesh:
     def face(self, index: int) -> Face:
         return Face(self, self._check_index("face", index, self._n_face_slots, self._face_deleted))
 
-    @property
-    def vertices(self) -> _ElementList:
-        """The live vertices, as :class:`Vertex` handles."""
-        return _ElementList(self, Vertex, self.vertex_deleted)
-
-    @property
-    def halfedges(self) -> _ElementList:
-        return _ElementList(self, Halfedge, self.halfedge_deleted)
-
-    @property
-    def edges(self) -> _ElementList:
-        return _ElementList(self, Edge, self.edge_deleted)
-
-    @property
-    def faces(self) -> _ElementList:
-        return _ElementList(self, Face, self.face_deleted)
+    vertices = _LiveElements(Vertex, "vertex_deleted")
+    halfedges = _LiveElements(Halfedge, "halfedge_deleted")
+    edges = _LiveElements(Edge, "edge_deleted")
+    faces = _LiveElements(Face, "face_deleted")
 
     def find_halfedge(self, i: int, j: int) -> Halfedge | None:
         """The halfedge from vertex ``i`` to vertex ``j``, or None if they are not joined."""
@@ -496,7 +490,7 @@ class HalfedgeMesh:
     def topology_changed(self) -> None:
         """Say that connectivity changed (cached one-rings, adjacency, loops become stale).
 
-        The operations in ``ops/`` call this themselves; call it after writing into the
+        The operations in ``core/ops/`` call this themselves; call it after writing into the
         pointer arrays by hand.
         """
         self.topology_version += 1
@@ -621,7 +615,7 @@ class HalfedgeMesh:
         return GarbageCollectMaps(vertex_map, halfedge_map, edge_map, face_map)
 
     # ----------------------------------------------------------------------------------
-    # Checking, and the local operations (thin doors into ops/)
+    # Checking, and the local operations (they live in core/ops/)
     # ----------------------------------------------------------------------------------
 
     def validate(self) -> None:
@@ -658,9 +652,13 @@ class HalfedgeMesh:
         """Whether :meth:`collapse` is allowed (the link condition and boundary rules)."""
         return ops.can_collapse(self, edge)
 
-    def collapse(self, edge, position=None) -> Vertex:
-        """Merge the two ends of ``edge`` at ``position`` (midpoint by default); returns the survivor."""
-        return ops.collapse(self, edge, position)
+    def collapse(self, edge, position=None, *, check_link: bool = True) -> Vertex:
+        """Merge the two ends of ``edge`` at ``position`` (midpoint by default); returns the survivor.
+
+        ``check_link=False`` is a teaching switch: it skips the link condition, so the
+        result may not be a valid mesh (``validate()`` says why). See ``core/ops/collapse.py``.
+        """
+        return ops.collapse(self, edge, position, check_link=check_link)
 
 
 def _old_to_new(deleted: np.ndarray) -> np.ndarray:

@@ -17,7 +17,8 @@ at the first difference, what is wrong, in words; ``result.show()`` draws the el
 This package is for notebooks; ``import halfedge_edu`` does not load it.
 """
 
-from .checks import CheckResult, check_build, check_one_ring
+from .checks import check_build, check_one_ring
+from .harness import CheckResult
 from .algorithm_checks import check_de_casteljau, check_loop_rules, check_optimal_point, check_plane_quadric
 from .ops_checks import check_collapse, check_flip
 from .remesh_checks import check_tangential_smoothing

@@ -39,14 +39,14 @@ from halfedge_edu.algorithms.simplify import face_quadrics, optimal_points
 from halfedge_edu.core.mesh import HalfedgeMesh
 from halfedge_edu.data import sample
 
-from .checks import TIME_LIMIT, CheckResult, _failed, _run, _unfinished
+from . import harness
+from .harness import CheckResult
+
 
 __all__ = ["check_loop_rules", "check_plane_quadric", "check_optimal_point", "check_de_casteljau",
            "loop_cases", "warren_beta"]
 
 
-def _text(point) -> str:
-    return "(" + ", ".join(f"{float(c):.4g}" for c in np.asarray(point, dtype=np.float64).ravel()) + ")"
 
 
 def _as_point(value, size: int = 3) -> np.ndarray | None:
@@ -57,27 +57,10 @@ def _as_point(value, size: int = 3) -> np.ndarray | None:
     return array if array.shape == (size,) else None
 
 
-def _close(a, b) -> bool:
-    return bool(np.allclose(a, b, rtol=1e-7, atol=1e-9))
 
 
-def _all_good(exercise: str, checked: list[str], noun: str, praise: str) -> CheckResult:
-    """The congratulation: what agreed, on how many cases, and what it means."""
-    verb = "match" if " and " in exercise else "matches"
-    return CheckResult(exercise, True, f"All good! Your {exercise} {verb} the library on {len(checked)} {noun} "
-                       f"({', '.join(checked)}). {praise}", list(checked))
 
 
-def _trouble(status: str, answer, name: str) -> str | None:
-    """Words for a learner function that timed out or raised, else None."""
-    if status == "timeout":
-        return f"your {name} did not finish within {TIME_LIMIT:g} s: a loop probably never ends."
-    if status == "error":
-        if isinstance(answer, NotImplementedError) or "ellipsis" in str(answer).lower():
-            return f"{name} is not finished yet ({type(answer).__name__}: {answer}). Fill it in and check again."
-        return (f"your {name} raised {type(answer).__name__}: {answer}. Call it yourself on that case "
-                f"to see the full traceback.")
-    return None
 
 
 # --------------------------------------------------------------------------------------
@@ -125,20 +108,20 @@ def _edge_problem(mesh: HalfedgeMesh, e: int, yours: np.ndarray, wanted: np.ndar
     midpoint = 0.5 * (P[a] + P[b])
     if c is None or d is None:
         text = (f"{where} and lies on the boundary (only one triangle touches it), so its edge point is "
-                f"the midpoint (a + b) / 2 = {_text(wanted)}; yours is {_text(yours)}.")
+                f"the midpoint (a + b) / 2 = {harness.point_text(wanted)}; yours is {harness.point_text(yours)}.")
         one = c if c is not None else d
-        if _close(yours, 0.375 * (P[a] + P[b]) + 0.125 * P[one]) or _close(yours, 0.375 * (P[a] + P[b]) + 0.25 * P[one]):
+        if harness.close(yours, 0.375 * (P[a] + P[b]) + 0.125 * P[one]) or harness.close(yours, 0.375 * (P[a] + P[b]) + 0.25 * P[one]):
             text += (" You used the interior rule with the one opposite corner there is. On the boundary the "
                      "inside must not count, so that the boundary is refined as a curve of its own.")
         return text
     text = (f"{where}; its two triangles have the opposite corners {c} and {d}, so the edge point is "
-            f"3/8 (a + b) + 1/8 (c + d) = {_text(wanted)}; yours is {_text(yours)}.")
-    if _close(yours, midpoint):
+            f"3/8 (a + b) + 1/8 (c + d) = {harness.point_text(wanted)}; yours is {harness.point_text(yours)}.")
+    if harness.close(yours, midpoint):
         text += (" That is the midpoint. The edge point is pulled a little towards the two opposite corners "
                  "(the 'wings'); that pull is what makes the limit surface smooth.")
-    elif _close(yours, 0.125 * (P[a] + P[b]) + 0.375 * (P[c] + P[d])):
+    elif harness.close(yours, 0.125 * (P[a] + P[b]) + 0.375 * (P[c] + P[d])):
         text += " The weights are swapped: the edge's own ends get 3/8 each, the opposite corners 1/8."
-    elif _close(yours, 0.375 * (P[a] + P[b]) + 0.25 * P[c]) or _close(yours, 0.375 * (P[a] + P[b]) + 0.25 * P[d]):
+    elif harness.close(yours, 0.375 * (P[a] + P[b]) + 0.25 * P[c]) or harness.close(yours, 0.375 * (P[a] + P[b]) + 0.25 * P[d]):
         text += (" Yours counts one opposite corner twice: c is opposite the edge in the face of h, d in the "
                  "face of h.twin (h.prev.vertex and h.twin.prev.vertex).")
     return text
@@ -154,31 +137,31 @@ def _vertex_problem(mesh: HalfedgeMesh, v: int, yours: np.ndarray, wanted: np.nd
         out = vertex.halfedge                       # the outgoing boundary halfedge
         after, before = out.tip.index, out.prev.vertex.index
         text = (f"vertex {v} is on the boundary; its neighbours along the boundary are {before} and {after}, so it "
-                f"moves to 3/4 v + 1/8 ({before} + {after}) = {_text(wanted)}; yours is {_text(yours)}.")
+                f"moves to 3/4 v + 1/8 ({before} + {after}) = {harness.point_text(wanted)}; yours is {harness.point_text(yours)}.")
         beta = warren_beta(n)
-        if _close(yours, (1 - n * beta) * P[v] + beta * ring_sum):
+        if harness.close(yours, (1 - n * beta) * P[v] + beta * ring_sum):
             text += (" You used the interior rule over all its neighbours. A boundary vertex only listens to "
                      "its two boundary neighbours, so the boundary stays a curve of its own.")
-        elif _close(yours, P[v]):
+        elif harness.close(yours, P[v]):
             text += " The old boundary vertices move too (unless you pin them on purpose, which the course does not)."
         return text
     beta = warren_beta(n)
     text = (f"vertex {v} is inside with degree n = {n} (neighbours {ring}); Warren's beta is "
             f"{'3/16' if n == 3 else f'3/(8 * {n})'} = {beta:.6g}, so it moves to (1 - n beta) v + beta * "
-            f"(sum of the neighbours) = {_text(wanted)}; yours is {_text(yours)}.")
+            f"(sum of the neighbours) = {harness.point_text(wanted)}; yours is {harness.point_text(yours)}.")
     loop_beta = (5.0 / 8.0 - (3.0 / 8.0 + 0.25 * np.cos(2.0 * np.pi / n)) ** 2) / n
-    if n == 3 and _close(yours, (1 - 3 * (1.0 / 8.0)) * P[v] + (1.0 / 8.0) * ring_sum):
+    if n == 3 and harness.close(yours, (1 - 3 * (1.0 / 8.0)) * P[v] + (1.0 / 8.0) * ring_sum):
         text += " You used 3/(8n) = 1/8, but for degree 3 Warren's rule has its own value, beta = 3/16."
-    elif _close(yours, (1 - n * loop_beta) * P[v] + loop_beta * ring_sum):
+    elif harness.close(yours, (1 - n * loop_beta) * P[v] + loop_beta * ring_sum):
         text += (f" That is Loop's original beta ({loop_beta:.6g}); the course uses Warren's simpler one "
                  f"(3/16 for n = 3, 3/(8n) otherwise).")
-    elif _close(yours, P[v]):
+    elif harness.close(yours, P[v]):
         text += " The old vertices move too: each becomes a weighted average of itself and its ring."
-    elif _close(yours, ring_sum / n):
+    elif harness.close(yours, ring_sum / n):
         text += " That is the mean of the neighbours (Laplacian smoothing); Loop keeps the largest share, 1 - n beta, for v itself."
-    elif _close(yours, beta * ring_sum):
+    elif harness.close(yours, beta * ring_sum):
         text += " The vertex's own share, (1 - n beta) v, is missing."
-    elif _close(yours, (1 - beta) * P[v] + beta * ring_sum):
+    elif harness.close(yours, (1 - beta) * P[v] + beta * ring_sum):
         text += " The vertex's own weight is 1 - n beta (so that all weights add up to 1), not 1 - beta."
     return text
 
@@ -198,11 +181,11 @@ def check_loop_rules(edge_point: Callable | None = None, vertex_point: Callable 
     functions = [(name, f) for name, f in (("edge_point", edge_point), ("vertex_point", vertex_point)) if f is not None]
     label = " and ".join(name for name, _ in functions) or "Loop rules"
     if not functions:
-        return _failed(label, [], None, "give check_loop_rules your edge_point, your vertex_point, or both.")
+        return harness.failed(label, [], None, "give check_loop_rules your edge_point, your vertex_point, or both.")
     for name, function in functions:
-        unfinished = _unfinished(function, name)
+        unfinished = harness.unfinished(function, name)
         if unfinished:
-            return _failed(label, [], None, unfinished)
+            return harness.failed(label, [], None, unfinished)
     checked: list[str] = []
     for case, mesh in loop_cases():
         vertex_points, edge_points = loop_positions(mesh)
@@ -210,27 +193,27 @@ def check_loop_rules(edge_point: Callable | None = None, vertex_point: Callable 
         for name, function in functions:
             elements = mesh.edges if name == "edge_point" else mesh.vertices
             for element in elements:
-                status, answer = _run(function, mesh, element)
-                trouble = _trouble(status, answer, name)
+                status, answer = harness.run(function, mesh, element)
+                trouble = harness.trouble(status, answer, name)
                 kind = ("halfedge", 2 * element.index) if name == "edge_point" else ("vertex", element.index)
                 what = f"edge {element.index}" if name == "edge_point" else f"vertex {element.index}"
                 if trouble:
-                    return _failed(label, checked, case, f"on {what}, {trouble}", kind, mesh)
+                    return harness.failed(label, checked, case, f"on {what}, {trouble}", kind, mesh)
                 if not np.array_equal(mesh.positions, before):
-                    return _failed(label, checked, case,
+                    return harness.failed(label, checked, case,
                                    f"your {name} changed mesh.positions (at {what}). Every new position must be "
                                    f"computed from the old mesh, before anything moves: read the positions, never "
                                    f"write them.", kind, mesh)
                 yours = _as_point(answer)
                 if yours is None:
-                    return _failed(label, checked, case, f"your {name} should return 3 numbers (a position), but for "
+                    return harness.failed(label, checked, case, f"your {name} should return 3 numbers (a position), but for "
                                    f"{what} it returned {answer!r:.80}.", kind, mesh)
                 wanted = edge_points[element.index] if name == "edge_point" else vertex_points[element.index]
-                if not _close(yours, wanted):
+                if not harness.close(yours, wanted):
                     explain = _edge_problem if name == "edge_point" else _vertex_problem
-                    return _failed(label, checked, case, explain(mesh, element.index, yours, wanted), kind, mesh)
+                    return harness.failed(label, checked, case, explain(mesh, element.index, yours, wanted), kind, mesh)
         checked.append(case.split(" (")[0])
-    return _all_good(label, checked, "meshes", "Together they are one level of Loop's positions; the connectivity is "
+    return harness.all_good(label, checked, "meshes", "Together they are one level of Loop's positions; the connectivity is "
                    "the 4-to-1 split you stepped through.")
 
 
@@ -265,41 +248,41 @@ def check_plane_quadric(plane_quadric: Callable) -> CheckResult:
         plane_quadric: ``(a, b, c) -> (4, 4)``, ``K = p p^T`` with ``p = [n, d]``,
             ``n`` the unit normal, ``d = -n . a``.
     """
-    unfinished = _unfinished(plane_quadric, "plane_quadric")
+    unfinished = harness.unfinished(plane_quadric, "plane_quadric")
     if unfinished:
-        return _failed("plane_quadric", [], None, unfinished)
+        return harness.failed("plane_quadric", [], None, unfinished)
     checked: list[str] = []
     for case, triangle in _quadric_cases():
         a, b, c = triangle.copy()
-        status, answer = _run(plane_quadric, a, b, c)
-        trouble = _trouble(status, answer, "plane_quadric")
+        status, answer = harness.run(plane_quadric, a, b, c)
+        trouble = harness.trouble(status, answer, "plane_quadric")
         if trouble:
-            return _failed("plane_quadric", checked, case, trouble)
+            return harness.failed("plane_quadric", checked, case, trouble)
         try:
             yours = np.asarray(answer, dtype=np.float64)
         except (TypeError, ValueError):
             yours = np.zeros(0)
         if yours.shape != (4, 4):
-            return _failed("plane_quadric", checked, case, f"plane_quadric should return a 4 x 4 matrix, but yours "
+            return harness.failed("plane_quadric", checked, case, f"plane_quadric should return a 4 x 4 matrix, but yours "
                            f"has shape {yours.shape}. Build p = [nx, ny, nz, d] and return np.outer(p, p).")
         wanted, p, area = _plain_quadric(a, b, c)
-        if _close(yours, wanted):
+        if harness.close(yours, wanted):
             checked.append(case)
             continue
         n, d = p[:3], p[3]
-        text = (f"the triangle {_text(a)}, {_text(b)}, {_text(c)} lies in the plane n . x + d = 0 with unit normal "
-                f"n = {_text(n)} and d = {d:.4g}, so K = p p^T with p = {_text(p)}.")
+        text = (f"the triangle {harness.point_text(a)}, {harness.point_text(b)}, {harness.point_text(c)} lies in the plane n . x + d = 0 with unit normal "
+                f"n = {harness.point_text(n)} and d = {d:.4g}, so K = p p^T with p = {harness.point_text(p)}.")
         raw = np.cross(b - a, c - a)
-        if _close(yours, area * wanted):
+        if harness.close(yours, area * wanted):
             text += (" Yours is K times the triangle's area. That is what the library stores (big faces count "
                      "more), but the exercise asks for the plain K: leave the area out.")
-        elif _close(yours, (raw @ raw) * wanted) or _close(yours, np.linalg.norm(raw) * wanted):
+        elif harness.close(yours, (raw @ raw) * wanted) or harness.close(yours, np.linalg.norm(raw) * wanted):
             text += (" Yours is K times a power of |(b - a) x (c - a)|: the normal must have length 1, or the "
                      "'distance' is measured in the wrong unit. Divide the cross product by its length.")
-        elif _close(yours, np.outer(np.append(n, -d), np.append(n, -d))):
+        elif harness.close(yours, np.outer(np.append(n, -d), np.append(n, -d))):
             text += (" Your d has the wrong sign: d = -n . a, so that n . x + d is 0 for every point x of the "
                      "plane (try x = a).")
-        elif _close(yours[:3, :3], wanted[:3, :3]) and np.allclose(yours[3], 0) and np.allclose(yours[:, 3], 0):
+        elif harness.close(yours[:3, :3], wanted[:3, :3]) and np.allclose(yours[3], 0) and np.allclose(yours[:, 3], 0):
             text += " The last row and column are zero: d is missing from p (it only vanishes when the plane passes through the origin)."
         elif not np.allclose(yours, yours.T):
             text += " Yours is not symmetric; p p^T always is. Use np.outer(p, p)."
@@ -308,8 +291,8 @@ def check_plane_quadric(plane_quadric: Callable) -> CheckResult:
             value = np.append(x, 1.0) @ yours @ np.append(x, 1.0)
             text += (f" Test: the point a + 2n is 2 away from the plane, so [x, 1] K [x, 1]^T should be 4; "
                      f"yours gives {value:.4g}.")
-        return _failed("plane_quadric", checked, case, text)
-    return _all_good("plane_quadric", checked, "triangles", "[x, 1] K [x, 1]^T is now the squared distance from x to the face's plane.")
+        return harness.failed("plane_quadric", checked, case, text)
+    return harness.all_good("plane_quadric", checked, "triangles", "[x, 1] K [x, 1]^T is now the squared distance from x to the face's plane.")
 
 
 def _optimal_cases() -> list[tuple[str, np.ndarray, np.ndarray, np.ndarray, bool]]:
@@ -348,22 +331,22 @@ def check_optimal_point(optimal_point: Callable) -> CheckResult:
     Args:
         optimal_point: ``(Q (4, 4), a (3,), b (3,)) -> (3,)``.
     """
-    unfinished = _unfinished(optimal_point, "optimal_point")
+    unfinished = harness.unfinished(optimal_point, "optimal_point")
     if unfinished:
-        return _failed("optimal_point", [], None, unfinished)
+        return harness.failed("optimal_point", [], None, unfinished)
     checked: list[str] = []
     for case, Q, a, b, well_posed in _optimal_cases():
-        status, answer = _run(optimal_point, Q.copy(), a.copy(), b.copy())
+        status, answer = harness.run(optimal_point, Q.copy(), a.copy(), b.copy())
         if status == "error" and isinstance(answer, np.linalg.LinAlgError):
-            return _failed("optimal_point", checked, case, f"np.linalg.solve raised LinAlgError ({answer}). A is "
+            return harness.failed("optimal_point", checked, case, f"np.linalg.solve raised LinAlgError ({answer}). A is "
                            f"singular here: many points are equally good (a whole plane or line of them). Check "
                            f"abs(np.linalg.det(A)) first and fall back to the midpoint (a + b) / 2 when it is tiny.")
-        trouble = _trouble(status, answer, "optimal_point")
+        trouble = harness.trouble(status, answer, "optimal_point")
         if trouble:
-            return _failed("optimal_point", checked, case, trouble)
+            return harness.failed("optimal_point", checked, case, trouble)
         yours = _as_point(answer)
         if yours is None:
-            return _failed("optimal_point", checked, case, f"optimal_point should return 3 numbers, but yours "
+            return harness.failed("optimal_point", checked, case, f"optimal_point should return 3 numbers, but yours "
                            f"returned {answer!r:.80}.")
         midpoint = 0.5 * (a + b)
         if well_posed:
@@ -371,16 +354,16 @@ def check_optimal_point(optimal_point: Callable) -> CheckResult:
         else:
             wanted = midpoint
         library = optimal_points(Q[None], a[None], b[None])[0][0]
-        if _close(yours, wanted):
+        if harness.close(yours, wanted):
             checked.append(case.split(" (")[0])
             continue
         cost = lambda x: float(np.append(x, 1.0) @ Q @ np.append(x, 1.0))  # noqa: E731
-        text = f"the best point is {_text(wanted)} (cost {cost(wanted):.3g}); yours is {_text(yours)} (cost {cost(yours):.3g})."
+        text = f"the best point is {harness.point_text(wanted)} (cost {cost(wanted):.3g}); yours is {harness.point_text(yours)} (cost {cost(yours):.3g})."
         if well_posed:
-            if _close(yours, midpoint):
+            if harness.close(yours, midpoint):
                 text += (" That is the midpoint. Here A = Q[:3, :3] is invertible, so solve A x = -q (q = Q[:3, 3]) "
                          "for the one point of least error; the midpoint is only the fallback.")
-            elif _close(yours, np.linalg.solve(Q[:3, :3], Q[:3, 3])):
+            elif harness.close(yours, np.linalg.solve(Q[:3, :3], Q[:3, 3])):
                 text += " The sign is off: the gradient of [x, 1] Q [x, 1]^T is 2 (A x + q), zero at A x = -q."
         else:
             text += (" A is singular here (det(A) is 0: every point of a plane or a line costs the same), so the "
@@ -388,11 +371,11 @@ def check_optimal_point(optimal_point: Callable) -> CheckResult:
             if abs(cost(yours) - cost(wanted)) < 1e-9:
                 text += (" Yours costs as little, but it can lie far from the edge, and the new vertex would "
                          "wander off; the midpoint keeps it in place.")
-            if not _close(library, midpoint):
-                text += (f" (The library picks {_text(library)}: of the points that cost least, the one "
+            if not harness.close(library, midpoint):
+                text += (f" (The library picks {harness.point_text(library)}: of the points that cost least, the one "
                          f"nearest the midpoint.)")
-        return _failed("optimal_point", checked, case, text)
-    return _all_good("optimal_point", checked, "quadrics", "That is the point each queue entry stores with its cost.")
+        return harness.failed("optimal_point", checked, case, text)
+    return harness.all_good("optimal_point", checked, "quadrics", "That is the point each queue entry stores with its cost.")
 
 
 # --------------------------------------------------------------------------------------
@@ -420,18 +403,18 @@ def check_de_casteljau(de_casteljau: Callable) -> CheckResult:
         de_casteljau: ``(points (n + 1, d), t) -> list`` of ``n + 1`` levels, level k
             holding ``n + 1 - k`` points.
     """
-    unfinished = _unfinished(de_casteljau, "de_casteljau")
+    unfinished = harness.unfinished(de_casteljau, "de_casteljau")
     if unfinished:
-        return _failed("de_casteljau", [], None, unfinished)
+        return harness.failed("de_casteljau", [], None, unfinished)
     checked: list[str] = []
     for case, points, t in _casteljau_cases():
         given = points.copy()
-        status, answer = _run(de_casteljau, given, t)
-        trouble = _trouble(status, answer, "de_casteljau")
+        status, answer = harness.run(de_casteljau, given, t)
+        trouble = harness.trouble(status, answer, "de_casteljau")
         if trouble:
-            return _failed("de_casteljau", checked, case, trouble)
+            return harness.failed("de_casteljau", checked, case, trouble)
         if not np.array_equal(given, points):
-            return _failed("de_casteljau", checked, case, "your de_casteljau changed the control points it was "
+            return harness.failed("de_casteljau", checked, case, "your de_casteljau changed the control points it was "
                            "given. Build each level as a new array (or list) instead of overwriting the input.")
         wanted = _de_casteljau(points, t)
         n = len(points) - 1
@@ -440,30 +423,30 @@ def check_de_casteljau(de_casteljau: Callable) -> CheckResult:
         except (TypeError, ValueError):
             levels = None
         if levels is None or (len(levels) and np.ndim(answer[0]) == 0):
-            return _failed("de_casteljau", checked, case, f"de_casteljau should return a list of levels (arrays of "
+            return harness.failed("de_casteljau", checked, case, f"de_casteljau should return a list of levels (arrays of "
                            f"points), but yours returned {answer!r:.80}.")
         if len(levels) == n and n > 0 and all(len(levels[k]) == n - k for k in range(n)):
-            return _failed("de_casteljau", checked, case, f"a degree {n} curve has {n + 1} levels, but yours has {n}: "
+            return harness.failed("de_casteljau", checked, case, f"a degree {n} curve has {n + 1} levels, but yours has {n}: "
                            f"level 0, the control points themselves, is missing. Start the list with them.")
         if len(levels) != n + 1:
-            return _failed("de_casteljau", checked, case, f"a degree {n} curve ({n + 1} control points) has "
+            return harness.failed("de_casteljau", checked, case, f"a degree {n} curve ({n + 1} control points) has "
                            f"{n + 1} levels, from {n + 1} points down to 1, but yours has {len(levels)}.")
         for k, (mine, right) in enumerate(zip(levels, wanted)):
             if len(mine) != len(right):
-                return _failed("de_casteljau", checked, case, f"level {k} should have {len(right)} points (one fewer "
+                return harness.failed("de_casteljau", checked, case, f"level {k} should have {len(right)} points (one fewer "
                                f"than level {k - 1}), but yours has {len(mine)}." if k else
                                f"level 0 should be the {len(right)} control points, but yours has {len(mine)} points.")
-            if not _close(mine, right):
+            if not harness.close(mine, right):
                 i = int(np.flatnonzero(~np.isclose(mine, right).all(axis=1))[0])
                 text = (f"at t = {t:g}, point {i} of level {k} should be (1 - t) * level[{k - 1}][{i}] + t * "
-                        f"level[{k - 1}][{i + 1}] = {_text(right[i])}, but yours is {_text(mine[i])}."
+                        f"level[{k - 1}][{i + 1}] = {harness.point_text(right[i])}, but yours is {harness.point_text(mine[i])}."
                         if k else f"level 0 should be the control points themselves; point {i} differs.")
                 swapped = _de_casteljau(points, 1.0 - t)
-                if k and _close(mine, swapped[k]):
+                if k and harness.close(mine, swapped[k]):
                     text += (" You swapped t and 1 - t: with (1 - t) P_i + t P_(i+1), t = 0 gives P_0 and the "
                              "curve runs from P_0 to P_n as t goes from 0 to 1.")
-                elif k and _close(mine[i], 0.5 * (wanted[k - 1][i] + wanted[k - 1][i + 1])):
+                elif k and harness.close(mine[i], 0.5 * (wanted[k - 1][i] + wanted[k - 1][i + 1])):
                     text += " Yours is the midpoint: that is the construction at t = 0.5 only; use t."
-                return _failed("de_casteljau", checked, case, text)
+                return harness.failed("de_casteljau", checked, case, text)
         checked.append(case)
-    return _all_good("de_casteljau", checked, "curves", "The last level is the curve's point; the levels are the construction lines.")
+    return harness.all_good("de_casteljau", checked, "curves", "The last level is the curve's point; the levels are the construction lines.")

@@ -22,17 +22,12 @@ The contracts (also stated in the chapters):
   :class:`~halfedge_edu.Vertex` handle, which also works wherever an index does),
   counter-clockwise, starting with the tip of ``v.halfedge``. Vertex handles or ints.
 
-Attention: a learner's function that loops forever is stopped after
-``TIME_LIMIT`` seconds, where the platform allows it (a timer signal in the main
-thread on Linux and macOS); elsewhere such a function simply does not return.
+A learner's function runs in :func:`~halfedge_edu.exercises.harness.run`, which stops
+one that loops forever after ``TIME_LIMIT`` seconds where the platform allows it.
 """
 
 from __future__ import annotations
 
-import signal
-import threading
-from contextlib import contextmanager
-from dataclasses import dataclass, field
 from typing import Callable
 
 import numpy as np
@@ -41,126 +36,15 @@ from halfedge_edu.core.build import build_reference
 from halfedge_edu.core.mesh import HalfedgeMesh
 from halfedge_edu.data import sample
 
-__all__ = ["CheckResult", "TIME_LIMIT", "check_build", "check_one_ring", "build_cases", "one_ring_cases"]
+from . import harness
+from .harness import TIME_LIMIT, CheckResult
 
-#: Seconds a learner's function may run on one small mesh before the check gives up.
-TIME_LIMIT = 1.0
-
-
-# --------------------------------------------------------------------------------------
-# The result every check returns
-# --------------------------------------------------------------------------------------
-
-@dataclass
-class CheckResult:
-    """What a check found. ``bool(result)`` is True when everything agreed.
-
-    Attributes:
-        exercise: which exercise was checked ("build" or "one_ring").
-        passed: True when the learner's function agreed on every mesh.
-        message: the explanation (for a failure: the first difference, in words).
-        checked: names of the meshes the function agreed on before it stopped.
-        mesh_name: the mesh where the first difference was found (None if passed).
-        element: ``(kind, index)`` of the offending element, e.g. ``("halfedge", 4)``.
-        mesh: that mesh as a ``HalfedgeMesh`` (the reference), for :meth:`show`.
-    """
-
-    exercise: str
-    passed: bool
-    message: str
-    checked: list[str] = field(default_factory=list)
-    mesh_name: str | None = None
-    element: tuple | None = None
-    mesh: HalfedgeMesh | None = field(default=None, repr=False)
-
-    def __bool__(self) -> bool:
-        return self.passed
-
-    def __repr__(self) -> str:
-        return self.message
-
-    def _repr_pretty_(self, printer, cycle) -> None:  # IPython's display of the result
-        printer.text(self.message)
-
-    def show(self, **scene_options):
-        """A picture of the offending element on its mesh (an IPython image).
-
-        Needs pyvista. Returns None when there is nothing to show (the check passed,
-        or the problem is not about one element).
-        """
-        if self.passed or self.mesh is None or self.element is None:
-            return None
-        from IPython.display import Image
-
-        from halfedge_edu.viz.scene import HalfedgeScene
-
-        kind, index = self.element
-        scene = HalfedgeScene(self.mesh, **scene_options)
-        try:
-            if kind == "halfedge":
-                scene.show_halfedge(index)
-            elif kind == "vertex":
-                scene.show_one_ring(index)
-            elif kind == "face":
-                scene.set_roles({"face": [index]})
-            return Image(data=scene.screenshot())
-        finally:
-            scene.close()
-
-
-def _passed(exercise: str, checked: list[str], praise: str) -> CheckResult:
-    names = ", ".join(checked)
-    return CheckResult(exercise, True, f"All good! Your {exercise} agrees with the reference on {len(checked)} meshes "
-                       f"({names}). {praise}", list(checked))
-
-
-def _failed(exercise: str, checked: list[str], mesh_name: str | None, text: str,
-            element: tuple | None = None, mesh: HalfedgeMesh | None = None) -> CheckResult:
-    where = f"On {mesh_name!r}: " if mesh_name else ""
-    if not where:
-        text = text[:1].upper() + text[1:]
-    before = f" (It agreed on {', '.join(checked)} first.)" if checked else ""
-    return CheckResult(exercise, False, f"Not yet. {where}{text}{before}", list(checked), mesh_name, element, mesh)
+__all__ = ["check_build", "check_one_ring", "build_cases", "one_ring_cases"]
 
 
 # --------------------------------------------------------------------------------------
-# Running a learner's function safely
+# Words for a learner's function that raised or is not finished
 # --------------------------------------------------------------------------------------
-
-class _TookTooLong(BaseException):
-    """Raised by the timer; a BaseException, so a learner's ``except Exception`` cannot swallow it."""
-
-
-@contextmanager
-def _time_limit(seconds: float):
-    """Raise _TookTooLong inside the body after ``seconds``, where a timer signal is possible."""
-    usable = hasattr(signal, "setitimer") and threading.current_thread() is threading.main_thread()
-    if not usable:
-        yield
-        return
-
-    def stop(signum, frame):
-        raise _TookTooLong
-
-    previous = signal.signal(signal.SIGALRM, stop)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, previous)
-
-
-def _run(function: Callable, *args):
-    """Call the learner's function: ``("ok", value)``, ``("error", exception)`` or ``("timeout", None)``."""
-    try:
-        with _time_limit(TIME_LIMIT):
-            return "ok", function(*args)
-    except _TookTooLong:
-        return "timeout", None
-    except Exception as error:  # the learner's bug, reported in words below
-        return "error", error
-
 
 def _describe_error(name: str, error: Exception) -> str:
     if isinstance(error, NotImplementedError) or "ellipsis" in str(error).lower():
@@ -168,15 +52,6 @@ def _describe_error(name: str, error: Exception) -> str:
                 f"Fill in the blanks marked ... and run the check again.")
     return (f"your {name} raised {type(error).__name__}: {error}. Call it yourself on the faces above "
             f"to see the full traceback.")
-
-
-def _unfinished(function: Callable, name: str) -> str | None:
-    """The "fill in the blanks" message if the function's own code still holds a ``...``."""
-    code = getattr(function, "__code__", None)
-    if code is not None and any(constant is Ellipsis for constant in code.co_consts):
-        return (f"your {name} still has blanks (...) in it. Fill each one in (no ... left) "
-                f"and run the check again.")
-    return None
 
 
 def _has_ellipsis(value) -> bool:
@@ -410,26 +285,26 @@ def check_build(learner_build: Callable) -> CheckResult:
         A :class:`CheckResult`: on the first difference, what it is in words and which
         halfedge (``result.show()`` draws it); otherwise a short congratulation.
     """
-    unfinished = _unfinished(learner_build, "build")
+    unfinished = harness.unfinished(learner_build, "build")
     if unfinished:
-        return _failed("build", [], None, unfinished)
+        return harness.failed("build", [], None, unfinished)
     checked: list[str] = []
     for name, vertices, faces in build_cases():
-        status, answer = _run(learner_build, faces.copy())
+        status, answer = harness.run(learner_build, faces.copy())
         mesh = HalfedgeMesh.from_faces(vertices, faces)
         intro = f"faces {faces.tolist()}: " if len(faces) <= 4 else ""
         if status == "timeout":
-            return _failed("build", checked, name, f"{intro}your build did not finish within {TIME_LIMIT:g} s. "
+            return harness.failed("build", checked, name, f"{intro}your build did not finish within {TIME_LIMIT:g} s. "
                            "A loop probably never ends: check the walks that should come back to their start.",
                            None, mesh)
         if status == "error":
-            return _failed("build", checked, name, intro + _describe_error("build", answer), None, mesh)
+            return harness.failed("build", checked, name, intro + _describe_error("build", answer), None, mesh)
         problem = _compare_build(answer, faces, len(vertices))
         if problem is not None:
             text, element = problem
-            return _failed("build", checked, name, intro + text, element, mesh)
+            return harness.failed("build", checked, name, intro + text, element, mesh)
         checked.append(name)
-    return _passed("build", checked, "Your loop builds the same halfedges, in the same order, as the library.")
+    return harness.passed("build", checked, "Your loop builds the same halfedges, in the same order, as the library.")
 
 
 # --------------------------------------------------------------------------------------
@@ -525,29 +400,29 @@ def check_one_ring(learner_one_ring: Callable) -> CheckResult:
         A :class:`CheckResult` naming the first vertex whose ring differs and why
         (``result.show()`` draws that vertex's ring); otherwise a congratulation.
     """
-    unfinished = _unfinished(learner_one_ring, "one_ring")
+    unfinished = harness.unfinished(learner_one_ring, "one_ring")
     if unfinished:
-        return _failed("one_ring", [], None, unfinished)
+        return harness.failed("one_ring", [], None, unfinished)
     checked: list[str] = []
     for name, mesh in one_ring_cases():
         for vertex in mesh.vertices:
-            status, answer = _run(learner_one_ring, mesh, vertex)
+            status, answer = harness.run(learner_one_ring, mesh, vertex)
             v = vertex.index
             if status == "timeout":
-                return _failed("one_ring", checked, name,
+                return harness.failed("one_ring", checked, name,
                                f"your one_ring did not return within {TIME_LIMIT:g} s for vertex {v}. The walk "
                                f"probably never comes back to its start halfedge: each step must give another "
                                f"halfedge leaving v (h.prev.twin does), and halfedges are compared with ==, not `is` "
                                f"(each h.prev.twin is a new handle object).",
                                ("vertex", v), mesh)
             if status == "error":
-                return _failed("one_ring", checked, name, f"for vertex {v}, " + _describe_error("one_ring", answer),
+                return harness.failed("one_ring", checked, name, f"for vertex {v}, " + _describe_error("one_ring", answer),
                                ("vertex", v), mesh)
             ring, reason = _ring_as_ints(answer)
             if ring is None:
-                return _failed("one_ring", checked, name, f"for vertex {v}, {reason}", ("vertex", v), mesh)
+                return harness.failed("one_ring", checked, name, f"for vertex {v}, {reason}", ("vertex", v), mesh)
             problem = _compare_ring(mesh, v, ring)
             if problem is not None:
-                return _failed("one_ring", checked, name, problem, ("vertex", v), mesh)
+                return harness.failed("one_ring", checked, name, problem, ("vertex", v), mesh)
         checked.append(name)
-    return _passed("one_ring", checked, "You can walk around any vertex, inside or on the boundary.")
+    return harness.passed("one_ring", checked, "You can walk around any vertex, inside or on the boundary.")

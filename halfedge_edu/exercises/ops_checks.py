@@ -44,10 +44,12 @@ import numpy as np
 
 from halfedge_edu.core.errors import MeshInvariantError
 from halfedge_edu.core.mesh import HalfedgeMesh
-from halfedge_edu.data import sample
 from halfedge_edu.core.ops import OperationLog, can_collapse, can_flip, collapse, flip
+from halfedge_edu.data import sample
 
-from .checks import TIME_LIMIT, CheckResult, _failed, _passed, _run
+from . import harness
+from .harness import TIME_LIMIT, CheckResult
+
 
 __all__ = ["check_collapse", "check_flip", "collapse_cases", "flip_cases"]
 
@@ -208,10 +210,6 @@ def _describe_error(name: str, error: Exception) -> str:
             f"see the full traceback.")
 
 
-def _gathered(log: OperationLog, names: str) -> str:
-    return ", ".join(f"{n} = {log.named[n][1]}" for n in names.split() if n in log.named)
-
-
 def _validation_problem(mesh: HalfedgeMesh, log: OperationLog, doing: str) -> tuple[str, tuple] | None:
     try:
         mesh.validate()
@@ -230,6 +228,47 @@ def _shown(element):
     if kind in ("halfedge", "vertex", "face") and isinstance(index, (int, np.integer)) and index >= 0:
         return kind, int(index)
     return None
+
+
+# --------------------------------------------------------------------------------------
+# Running the learner's operation step by step (both checks)
+# --------------------------------------------------------------------------------------
+
+def _check_steps(exercise: str, learner: Callable, cases: list, doing: str, element_of: Callable,
+                 timeout_hint: str, problem_of: Callable, library: Callable, praise: str) -> CheckResult:
+    """Run ``learner(mesh, step)`` on a copy before every step of every case; stop at the first difference.
+
+    Args:
+        exercise: "flip" or "collapse", for the messages.
+        cases: ``(name, mesh, steps)`` from :func:`flip_cases` or :func:`collapse_cases`.
+        doing: what one step is, with ``{}`` for the step, e.g. ``"flipping edge {}"``.
+        element_of: step -> the ``(kind, index)`` to draw when the learner's function fails.
+        timeout_hint: what to look for when the function does not finish.
+        problem_of: ``(before, yours, step) -> (words, element) | None``, the comparison.
+        library: ``(mesh, step)``, the package's operation, which moves the case on.
+        praise: the last sentence of the congratulation.
+    """
+    checked: list[str] = []
+    for name, mesh, steps in cases:
+        for step in steps:
+            before = mesh.copy()
+            yours = mesh.copy()
+            status, answer = harness.run(learner, yours, step)
+            if status == "timeout":
+                text = f"your {exercise} did not finish within {TIME_LIMIT:g} s. {timeout_hint}"
+            elif status == "error":
+                text = _describe_error(exercise, answer)
+            else:
+                yours.topology_changed()  # the learner wrote the arrays by hand
+                problem = problem_of(before, yours, step)
+                if problem is None:
+                    library(mesh, step)
+                    continue
+                text, element = problem
+                return harness.failed(exercise, checked, name, text, _shown(element), before)
+            return harness.failed(exercise, checked, name, f"{doing.format(step)}, {text}", element_of(step), before)
+        checked.append(name)
+    return harness.passed(exercise, checked, praise)
 
 
 # --------------------------------------------------------------------------------------
@@ -286,27 +325,11 @@ def check_flip(learner_flip: Callable) -> CheckResult:
         is in words and which element (``result.show()`` draws it on the mesh as it was
         before that flip); otherwise a short congratulation.
     """
-    checked: list[str] = []
-    for name, mesh, edges in flip_cases():
-        for e in edges:
-            before = mesh.copy()
-            yours = mesh.copy()
-            status, answer = _run(learner_flip, yours, e)
-            if status == "timeout":
-                return _failed("flip", checked, name, f"flipping edge {e}, your flip did not finish within {TIME_LIMIT:g} s. A flip "
-                               "is a fixed number of pointer writes; look for a loop that never ends.",
-                               ("halfedge", 2 * e), before)
-            if status == "error":
-                return _failed("flip", checked, name, f"flipping edge {e}, " + _describe_error("flip", answer),
-                               ("halfedge", 2 * e), before)
-            yours.topology_changed()  # the learner wrote the arrays by hand
-            problem = _flip_problem(before, yours, e)
-            if problem is not None:
-                text, element = problem
-                return _failed("flip", checked, name, text, _shown(element), before)
-            flip(mesh, e)
-        checked.append(name)
-    return _passed("flip", checked, "Every pointer ends up where it should, and the mesh is still valid.")
+    return _check_steps(
+        "flip", learner_flip, flip_cases(), "flipping edge {}", lambda e: ("halfedge", 2 * e),
+        "A flip is a fixed number of pointer writes; look for a loop that never ends.",
+        _flip_problem, flip, "Every pointer ends up where it should, and the mesh is still valid.",
+    )
 
 
 # --------------------------------------------------------------------------------------
@@ -407,26 +430,10 @@ def check_collapse(learner_collapse: Callable) -> CheckResult:
         is in words and which element (``result.show()`` draws it on the mesh as it was
         before that collapse); otherwise a short congratulation.
     """
-    checked: list[str] = []
-    for name, mesh, halfedges in collapse_cases():
-        for h in halfedges:
-            before = mesh.copy()
-            yours = mesh.copy()
-            status, answer = _run(learner_collapse, yours, h)
-            if status == "timeout":
-                return _failed("collapse", checked, name,
-                               f"collapsing halfedge {h}, your collapse did not finish within {TIME_LIMIT:g} s. The walk around vB "
-                               f"(h = twin(prev(h))) probably never comes back to its start: compare halfedge "
-                               f"indices, and stop before you change the pointers you walk along.",
-                               ("halfedge", h), before)
-            if status == "error":
-                return _failed("collapse", checked, name, f"collapsing halfedge {h}, " + _describe_error("collapse", answer),
-                               ("halfedge", h), before)
-            yours.topology_changed()  # the learner wrote the arrays by hand
-            problem = _collapse_problem(before, yours, h)
-            if problem is not None:
-                text, element = problem
-                return _failed("collapse", checked, name, text, _shown(element), before)
-            collapse(mesh, mesh.halfedge(h))
-        checked.append(name)
-    return _passed("collapse", checked, "Both cases work, degree 3 and higher, and the mesh stays valid.")
+    return _check_steps(
+        "collapse", learner_collapse, collapse_cases(), "collapsing halfedge {}", lambda h: ("halfedge", h),
+        "The walk around vB (h = twin(prev(h))) probably never comes back to its start: compare halfedge "
+        "indices, and stop before you change the pointers you walk along.",
+        _collapse_problem, lambda mesh, h: collapse(mesh, mesh.halfedge(h)),
+        "Both cases work, degree 3 and higher, and the mesh stays valid.",
+    )

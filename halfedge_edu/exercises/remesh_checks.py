@@ -30,8 +30,9 @@ from halfedge_edu.algorithms.remesh import tangential_smoothing
 from halfedge_edu.core.mesh import HalfedgeMesh
 from halfedge_edu.data import sample
 
-from .algorithm_checks import _all_good, _close, _text, _trouble
-from .checks import CheckResult, _failed, _run, _unfinished
+from . import harness
+from .harness import CheckResult
+
 
 __all__ = ["check_tangential_smoothing", "smoothing_cases", "tangential_smoothing_reference"]
 
@@ -102,46 +103,46 @@ def _explain(mesh: HalfedgeMesh, v: int, yours: np.ndarray, wanted: np.ndarray) 
     ring = [u.index for u in vertex.neighbors()]
     p = P[v]
     if vertex.is_boundary:
-        text = (f"vertex {v} is on the boundary, so it stays at {_text(p)}; yours moved it to {_text(yours)}. "
+        text = (f"vertex {v} is on the boundary, so it stays at {harness.point_text(p)}; yours moved it to {harness.point_text(yours)}. "
                 f"Boundary vertices keep the outline of the surface: skip every vertex with v.is_boundary.")
         return text
     centroid = P[ring].mean(axis=0)
     n = vertex_normals(mesh)[v]
     step = centroid - p
-    text = (f"vertex {v} is inside, with neighbours {ring}. Their centroid is c = {_text(centroid)}; the unit "
-            f"normal is n = {_text(n)}; the step s = c - p has a normal part (s . n) n = {_text((step @ n) * n)}. "
-            f"Without it the vertex goes to p + s - (s . n) n = {_text(wanted)}; yours is {_text(yours)}.")
+    text = (f"vertex {v} is inside, with neighbours {ring}. Their centroid is c = {harness.point_text(centroid)}; the unit "
+            f"normal is n = {harness.point_text(n)}; the step s = c - p has a normal part (s . n) n = {harness.point_text((step @ n) * n)}. "
+            f"Without it the vertex goes to p + s - (s . n) n = {harness.point_text(wanted)}; yours is {harness.point_text(yours)}.")
     area_sum = np.zeros(3)
     for f in vertex.faces():
         a, b, c = (P[u.index] for u in f.vertices())
         area_sum += np.cross(b - a, c - a)
     uniform = vertex_normals(mesh, weighting="uniform")[v]
     angle = vertex_normals(mesh, weighting="angle")[v]
-    if _close(yours, centroid):
+    if harness.close(yours, centroid):
         text += (" Yours is the centroid itself: the normal part of the step was kept. That is plain Laplacian "
                  "smoothing, which also moves vertices off the surface, so a curved mesh shrinks. Remove (s . n) n.")
-    elif _close(yours, p):
+    elif harness.close(yours, p):
         text += " Yours did not move the vertex at all. Every interior vertex takes its tangential step."
-    elif _close(yours, p + (step @ n) * n):
+    elif harness.close(yours, p + (step @ n) * n):
         text += " Yours kept only the normal part of the step; it is the part to throw away."
-    elif _close(yours, p + step + (step @ n) * n):
+    elif harness.close(yours, p + step + (step @ n) * n):
         text += " The sign of the normal part is flipped: subtract (s . n) n, do not add it."
-    elif _close(yours, p + step - (step @ area_sum) * area_sum):
+    elif harness.close(yours, p + step - (step @ area_sum) * area_sum):
         text += (" Your normal is not of length 1: (s . n) n only removes the normal part when |n| = 1. "
                  "Divide the summed face normals by their length.")
-    elif not _close(uniform, n) and _close(yours, p + step - (step @ uniform) * uniform):
+    elif not harness.close(uniform, n) and harness.close(yours, p + step - (step @ uniform) * uniform):
         text += (" Your normal gives every face the same weight. The course weights each face normal by the "
                  "face's area (sum the un-normalized cross products, then normalize once), as "
                  "hx.vertex_normals(mesh) does.")
-    elif not _close(angle, n) and _close(yours, p + step - (step @ angle) * angle):
+    elif not harness.close(angle, n) and harness.close(yours, p + step - (step @ angle) * angle):
         text += (" Your normal weights the faces by their corner angles; the course uses area weights, as "
                  "hx.vertex_normals(mesh) does.")
-    elif _close(yours, _gauss_seidel(mesh)[v]):
+    elif harness.close(yours, _gauss_seidel(mesh)[v]):
         moved = [u for u in ring if u < v and not mesh.vertex(u).is_boundary]
         text += (f" Your centroid used positions that had already moved this step (vertex {v}'s neighbours "
                  f"{moved} were updated before it). Compute every centroid first, from the old positions, and "
                  f"only then move the vertices.")
-    elif _close(yours, (p + P[ring].sum(axis=0)) / (len(ring) + 1)):
+    elif harness.close(yours, (p + P[ring].sum(axis=0)) / (len(ring) + 1)):
         text += " Yours averages the vertex with its neighbours; the centroid is of the neighbours only."
     return text
 
@@ -154,24 +155,24 @@ def check_tangential_smoothing(tangential_smoothing: Callable) -> CheckResult:
             mesh must not change.
 
     Returns:
-        A :class:`~halfedge_edu.exercises.checks.CheckResult`; at the first vertex that
+        A :class:`~halfedge_edu.exercises.harness.CheckResult`; at the first vertex that
         differs it says what is wrong in words, and ``result.show()`` draws that vertex's
         one-ring.
     """
     name = "tangential_smoothing"
-    unfinished = _unfinished(tangential_smoothing, name)
+    unfinished = harness.unfinished(tangential_smoothing, name)
     if unfinished:
-        return _failed(name, [], None, unfinished)
+        return harness.failed(name, [], None, unfinished)
     checked: list[str] = []
     for case, mesh in smoothing_cases():
         before = mesh.positions.copy()
-        status, answer = _run(tangential_smoothing, mesh)
-        trouble = _trouble(status, answer, name)
+        status, answer = harness.run(tangential_smoothing, mesh)
+        trouble = harness.trouble(status, answer, name)
         if trouble:
-            return _failed(name, checked, case, trouble)
+            return harness.failed(name, checked, case, trouble)
         if not np.array_equal(mesh.positions, before):
             mesh.positions[:] = before
-            return _failed(name, checked, case, "your tangential_smoothing changed mesh.positions. Compute every "
+            return harness.failed(name, checked, case, "your tangential_smoothing changed mesh.positions. Compute every "
                            "centroid first, from the old positions, and return the new positions as a new array "
                            "(new = P.copy(), then write into new).")
         try:
@@ -179,7 +180,7 @@ def check_tangential_smoothing(tangential_smoothing: Callable) -> CheckResult:
         except (TypeError, ValueError):
             yours = np.zeros(0)
         if yours.shape != before.shape:
-            return _failed(name, checked, case, f"tangential_smoothing should return one new position per vertex, "
+            return harness.failed(name, checked, case, f"tangential_smoothing should return one new position per vertex, "
                            f"shape {before.shape}, but yours has shape {yours.shape}.")
         wanted = _library(mesh)
         wrong = np.flatnonzero(~np.isclose(yours, wanted, rtol=1e-7, atol=1e-9).all(axis=1))
@@ -187,6 +188,6 @@ def check_tangential_smoothing(tangential_smoothing: Callable) -> CheckResult:
             checked.append(case.split(" (")[0])
             continue
         v = int(wrong[0])
-        return _failed(name, checked, case, _explain(mesh, v, yours[v], wanted[v]), ("vertex", v), mesh)
-    return _all_good(name, checked, "meshes", "That is the smoothing phase of the remesher: the vertices spread "
+        return harness.failed(name, checked, case, _explain(mesh, v, yours[v], wanted[v]), ("vertex", v), mesh)
+    return harness.all_good(name, checked, "meshes", "That is the smoothing phase of the remesher: the vertices spread "
                      "out evenly and the surface keeps its shape.")

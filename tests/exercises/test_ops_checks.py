@@ -12,7 +12,7 @@ import time
 import numpy as np
 import pytest
 
-from halfedge_edu.exercises.checks import CheckResult
+from halfedge_edu.exercises.harness import CheckResult
 from halfedge_edu.exercises.ops_checks import check_collapse, check_flip, collapse_cases, flip_cases
 from halfedge_edu.core.ops import can_collapse, can_flip, collapse, flip
 

@@ -1,4 +1,5 @@
-"""The answer of ``can_flip`` / ``can_split`` / ``can_collapse``, and argument checking.
+"""The answer of ``can_flip`` / ``can_split`` / ``can_collapse``, argument checking, and the
+quadrilateral around an edge that flip and split both name.
 
 Every local operation is *check, then act*: the ``can_*`` function looks at the mesh
 without changing it and returns an :class:`OpCheck`; the operation itself calls the same
@@ -8,7 +9,7 @@ reason if it fails, so a refused operation never touches the mesh.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
@@ -56,10 +57,7 @@ class OpCheck:
 
         The error carries the same ``reason``, plus ``rule`` and ``elements``.
         """
-        error = TopologyError(self.reason)
-        error.rule = self.rule
-        error.elements = self.elements
-        return error
+        return TopologyError(self.reason, rule=self.rule, elements=self.elements)
 
     def __repr__(self) -> str:
         if self.allowed:
@@ -108,14 +106,18 @@ def edge_argument(mesh: "HalfedgeMesh", edge, operation: str) -> tuple[int, int]
     return e, 2 * e
 
 
-def position_argument(position, operation: str) -> np.ndarray | None:
+def position_argument(mesh: "HalfedgeMesh", e: int, position, operation: str) -> np.ndarray:
     """Check a user's ``position`` (None, or three finite numbers) before anything changes.
+
+    Returns:
+        (3,) the point; for None, the midpoint of edge ``e``.
 
     Raises:
         ValueError: not three numbers, or not finite.
     """
     if position is None:
-        return None
+        origin_of, positions = mesh._halfedge_vertex.item, mesh._positions
+        return 0.5 * (positions[origin_of(2 * e)] + positions[origin_of(2 * e + 1)])
     try:
         point = np.array(position, dtype=np.float64)
     except (TypeError, ValueError):
@@ -125,3 +127,42 @@ def position_argument(position, operation: str) -> np.ndarray | None:
     if not np.isfinite(point).all():
         raise ValueError(f"{operation}: position must be finite, not {tuple(point)}")
     return point
+
+
+class Quad(NamedTuple):
+    """The two triangles beside an edge, named as in the pictures of ``flip.py`` and ``split.py``.
+
+    ``h0`` runs ``v0 -> v1`` in ``f0 = (h0, h2, h3)``; its twin ``h1`` runs ``v1 -> v0`` in
+    ``f1 = (h1, h4, h5)``; ``v2`` is opposite the edge in ``f0`` and ``v3`` in ``f1``.
+    Where ``h1`` is a boundary halfedge, ``f1`` and ``v3`` are -1 and ``h4``, ``h5`` are
+    its neighbours along the boundary loop.
+    """
+
+    h0: int
+    h1: int
+    h2: int
+    h3: int
+    h4: int
+    h5: int
+    v0: int
+    v1: int
+    v2: int
+    v3: int
+    f0: int
+    f1: int
+
+    def names(self) -> dict[str, tuple[str, int]]:
+        """Name -> ``(kind, index)`` for every element, in order, for ``OperationLog.name``."""
+        kinds = {"h": "halfedge", "v": "vertex", "f": "face"}
+        return {name: (kinds[name[0]], index) for name, index in zip(self._fields, self)}
+
+
+def quad_around(mesh: "HalfedgeMesh", h0: int) -> Quad:
+    """Gather the :class:`Quad` of the edge of halfedge ``h0``, ``h0`` being its ``h0``. Constant work."""
+    next_of, prev_of = mesh._halfedge_next.item, mesh._halfedge_prev.item
+    origin_of, face_of = mesh._halfedge_vertex.item, mesh._halfedge_face.item
+    h1 = h0 ^ 1
+    h2, h3, h4, h5 = next_of(h0), prev_of(h0), next_of(h1), prev_of(h1)
+    f1 = face_of(h1)
+    v3 = origin_of(h5) if f1 >= 0 else -1
+    return Quad(h0, h1, h2, h3, h4, h5, origin_of(h0), origin_of(h1), origin_of(h3), v3, face_of(h0), f1)

@@ -78,8 +78,9 @@ The rules (``can_collapse``), each with the name its refusal carries in ``.rule`
   leave two triangles glued back to back (a 2-face "pillow", not a surface any other
   operation here accepts). We refuse it, as the full link condition does: the edge
   ``vL - vR`` lies in the links of both ``vA`` and ``vB`` but not in the link of the
-  edge. Together, these rules are the link condition of ``link.py`` with the
-  boundary counted as one extra vertex.
+  edge. Together, these four rules are the link condition of ``link.py`` with the
+  boundary counted as one extra vertex: the check asks ``link_violation`` there, the
+  one implementation of the condition, and names the rule from what it found.
 
 The check walks the one-rings of ``vA`` and ``vB``, and the collapse the one-ring of
 ``vB``: O(degree) work, whatever the size of the mesh.
@@ -87,17 +88,19 @@ The check walks the one-rings of ``vA`` and ``vB``, and the collapse the one-rin
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
+
+import numpy as np
 
 from ..elements import Vertex
 from .check import OpCheck, edge_argument, position_argument
-from .link import one_ring, outgoing
+from .link import BOUNDARY, link_violation, outgoing
 from .log import OperationLog, Writer, writer_for
 
 if TYPE_CHECKING:
     from ..mesh import HalfedgeMesh
 
-__all__ = ["can_collapse", "collapse"]
+__all__ = ["CollapseRecord", "apply_collapse", "can_collapse", "collapse", "prepare_collapse"]
 
 
 def can_collapse(mesh: "HalfedgeMesh", edge) -> OpCheck:
@@ -114,15 +117,25 @@ def _listed(vertices) -> str:
     return ", ".join(str(v) for v in vertices)
 
 
-def _check(mesh: "HalfedgeMesh", h_BA: int) -> OpCheck:
+def _check(mesh: "HalfedgeMesh", h_BA: int, check_link: bool = True) -> OpCheck:
+    """The rules, in the module docstring's order: back to back, then the link condition.
+
+    ``check_link=False`` (the teaching switch of :func:`collapse`) stops after back to back.
+
+    :func:`~halfedge_edu.core.ops.link.link_violation` decides the link condition; its
+    answer (what ``link(a) ∩ link(b)`` has beyond ``link(ab)``) tells which rule it is:
+    the boundary vertex shared by an interior edge (both ends on the boundary), the
+    edge from the boundary to the opposite vertex (a lone triangle), shared neighbours
+    (the link condition proper) or, with none of those, the edge ``vL - vR`` (the
+    tetrahedron).
+    """
     origin_of, next_of, prev_of = mesh._halfedge_vertex.item, mesh._halfedge_next.item, mesh._halfedge_prev.item
-    face_of, vertex_halfedge_of = mesh._halfedge_face.item, mesh._vertex_halfedge.item
+    face_of = mesh._halfedge_face.item
     e, h_AB = h_BA >> 1, h_BA ^ 1
-    vB, vA = origin_of(h_BA), origin_of(h_AB)
     a, b = origin_of(2 * e), origin_of(2 * e + 1)  # the edge's own order, for messages
     fL, fR = face_of(h_BA), face_of(h_AB)
-    vL = origin_of(prev_of(h_BA)) if fL >= 0 else -1
-    vR = origin_of(prev_of(h_AB)) if fR >= 0 else -1
+    vL = origin_of(prev_of(h_BA)) if fL >= 0 else BOUNDARY
+    vR = origin_of(prev_of(h_AB)) if fR >= 0 else BOUNDARY
     edge_words = f"edge {e} (vertices {a} and {b})"
 
     if fL >= 0 and fR >= 0 and vL == vR:
@@ -132,18 +145,14 @@ def _check(mesh: "HalfedgeMesh", h_BA: int) -> OpCheck:
             f"to back, and collapsing the edge would leave no triangle at all.",
             (("edge", e), ("vertex", vL)),
         )
-    if fL < 0 or fR < 0:
-        inside = h_BA if fL >= 0 else h_AB
-        if face_of(next_of(inside) ^ 1) < 0 and face_of(prev_of(inside) ^ 1) < 0:
-            f = face_of(inside)
-            corners = _listed((origin_of(inside), origin_of(next_of(inside)), origin_of(prev_of(inside))))
-            return OpCheck.refuse(
-                "lone-triangle",
-                f"face {f} (vertices {corners}) has all three edges on the boundary: it is a lone "
-                f"triangle, and collapsing its {edge_words} would leave a bare edge with no face.",
-                (("edge", e), ("face", f)),
-            )
-    elif face_of(vertex_halfedge_of(vA)) < 0 and face_of(vertex_halfedge_of(vB)) < 0:
+    if not check_link:
+        return OpCheck.ok(
+            f"{edge_words} may be collapsed without the link condition (check_link=False): the "
+            f"result may not be a valid mesh; mesh.validate() says why."
+        )
+    extra = link_violation(mesh, e)
+    opposite = sorted(v for v in (vL, vR) if v != BOUNDARY)
+    if BOUNDARY in extra.vertices:
         return OpCheck.refuse(
             "both-ends-on-boundary",
             f"{edge_words} is interior (it has a triangle on each side) but both its ends are on "
@@ -151,29 +160,32 @@ def _check(mesh: "HalfedgeMesh", h_BA: int) -> OpCheck:
             f"surface into a figure 8 there (a non-manifold vertex).",
             (("edge", e), ("vertex", a), ("vertex", b)),
         )
-
-    ring_A, ring_B = one_ring(mesh, vA), one_ring(mesh, vB)
-    neighbours_of_B = set(ring_B)
-    shared = sorted(v for v in ring_A if v in neighbours_of_B)
-    opposite = sorted(v for v in (vL, vR) if v >= 0)
-    extra = [v for v in shared if v not in opposite]
-    if extra:
+    if len(opposite) == 1 and (BOUNDARY, opposite[0]) in extra.edges:
+        inside = h_BA if fL >= 0 else h_AB
+        f = face_of(inside)
+        corners = _listed((origin_of(inside), origin_of(next_of(inside)), origin_of(prev_of(inside))))
+        return OpCheck.refuse(
+            "lone-triangle",
+            f"face {f} (vertices {corners}) has all three edges on the boundary: it is a lone "
+            f"triangle, and collapsing its {edge_words} would leave a bare edge with no face.",
+            (("edge", e), ("face", f)),
+        )
+    if extra.vertices:
+        shared = sorted(extra.vertices.union(opposite))
         allowed = (
             f"only the vertices opposite the edge ({_listed(opposite)}) may be shared"
             if len(opposite) == 2
             else f"only the vertex opposite this boundary edge ({opposite[0]}) may be shared"
         )
-        at = " and ".join(str(v) for v in extra)
+        in_extra = sorted(extra.vertices)
         return OpCheck.refuse(
             "link-condition",
             f"vertices {a} and {b} share {len(shared)} neighbours ({_listed(shared)}), but {allowed}: "
-            f"collapsing {edge_words} would pinch the surface at {at} (its edges to {a} and to "
-            f"{b} would become one doubled edge).",
-            (("edge", e),) + tuple(("vertex", v) for v in extra),
+            f"collapsing {edge_words} would pinch the surface at {' and '.join(map(str, in_extra))} (its "
+            f"edges to {a} and to {b} would become one doubled edge).",
+            (("edge", e),) + tuple(("vertex", v) for v in in_extra),
         )
-    interior_A = face_of(vertex_halfedge_of(vA)) >= 0
-    interior_B = face_of(vertex_halfedge_of(vB)) >= 0
-    if len(ring_A) == 3 and len(ring_B) == 3 and interior_A and interior_B:
+    if extra.edges:
         return OpCheck.refuse(
             "tetrahedron",
             f"vertices {a} and {b} have only 3 edges each and share their other neighbours {vL} "
@@ -201,35 +213,78 @@ def _take_place(mesh: "HalfedgeMesh", write: Writer, old: int, new: int) -> None
         write.set_face_halfedge(face, new)
 
 
-def collapse(mesh: "HalfedgeMesh", edge, position=None, *, log: OperationLog | None = None) -> Vertex:
-    """Collapse ``edge``: its two ends become one vertex at ``position`` (midpoint by default).
+class CollapseRecord(NamedTuple):
+    """A prepared collapse: every element it names, gathered before anything changes.
+
+    The first eighteen fields are the names of the picture in this module's docstring
+    (-1 for what does not exist at a boundary edge); :func:`apply_collapse` does the
+    collapse from them alone. Made by :func:`prepare_collapse`.
+    """
+
+    vA: int
+    vB: int
+    h_BA: int
+    h_AB: int
+    fL: int
+    vL: int
+    h_A_L: int
+    h_L_B: int
+    h_L_A: int
+    h_B_L: int
+    gL: int
+    fR: int
+    vR: int
+    h_B_R: int
+    h_R_A: int
+    h_R_B: int
+    h_A_R: int
+    gR: int
+    #: the halfedges that leave vB, apart from h_BA, h_B_L and h_B_R: they will leave vA
+    moving: tuple[int, ...]
+    #: vB's degree before the collapse
+    degree_B: int
+    #: vB's outgoing boundary halfedge, or -1 when vB is interior
+    boundary_of_B: int
+    #: whether vA is interior (not on the boundary) before the collapse
+    interior_A: bool
+    #: (3,) where vA goes
+    position: np.ndarray
+
+    @property
+    def edge(self) -> int:
+        """The collapsed edge."""
+        return self.h_BA >> 1
+
+    def names(self) -> dict[str, tuple[str, int]]:
+        """Name -> ``(kind, index)`` of the picture's elements, in order, for ``OperationLog.name``."""
+        kinds = {"v": "vertex", "h": "halfedge", "f": "face", "g": "face"}
+        return {name: (kinds[name[0]], index) for name, index in zip(self._fields[:18], self)}
+
+
+def prepare_collapse(mesh: "HalfedgeMesh", edge, position=None, *, check_link: bool = True) -> CollapseRecord | None:
+    """Gather a collapse of ``edge`` without changing anything: its record, or None when refused.
+
+    The first half of :func:`collapse` (the UChicago assignment's "prepare, then do"):
+    pass the record to :func:`apply_collapse` to do it. When the collapse is refused,
+    ``can_collapse(mesh, edge).reason`` says why.
 
     Args:
-        edge: an :class:`Edge` or edge index (its halfedge ``2e``'s origin is removed),
-            or a :class:`Halfedge` ``h`` (``h``'s origin is removed, its tip survives).
-        position: (3,) where the merged vertex goes; None for the edge's midpoint.
-        log: an :class:`OperationLog` to fill with the named elements (see the
-            picture in this module's docstring) and every pointer change; None records
-            nothing.
-
-    Returns:
-        The surviving vertex ``vA``.
+        edge, position: as for :func:`collapse`.
+        check_link: False skips the link condition (see :func:`collapse`).
 
     Raises:
-        TopologyError: the collapse is not allowed (the reason says why); the mesh is unchanged.
         IndexError: there is no such edge, or it was deleted.
-        ValueError: ``position`` is not three finite numbers (the mesh is unchanged).
-
-    Attention: the removed vertex, faces and edges are only flagged deleted; indices are
-    compacted by ``garbage_collect()``.
+        ValueError: ``position`` is not three finite numbers.
     """
     e, h_BA = edge_argument(mesh, edge, "collapse")
-    position = position_argument(position, "collapse")
-    check = _check(mesh, h_BA)
-    if not check:
-        raise check.error()
+    position = position_argument(mesh, e, position, "collapse")
+    if not _check(mesh, h_BA, check_link):
+        return None
+    return _gather(mesh, h_BA, position)
 
-    # Gather every named element before anything changes.
+
+def _gather(mesh: "HalfedgeMesh", h_BA: int, position: np.ndarray) -> CollapseRecord:
+    """Every named element of the collapse of ``h_BA`` (see the picture), before anything changes."""
     next_of, prev_of = mesh._halfedge_next.item, mesh._halfedge_prev.item
     origin_of, face_of = mesh._halfedge_vertex.item, mesh._halfedge_face.item
     vertex_halfedge_of = mesh._vertex_halfedge.item
@@ -247,29 +302,51 @@ def collapse(mesh: "HalfedgeMesh", edge, position=None, *, log: OperationLog | N
         h_R_B, h_A_R = h_B_R ^ 1, h_R_A ^ 1
         vR, gR = origin_of(h_R_A), face_of(h_R_B)
     ring_B = outgoing(mesh, vB)
-    moving = [h for h in ring_B if h != h_BA and h != h_B_L and h != h_B_R]
+    moving = tuple(h for h in ring_B if h != h_BA and h != h_B_L and h != h_B_R)
     boundary_of_B = vertex_halfedge_of(vB) if face_of(vertex_halfedge_of(vB)) < 0 else -1
     interior_A = face_of(vertex_halfedge_of(vA)) >= 0
-    if position is None:
-        positions = mesh._positions
-        position = 0.5 * (positions[origin_of(2 * e)] + positions[origin_of(2 * e + 1)])
+    return CollapseRecord(
+        vA, vB, h_BA, h_AB, fL, vL, h_A_L, h_L_B, h_L_A, h_B_L, gL,
+        fR, vR, h_B_R, h_R_A, h_R_B, h_A_R, gR, moving, len(ring_B), boundary_of_B, interior_A, position,
+    )
+
+
+def apply_collapse(mesh: "HalfedgeMesh", record: CollapseRecord, *, log: OperationLog | None = None) -> Vertex:
+    """Do a collapse that :func:`prepare_collapse` gathered: the second half of :func:`collapse`.
+
+    ``mesh`` must be as it was when the record was prepared.
+
+    Returns:
+        The surviving vertex ``vA``.
+
+    Raises:
+        ValueError: the record does not fit the mesh any more (its edge was deleted or
+            its ends changed since it was prepared); the mesh is unchanged.
+    """
+    e, origin_of = record.edge, mesh._halfedge_vertex.item
+    if mesh._edge_deleted.item(e) or origin_of(record.h_BA) != record.vB or origin_of(record.h_AB) != record.vA:
+        raise ValueError(f"apply_collapse: the mesh changed since the collapse of edge {e} was prepared; prepare it again")
+    return _apply(mesh, record, log)
+
+
+def _apply(mesh: "HalfedgeMesh", record: CollapseRecord, log: OperationLog | None) -> Vertex:
+    """The collapse itself, from a record gathered on the mesh as it is (see the picture)."""
+    (vA, vB, h_BA, h_AB, fL, vL, h_A_L, h_L_B, h_L_A, h_B_L, gL,
+     fR, vR, h_B_R, h_R_A, h_R_B, h_A_R, gR, moving, degree_B, boundary_of_B, interior_A, position) = record
+    e = h_BA >> 1
+    next_of, prev_of = mesh._halfedge_next.item, mesh._halfedge_prev.item
+    vertex_halfedge_of = mesh._vertex_halfedge.item
     if log is not None:
         log.begin("collapse", e, h_BA)
-        log.name(
-            vA=("vertex", vA), vB=("vertex", vB), h_BA=("halfedge", h_BA), h_AB=("halfedge", h_AB),
-            fL=("face", fL), vL=("vertex", vL), h_A_L=("halfedge", h_A_L), h_L_B=("halfedge", h_L_B),
-            h_L_A=("halfedge", h_L_A), h_B_L=("halfedge", h_B_L), gL=("face", gL),
-            fR=("face", fR), vR=("vertex", vR), h_B_R=("halfedge", h_B_R), h_R_A=("halfedge", h_R_A),
-            h_R_B=("halfedge", h_R_B), h_A_R=("halfedge", h_A_R), gR=("face", gR),
-        )
+        log.name(**record.names())
         log.notes.append(f"vB = vertex {vB} is removed; vA = vertex {vA} survives")
-        if len(ring_B) == 3 and boundary_of_B < 0:
+        if degree_B == 3 and boundary_of_B < 0:
             log.notes.append(
                 f"vB has degree 3: gL and gR are the same face {gL}, which survives as (vA, vL, vR); "
                 f"no other halfedge leaves vB"
             )
         else:
-            log.notes.append(f"vB has degree {len(ring_B)}: {len(moving)} more halfedges leave it and move to vA")
+            log.notes.append(f"vB has degree {degree_B}: {len(moving)} more halfedges leave it and move to vA")
         if fL < 0 or fR < 0:
             log.notes.append(f"edge {e} is on the boundary: only {'fR' if fL < 0 else 'fL'} is removed")
     write = writer_for(mesh, log)
@@ -313,3 +390,43 @@ def collapse(mesh: "HalfedgeMesh", edge, position=None, *, log: OperationLog | N
     write.delete_vertex(vB)
     write.touch()
     return Vertex(mesh, vA)
+
+
+def collapse(mesh: "HalfedgeMesh", edge, position=None, *, log: OperationLog | None = None,
+             check_link: bool = True) -> Vertex:
+    """Collapse ``edge``: its two ends become one vertex at ``position`` (midpoint by default).
+
+    It checks (as :func:`can_collapse`), gathers (the record :func:`prepare_collapse`
+    makes) and applies it (as :func:`apply_collapse`, without re-checking a record it
+    has just made).
+
+    Args:
+        edge: an :class:`Edge` or edge index (its halfedge ``2e``'s origin is removed),
+            or a :class:`Halfedge` ``h`` (``h``'s origin is removed, its tip survives).
+        position: (3,) where the merged vertex goes; None for the edge's midpoint.
+        log: an :class:`OperationLog` to fill with the named elements (see the
+            picture in this module's docstring) and every pointer change; None records
+            nothing.
+        check_link: a teaching switch. False skips the link condition (the rules
+            ``link-condition``, ``tetrahedron``, ``both-ends-on-boundary`` and
+            ``lone-triangle``) and collapses anyway, to see what goes wrong: the result
+            may then not be a valid mesh, and ``mesh.validate()`` says why (for example
+            ``duplicate-edge``). Only ``back-to-back`` is still refused.
+
+    Returns:
+        The surviving vertex ``vA``.
+
+    Raises:
+        TopologyError: the collapse is not allowed (the reason says why); the mesh is unchanged.
+        IndexError: there is no such edge, or it was deleted.
+        ValueError: ``position`` is not three finite numbers (the mesh is unchanged).
+
+    Attention: the removed vertex, faces and edges are only flagged deleted; indices are
+    compacted by ``garbage_collect()``.
+    """
+    e, h_BA = edge_argument(mesh, edge, "collapse")
+    position = position_argument(mesh, e, position, "collapse")
+    check = _check(mesh, h_BA, check_link)
+    if not check:
+        raise check.error()
+    return _apply(mesh, _gather(mesh, h_BA, position), log)

@@ -41,7 +41,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from ..elements import Edge
-from .check import OpCheck, edge_argument
+from .check import OpCheck, Quad, edge_argument, quad_around
 from .link import halfedge_between, outgoing
 from .log import OperationLog, writer_for
 
@@ -58,21 +58,18 @@ def can_flip(mesh: "HalfedgeMesh", edge) -> OpCheck:
     The mesh is not changed.
     """
     e, _ = edge_argument(mesh, edge, "flip")
-    return _check(mesh, e)
+    return _check(mesh, quad_around(mesh, 2 * e))
 
 
-def _check(mesh: "HalfedgeMesh", e: int) -> OpCheck:
-    origin_of, prev_of, face_of = mesh._halfedge_vertex.item, mesh._halfedge_prev.item, mesh._halfedge_face.item
-    h0, h1 = 2 * e, 2 * e + 1
-    v0, v1 = origin_of(h0), origin_of(h1)
-    if face_of(h0) < 0 or face_of(h1) < 0:
+def _check(mesh: "HalfedgeMesh", quad: Quad) -> OpCheck:
+    e, v0, v1, v2, v3 = quad.h0 >> 1, quad.v0, quad.v1, quad.v2, quad.v3
+    if quad.f0 < 0 or quad.f1 < 0:
         return OpCheck.refuse(
             "boundary-edge",
             f"edge {e} (vertices {v0} and {v1}) is on the boundary: it has a triangle on one side "
             f"only, so there is no quadrilateral to turn it in. Only interior edges can be flipped.",
             (("edge", e),),
         )
-    v2, v3 = origin_of(prev_of(h0)), origin_of(prev_of(h1))
     if v2 == v3:
         return OpCheck.refuse(
             "same-opposite-vertex",
@@ -118,25 +115,15 @@ def flip(mesh: "HalfedgeMesh", edge, *, log: OperationLog | None = None) -> Edge
         IndexError: there is no such edge, or it was deleted.
     """
     e, _ = edge_argument(mesh, edge, "flip")
-    check = _check(mesh, e)
+    # Gather: the two triangles (h0, h2, h3) and (h1, h4, h5) around the edge.
+    quad = quad_around(mesh, 2 * e)
+    check = _check(mesh, quad)
     if not check:
         raise check.error()
-
-    # Gather: the two triangles (h0, h2, h3) and (h1, h4, h5) around the edge.
-    next_of, prev_of = mesh._halfedge_next.item, mesh._halfedge_prev.item
-    origin_of, face_of = mesh._halfedge_vertex.item, mesh._halfedge_face.item
-    h0, h1 = 2 * e, 2 * e + 1
-    h2, h3 = next_of(h0), prev_of(h0)
-    h4, h5 = next_of(h1), prev_of(h1)
-    v0, v1, v2, v3 = origin_of(h0), origin_of(h1), origin_of(h3), origin_of(h5)
-    f0, f1 = face_of(h0), face_of(h1)
+    h0, h1, h2, h3, h4, h5, v0, v1, v2, v3, f0, f1 = quad
     if log is not None:
         log.begin("flip", e, h0)
-        log.name(
-            h0=("halfedge", h0), h1=("halfedge", h1), h2=("halfedge", h2), h3=("halfedge", h3),
-            h4=("halfedge", h4), h5=("halfedge", h5), v0=("vertex", v0), v1=("vertex", v1),
-            v2=("vertex", v2), v3=("vertex", v3), f0=("face", f0), f1=("face", f1),
-        )
+        log.name(**quad.names())
     write = writer_for(mesh, log)
 
     write.phase("turn the edge: h0 now leaves v3, h1 now leaves v2")
@@ -144,12 +131,8 @@ def flip(mesh: "HalfedgeMesh", edge, *, log: OperationLog | None = None) -> Edge
     write.set_vertex(h1, v2)
 
     write.phase("relink the two triangles: f0 = (h0, h3, h4), f1 = (h1, h5, h2)")
-    write.link(h0, h3)
-    write.link(h3, h4)
-    write.link(h4, h0)
-    write.link(h1, h5)
-    write.link(h5, h2)
-    write.link(h2, h1)
+    write.cycle(h0, h3, h4)
+    write.cycle(h1, h5, h2)
 
     write.phase("h4 moves into f0 and h2 into f1; each face points at its edge halfedge")
     write.set_face(h4, f0)

@@ -138,48 +138,50 @@ class OperationLog:
         ``mesh`` must be the mesh as it was before the operation (e.g. a ``copy()``
         taken then). Replaying every change gives exactly the mesh after it; replaying
         fewer gives the in-between states a stepper shows, which are usually not
-        valid meshes.
+        valid meshes. The changes go through the same plain :class:`Writer` as the
+        operation itself, so only the writer knows where each field is stored.
         """
-        arrays = {
-            ("halfedge", "next"): "_halfedge_next",
-            ("halfedge", "prev"): "_halfedge_prev",
-            ("halfedge", "vertex"): "_halfedge_vertex",
-            ("halfedge", "face"): "_halfedge_face",
-            ("vertex", "halfedge"): "_vertex_halfedge",
-            ("face", "halfedge"): "_face_halfedge",
-        }
+        write = Writer(mesh)
         for change in self.changes[:steps]:
-            kind, index, name = change.kind, change.index, change.field
-            if name == "created":
-                if kind == "vertex":
-                    made = mesh.add_vertex((0.0, 0.0, 0.0))
-                elif kind == "edge":
-                    made = mesh.add_edge(-1, -1)
-                elif kind == "face":
-                    made = mesh.add_face(-1)
-                else:
-                    continue  # a halfedge comes with its edge
-                if made != index:
-                    raise ValueError(f"replay: {kind} {index} would be created as {made}; "
-                                     f"replay onto the mesh as it was before the operation")
-            elif name == "deleted":
-                if kind != "halfedge":
-                    getattr(mesh, f"delete_{kind}")(index)
-            elif name == "position":
-                mesh._positions[index] = change.new
+            if change.field == "created":
+                if change.kind != "halfedge":  # a halfedge comes with its edge
+                    made = write.create(change.kind)
+                    if made != change.index:
+                        raise ValueError(f"replay: {change.kind} {change.index} would be created as {made}; "
+                                         f"replay onto the mesh as it was before the operation")
+            elif change.field == "deleted":
+                if change.kind != "halfedge":  # deleted with its edge
+                    write.delete(change.kind, change.index)
             else:
-                getattr(mesh, arrays[kind, name])[index] = change.new
-                mesh._touch()
+                write.set(change.kind, change.index, change.field, change.new)
+        write.touch()
 
 
 class Writer:
     """Writes an operation's changes straight into the mesh arrays, recording nothing.
+
+    The one place that knows where each field of a :class:`PointerChange` is stored:
+    :meth:`_refresh` takes the mesh's arrays and :data:`FIELDS` names the one a
+    ``(kind, field)`` lives in. The operations call the named setters (``link``,
+    ``set_vertex`` ...), which write directly; :meth:`OperationLog.replay` writes a
+    recorded change with :meth:`set`. Both land in the same arrays.
 
     Attention: the array references are refreshed after each ``add_*``, since adding
     may move the arrays to bigger ones.
     """
 
     __slots__ = ("mesh", "next", "prev", "origin", "face", "vertex_halfedge", "face_halfedge", "positions")
+
+    #: ``(kind, field)`` of a change -> the writer's attribute holding that array.
+    FIELDS = {
+        ("halfedge", "next"): "next",
+        ("halfedge", "prev"): "prev",
+        ("halfedge", "vertex"): "origin",
+        ("halfedge", "face"): "face",
+        ("vertex", "halfedge"): "vertex_halfedge",
+        ("vertex", "position"): "positions",
+        ("face", "halfedge"): "face_halfedge",
+    }
 
     def __init__(self, mesh: "HalfedgeMesh"):
         self.mesh = mesh
@@ -195,10 +197,27 @@ class Writer:
     def phase(self, title: str) -> None:
         """Mark the start of a step of the operation (only a log keeps it)."""
 
+    def set(self, kind: str, index: int, field: str, value) -> None:
+        """Write ``value`` into ``field`` of element ``kind index`` (a :class:`PointerChange`'s terms)."""
+        getattr(self, self.FIELDS[kind, field])[index] = value
+
     def link(self, h: int, n: int) -> None:
         """Make ``n`` follow ``h``: ``h.next = n`` and ``n.prev = h``."""
         self.next[h] = n
         self.prev[n] = h
+
+    def cycle(self, a: int, b: int, c: int) -> None:
+        """Make ``a -> b -> c -> a`` the ``next`` loop of a triangle (and the ``prev`` loop back)."""
+        self.link(a, b)
+        self.link(b, c)
+        self.link(c, a)
+
+    def make_face(self, f: int, a: int, b: int, c: int) -> None:
+        """Face ``f`` is the triangle ``a -> b -> c``: :meth:`cycle`, then each halfedge's face is ``f``."""
+        self.cycle(a, b, c)
+        self.set_face(a, f)
+        self.set_face(b, f)
+        self.set_face(c, f)
 
     def set_vertex(self, h: int, v: int) -> None:
         """Halfedge ``h`` now leaves vertex ``v``."""
@@ -231,6 +250,14 @@ class Writer:
         self._refresh()
         return f
 
+    def create(self, kind: str) -> int:
+        """Add a blank ``"vertex"``, ``"edge"`` or ``"face"`` (pointers -1, position 0) and return it."""
+        if kind == "vertex":
+            return self.add_vertex((0.0, 0.0, 0.0))
+        if kind == "edge":
+            return self.add_edge(-1, -1)
+        return self.add_face(-1)
+
     def delete_vertex(self, v: int) -> None:
         self.mesh.delete_vertex(v)
 
@@ -240,13 +267,21 @@ class Writer:
     def delete_face(self, f: int) -> None:
         self.mesh.delete_face(f)
 
+    def delete(self, kind: str, index: int) -> None:
+        """Flag ``kind index`` deleted (``"vertex"``, ``"edge"`` or ``"face"``)."""
+        getattr(self, f"delete_{kind}")(index)
+
     def touch(self) -> None:
         """Tell the mesh its connectivity changed (derived arrays are stale)."""
         self.mesh._touch()
 
 
 class LoggingWriter(Writer):
-    """A :class:`Writer` that notes every change in an :class:`OperationLog` first."""
+    """A :class:`Writer` that notes every change in an :class:`OperationLog` first.
+
+    Every setter goes through :meth:`_write`, which notes the old value and writes
+    only a real change.
+    """
 
     __slots__ = ("log",)
 
@@ -264,32 +299,36 @@ class LoggingWriter(Writer):
     def phase(self, title: str) -> None:
         self.log.phases.append((len(self.log.changes), title))
 
+    def set(self, kind: str, index: int, field: str, value) -> None:
+        self._write(getattr(self, self.FIELDS[kind, field]), kind, index, field, value)
+
+    def _write(self, array, kind: str, index: int, field: str, value) -> None:
+        """Note ``kind index .field: old -> value``, then write it, unless nothing changes."""
+        if field == "position":
+            old, new = tuple(float(c) for c in array[index]), tuple(float(c) for c in value)
+        else:
+            old, new = int(array[index]), int(value)
+        if self._note(kind, index, field, old, new):
+            array[index] = value
+
     def link(self, h: int, n: int) -> None:
-        if self._note("halfedge", h, "next", int(self.next[h]), int(n)):
-            self.next[h] = n
-        if self._note("halfedge", n, "prev", int(self.prev[n]), int(h)):
-            self.prev[n] = h
+        self._write(self.next, "halfedge", h, "next", n)
+        self._write(self.prev, "halfedge", n, "prev", h)
 
     def set_vertex(self, h: int, v: int) -> None:
-        if self._note("halfedge", h, "vertex", int(self.origin[h]), int(v)):
-            self.origin[h] = v
+        self._write(self.origin, "halfedge", h, "vertex", v)
 
     def set_face(self, h: int, f: int) -> None:
-        if self._note("halfedge", h, "face", int(self.face[h]), int(f)):
-            self.face[h] = f
+        self._write(self.face, "halfedge", h, "face", f)
 
     def set_vertex_halfedge(self, v: int, h: int) -> None:
-        if self._note("vertex", v, "halfedge", int(self.vertex_halfedge[v]), int(h)):
-            self.vertex_halfedge[v] = h
+        self._write(self.vertex_halfedge, "vertex", v, "halfedge", h)
 
     def set_face_halfedge(self, f: int, h: int) -> None:
-        if self._note("face", f, "halfedge", int(self.face_halfedge[f]), int(h)):
-            self.face_halfedge[f] = h
+        self._write(self.face_halfedge, "face", f, "halfedge", h)
 
     def set_position(self, v: int, position) -> None:
-        old = tuple(float(c) for c in self.positions[v])
-        if self._note("vertex", v, "position", old, tuple(float(c) for c in position)):
-            self.positions[v] = position
+        self._write(self.positions, "vertex", v, "position", position)
 
     def _created(self, kind: str, index: int) -> None:
         self._note(kind, index, "created", False, True)

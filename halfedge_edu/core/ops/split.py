@@ -50,7 +50,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from ..elements import Vertex
-from .check import OpCheck, edge_argument, position_argument
+from .check import OpCheck, Quad, edge_argument, position_argument, quad_around
 from .log import OperationLog, writer_for
 
 if TYPE_CHECKING:
@@ -62,25 +62,28 @@ __all__ = ["can_split", "split"]
 def can_split(mesh: "HalfedgeMesh", edge) -> OpCheck:
     """Whether ``edge`` can be split: a truthy :class:`OpCheck`, or falsy with the reason."""
     e, _ = edge_argument(mesh, edge, "split")
-    return _check(mesh, e)
+    return _check(e, _faced_quad(mesh, e))
 
 
-def _check(mesh: "HalfedgeMesh", e: int) -> OpCheck:
-    origin_of, prev_of, face_of = mesh._halfedge_vertex.item, mesh._halfedge_prev.item, mesh._halfedge_face.item
-    h0, h1 = 2 * e, 2 * e + 1
-    v0, v1 = origin_of(h0), origin_of(h1)
-    if face_of(h0) < 0 or face_of(h1) < 0:
-        return OpCheck.ok(f"boundary edge {e} (vertices {v0} and {v1}) can be split")
-    v2, v3 = origin_of(prev_of(h0)), origin_of(prev_of(h1))
-    if v2 == v3:
+def _check(e: int, quad: Quad) -> OpCheck:
+    a, b = (quad.v0, quad.v1) if quad.h0 == 2 * e else (quad.v1, quad.v0)  # the edge's own order
+    if quad.f1 < 0:
+        return OpCheck.ok(f"boundary edge {e} (vertices {a} and {b}) can be split")
+    if quad.v2 == quad.v3:
+        v2 = quad.v2
         return OpCheck.refuse(
             "back-to-back",
-            f"both triangles beside edge {e} (vertices {v0} and {v1}) have vertex {v2} opposite it: "
+            f"both triangles beside edge {e} (vertices {a} and {b}) have vertex {v2} opposite it: "
             f"they are glued back to back, and splitting the edge would join the new vertex to "
             f"vertex {v2} by two different edges.",
             (("edge", e), ("vertex", v2)),
         )
-    return OpCheck.ok(f"edge {e} (vertices {v0} and {v1}) can be split")
+    return OpCheck.ok(f"edge {e} (vertices {a} and {b}) can be split")
+
+
+def _faced_quad(mesh: "HalfedgeMesh", e: int) -> Quad:
+    """The :class:`Quad` of edge ``e`` from the side that has a face: at the boundary, h1 has none."""
+    return quad_around(mesh, 2 * e if mesh._halfedge_face.item(2 * e) >= 0 else 2 * e + 1)
 
 
 def split(mesh: "HalfedgeMesh", edge, position=None, *, log: OperationLog | None = None) -> Vertex:
@@ -100,32 +103,18 @@ def split(mesh: "HalfedgeMesh", edge, position=None, *, log: OperationLog | None
         ValueError: ``position`` is not three finite numbers (the mesh is unchanged).
     """
     e, _ = edge_argument(mesh, edge, "split")
-    position = position_argument(position, "split")
-    check = _check(mesh, e)
+    position = position_argument(mesh, e, position, "split")
+    # Gather, as for flip, from the side that has a face: at the boundary h1 has none,
+    # and v3, f1 do not exist.
+    quad = _faced_quad(mesh, e)
+    check = _check(e, quad)
     if not check:
         raise check.error()
-
-    # Gather, as for flip; at the boundary h1 has no face and v3, f1 do not exist.
-    next_of, prev_of = mesh._halfedge_next.item, mesh._halfedge_prev.item
-    origin_of, face_of = mesh._halfedge_vertex.item, mesh._halfedge_face.item
-    h0, h1 = 2 * e, 2 * e + 1
-    if face_of(h0) < 0:
-        h0, h1 = h1, h0
-    h2, h3, h4, h5 = next_of(h0), prev_of(h0), next_of(h1), prev_of(h1)
-    v0, v1, v2 = origin_of(h0), origin_of(h1), origin_of(h3)
-    f0, f1 = face_of(h0), face_of(h1)
+    h0, h1, h2, h3, h4, h5, v0, v1, v2, v3, f0, f1 = quad
     interior = f1 >= 0
-    v3 = origin_of(h5) if interior else -1
-    if position is None:
-        positions = mesh._positions
-        position = 0.5 * (positions[origin_of(2 * e)] + positions[origin_of(2 * e + 1)])
     if log is not None:
         log.begin("split", e, h0)
-        log.name(
-            h0=("halfedge", h0), h1=("halfedge", h1), h2=("halfedge", h2), h3=("halfedge", h3),
-            h4=("halfedge", h4), h5=("halfedge", h5), v0=("vertex", v0), v1=("vertex", v1),
-            v2=("vertex", v2), v3=("vertex", v3), f0=("face", f0), f1=("face", f1),
-        )
+        log.name(**quad.names())
         if not interior:
             log.notes.append(f"edge {e} is on the boundary: h1 = halfedge {h1} has no face, so only f0 is cut")
     write = writer_for(mesh, log)
@@ -154,12 +143,7 @@ def split(mesh: "HalfedgeMesh", edge, position=None, *, log: OperationLog | None
     write.link(h0, h_m2)
     write.link(h_m2, h3)
     write.set_face(h_m2, f0)
-    write.link(h_m1, h2)
-    write.link(h2, h_2m)
-    write.link(h_2m, h_m1)
-    write.set_face(h_m1, f2)
-    write.set_face(h2, f2)
-    write.set_face(h_2m, f2)
+    write.make_face(f2, h_m1, h2, h_2m)
     write.set_face_halfedge(f0, h0)
 
     if interior:

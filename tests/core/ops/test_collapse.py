@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 
 import halfedge_edu as hx
 from halfedge_edu.data import sample
-from halfedge_edu.core.ops import OperationLog, can_collapse, collapse
+from halfedge_edu.core.ops import OperationLog, apply_collapse, can_collapse, collapse, prepare_collapse
 from tests.core.ops.helpers import (
     assert_same_mesh, assert_unchanged, counts, open_tetrahedron, pillow, snapshot,
 )
@@ -203,3 +205,83 @@ def test_a_deleted_edge_is_an_index_error():
         can_collapse(mesh, 0)
     with pytest.raises(IndexError, match="halfedge 1 was deleted"):
         collapse(mesh, hx.Halfedge(mesh, 1))
+
+
+# ---- prepare, then do -------------------------------------------------------------------
+
+@pytest.mark.parametrize(("name", "h"), [("single_collapse", 0), ("cube", 0), ("cube", 1), ("strip", 0), ("open_patch", 3)])
+def test_prepare_then_apply_is_the_collapse(name, h):
+    by_collapse, by_steps = sample(name), sample(name)
+    assert can_collapse(by_collapse, h >> 1)
+    collapse(by_collapse, by_collapse.halfedge(h))
+    before = snapshot(by_steps)
+    record = prepare_collapse(by_steps, by_steps.halfedge(h))
+    assert_unchanged(by_steps, before)  # preparing changes nothing
+    assert (record.h_BA, record.vB, record.vA) == (h, by_steps.halfedge(h).vertex.index, by_steps.halfedge(h).tip.index)
+    apply_collapse(by_steps, record)
+    assert snapshot(by_steps) == snapshot(by_collapse)
+
+
+def test_a_refused_collapse_prepares_nothing():
+    mesh = sample("tetrahedron")
+    before = snapshot(mesh)
+    assert prepare_collapse(mesh, 0) is None and can_collapse(mesh, 0).rule == "tetrahedron"
+    assert_unchanged(mesh, before)
+
+
+def test_a_record_that_no_longer_fits_is_refused():
+    mesh = sample("single_collapse")
+    record = prepare_collapse(mesh, 0)
+    collapse(mesh, 0)
+    before = snapshot(mesh)
+    with pytest.raises(ValueError, match="prepare it again"):
+        apply_collapse(mesh, record)
+    assert_unchanged(mesh, before)
+
+
+def test_the_record_names_what_the_log_names():
+    mesh = sample("cube")
+    record = prepare_collapse(mesh, mesh.halfedge(1))
+    log = OperationLog()
+    apply_collapse(mesh, record, log=log)
+    assert log.named == {name: element for name, element in record.names().items() if element[1] >= 0}
+
+
+# ---- without the link condition (a teaching switch) ---------------------------------------
+
+def test_without_the_link_condition_the_cube_gets_a_doubled_edge_that_validate_names():
+    cube = sample("cube")
+    e = int(cube.find_edge(2, 4))
+    assert can_collapse(cube, e).rule == "link-condition"
+    vA = cube.collapse(e, check_link=False)
+    with pytest.raises(hx.MeshInvariantError) as caught:
+        cube.validate()
+    assert caught.value.rule == "duplicate-edge"
+    pair = {int(v) for v in re.findall(r"vertices (\d+) and (\d+)", str(caught.value))[0]}
+    assert pair == {vA.index, 1}  # the merged vertex and vertex 1, the neighbour both ends shared
+
+
+def test_without_the_link_condition_a_real_mesh_breaks_and_validate_says_why():
+    bunny = hx.sample("bunny")
+    e = next(e for e in range(bunny.n_edges) if can_collapse(bunny, e).rule == "link-condition")
+    collapse(bunny, e, check_link=False)
+    with pytest.raises(hx.MeshInvariantError, match="two different edges"):
+        bunny.validate()
+
+
+def test_without_the_link_condition_the_tetrahedron_becomes_a_pillow():
+    mesh = sample("tetrahedron")
+    collapse(mesh, 0, check_link=False)
+    assert (mesh.n_vertices, mesh.n_edges, mesh.n_faces) == (3, 3, 2)
+    assert all(not mesh.can_flip(e) and not mesh.can_split(e) and not mesh.can_collapse(e) for e in range(6)
+               if not mesh.edge_deleted[e])
+
+
+def test_without_the_link_condition_back_to_back_is_still_refused():
+    mesh = pillow()
+    before = snapshot(mesh)
+    with pytest.raises(hx.TopologyError) as caught:
+        collapse(mesh, 0, check_link=False)
+    assert caught.value.rule == "back-to-back"
+    assert_unchanged(mesh, before)
+    assert prepare_collapse(mesh, 0, check_link=False) is None

@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import pytest
+
 from halfedge_edu.data import sample
-from halfedge_edu.core.ops import link_condition, link_of_edge, link_of_vertex
+from halfedge_edu.core.ops import link_condition, link_of_edge, link_of_vertex, link_violation
 from halfedge_edu.core.ops.link import BOUNDARY, halfedge_between, one_ring, outgoing
 
 
@@ -61,3 +63,13 @@ def test_ring_walks_are_counter_clockwise_and_find_edges():
     assert [v.index for v in fan.vertex(0).neighbors()] == one_ring(fan, 0)
     assert halfedge_between(fan, 0, 1) == 0
     assert halfedge_between(fan, 0, 2) == -1
+
+
+@pytest.mark.parametrize("name", ["tetrahedron", "cube", "open_patch", "figure8", "lone_triangle", "strip"])
+def test_link_violation_is_the_set_difference_on_every_edge(name):
+    """The ring-only answer equals link(a) ∩ link(b) - link(ab) built from the full links."""
+    mesh = sample(name)
+    for e in range(mesh.n_edges):
+        a, b = mesh.edge(e).vertices
+        full = (link_of_vertex(mesh, a.index) & link_of_vertex(mesh, b.index)) - link_of_edge(mesh, e)
+        assert link_violation(mesh, e) == full, e

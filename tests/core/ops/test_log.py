@@ -117,3 +117,13 @@ def test_collapse_log_replays_in_every_case(name, halfedge):
 def test_an_empty_step_is_described_as_such():
     log, _ = logged(collapse, sample("cube"), 0)  # vB has degree 3: no other halfedge moves
     assert "(nothing to change here)" in log.describe()
+
+
+def test_every_field_a_log_records_is_one_the_writer_stores():
+    """Replay writes through the operations' own Writer: it must know every recorded field."""
+    recorded = set()
+    for operation, name, edge in ((flip, "octahedron", 0), (split, "open_patch", 0), (collapse, "single_collapse", 0)):
+        log, _ = logged(operation, sample(name), edge)
+        recorded |= {(c.kind, c.field) for c in log.changes if c.field not in ("created", "deleted")}
+    assert ("vertex", "position") in recorded and ("halfedge", "next") in recorded
+    assert recorded <= set(log_module.Writer.FIELDS)

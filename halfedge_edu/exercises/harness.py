@@ -1,0 +1,198 @@
+"""The harness every exercise check shares: the result type, running a learner's function, words.
+
+    from halfedge_edu.exercises.harness import CheckResult, failed, passed, run
+    status, answer = run(learner_function, mesh, 3)   # "ok", "error" or "timeout"
+    return failed("flip", checked, "cube", "edge 3 ...", ("halfedge", 6), mesh)
+
+A check module (``checks.py``, ``ops_checks.py``, ``algorithm_checks.py``,
+``remesh_checks.py``) runs the learner's function with :func:`run`, compares its answer
+with the library, and returns :func:`passed` or :func:`failed`; the small helpers at the
+end put points and slips into words the same way in every check.
+
+Attention: a learner's function that loops forever is stopped after
+``TIME_LIMIT`` seconds, where the platform allows it (a timer signal in the main
+thread on Linux and macOS); elsewhere such a function simply does not return.
+"""
+
+from __future__ import annotations
+
+import signal
+import threading
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+from halfedge_edu.core.mesh import HalfedgeMesh
+
+__all__ = [
+    "CheckResult", "TIME_LIMIT", "all_good", "close", "failed", "passed", "point_text", "run", "trouble", "unfinished",
+]
+
+#: Seconds a learner's function may run on one small mesh before the check gives up.
+TIME_LIMIT = 1.0
+
+
+# --------------------------------------------------------------------------------------
+# The result every check returns
+# --------------------------------------------------------------------------------------
+
+@dataclass
+class CheckResult:
+    """What a check found. ``bool(result)`` is True when everything agreed.
+
+    Attributes:
+        exercise: which exercise was checked ("build" or "one_ring").
+        passed: True when the learner's function agreed on every mesh.
+        message: the explanation (for a failure: the first difference, in words).
+        checked: names of the meshes the function agreed on before it stopped.
+        mesh_name: the mesh where the first difference was found (None if passed).
+        element: ``(kind, index)`` of the offending element, e.g. ``("halfedge", 4)``.
+        mesh: that mesh as a ``HalfedgeMesh`` (the reference), for :meth:`show`.
+    """
+
+    exercise: str
+    passed: bool
+    message: str
+    checked: list[str] = field(default_factory=list)
+    mesh_name: str | None = None
+    element: tuple | None = None
+    mesh: HalfedgeMesh | None = field(default=None, repr=False)
+
+    def __bool__(self) -> bool:
+        return self.passed
+
+    def __repr__(self) -> str:
+        return self.message
+
+    def _repr_pretty_(self, printer, cycle) -> None:  # IPython's display of the result
+        printer.text(self.message)
+
+    def show(self, **scene_options):
+        """A picture of the offending element on its mesh (an IPython image).
+
+        Needs pyvista. Returns None when there is nothing to show (the check passed,
+        or the problem is not about one element).
+        """
+        if self.passed or self.mesh is None or self.element is None:
+            return None
+        from IPython.display import Image
+
+        from halfedge_edu.viz.scene import HalfedgeScene
+
+        kind, index = self.element
+        scene = HalfedgeScene(self.mesh, **scene_options)
+        try:
+            if kind == "halfedge":
+                scene.show_halfedge(index)
+            elif kind == "vertex":
+                scene.show_one_ring(index)
+            elif kind == "face":
+                scene.set_roles({"face": [index]})
+            return Image(data=scene.screenshot())
+        finally:
+            scene.close()
+
+
+def passed(exercise: str, checked: list[str], praise: str) -> CheckResult:
+    """The congratulation for a learner's function that agreed with the reference on every mesh."""
+    names = ", ".join(checked)
+    return CheckResult(exercise, True, f"All good! Your {exercise} agrees with the reference on {len(checked)} meshes "
+                       f"({names}). {praise}", list(checked))
+
+
+def failed(exercise: str, checked: list[str], mesh_name: str | None, text: str,
+            element: tuple | None = None, mesh: HalfedgeMesh | None = None) -> CheckResult:
+    """The first difference, in words: on which mesh, what is wrong (``text``), what agreed before.
+
+    ``element`` and ``mesh`` let :meth:`CheckResult.show` draw the offending element.
+    """
+    where = f"On {mesh_name!r}: " if mesh_name else ""
+    if not where:
+        text = text[:1].upper() + text[1:]
+    before = f" (It agreed on {', '.join(checked)} first.)" if checked else ""
+    return CheckResult(exercise, False, f"Not yet. {where}{text}{before}", list(checked), mesh_name, element, mesh)
+
+
+# --------------------------------------------------------------------------------------
+# Running a learner's function safely
+# --------------------------------------------------------------------------------------
+
+class _TookTooLong(BaseException):
+    """Raised by the timer; a BaseException, so a learner's ``except Exception`` cannot swallow it."""
+
+
+@contextmanager
+def _time_limit(seconds: float):
+    """Raise _TookTooLong inside the body after ``seconds``, where a timer signal is possible."""
+    usable = hasattr(signal, "setitimer") and threading.current_thread() is threading.main_thread()
+    if not usable:
+        yield
+        return
+
+    def stop(signum, frame):
+        raise _TookTooLong
+
+    previous = signal.signal(signal.SIGALRM, stop)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+
+
+def run(function: Callable, *args):
+    """Call the learner's function: ``("ok", value)``, ``("error", exception)`` or ``("timeout", None)``."""
+    try:
+        with _time_limit(TIME_LIMIT):
+            return "ok", function(*args)
+    except _TookTooLong:
+        return "timeout", None
+    except Exception as error:  # the learner's bug, reported in words below
+        return "error", error
+
+
+
+
+def unfinished(function: Callable, name: str) -> str | None:
+    """The "fill in the blanks" message if the function's own code still holds a ``...``."""
+    code = getattr(function, "__code__", None)
+    if code is not None and any(constant is Ellipsis for constant in code.co_consts):
+        return (f"your {name} still has blanks (...) in it. Fill each one in (no ... left) "
+                f"and run the check again.")
+    return None
+
+
+# --------------------------------------------------------------------------------------
+# Words shared by the checks of points (chapters 09 to 12)
+# --------------------------------------------------------------------------------------
+
+def point_text(point) -> str:
+    """A point or vector as ``(x, y, z)`` with four significant digits."""
+    return "(" + ", ".join(f"{float(c):.4g}" for c in np.asarray(point, dtype=np.float64).ravel()) + ")"
+
+
+def close(a, b) -> bool:
+    """Whether two answers agree, to the tolerance every check of points uses."""
+    return bool(np.allclose(a, b, rtol=1e-7, atol=1e-9))
+
+
+def all_good(exercise: str, checked: list[str], noun: str, praise: str) -> CheckResult:
+    """The congratulation: what agreed, on how many cases, and what it means."""
+    verb = "match" if " and " in exercise else "matches"
+    return CheckResult(exercise, True, f"All good! Your {exercise} {verb} the library on {len(checked)} {noun} "
+                       f"({', '.join(checked)}). {praise}", list(checked))
+
+
+def trouble(status: str, answer, name: str) -> str | None:
+    """Words for a learner function that timed out or raised (``run``'s status), else None."""
+    if status == "timeout":
+        return f"your {name} did not finish within {TIME_LIMIT:g} s: a loop probably never ends."
+    if status == "error":
+        if isinstance(answer, NotImplementedError) or "ellipsis" in str(answer).lower():
+            return f"{name} is not finished yet ({type(answer).__name__}: {answer}). Fill it in and check again."
+        return (f"your {name} raised {type(answer).__name__}: {answer}. Call it yourself on that case "
+                f"to see the full traceback.")
+    return None

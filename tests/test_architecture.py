@@ -1,0 +1,129 @@
+"""The package's imports run one way: no module imports a layer above its own.
+
+Each module of ``halfedge_edu`` is read with :mod:`ast` (nothing is imported), and every
+import in it is collected: module-level ones, the lazy ones inside functions and
+methods, relative (``from ..core import x``) and absolute (``import halfedge_edu.io``).
+Each import is an arrow from the importing module's layer to the imported module's
+layer; an arrow that is not in :data:`ALLOWED` runs up and fails the test, with the
+file, the line and the arrow in the message.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+from typing import NamedTuple
+
+import halfedge_edu
+
+PACKAGE_DIR = Path(halfedge_edu.__file__).resolve().parent
+
+#: The layer -> layers it may import (besides itself). Why this shape: the mesh (``core``,
+#: with its local operations in ``core/ops``) is the foundation and knows nothing above
+#: it; reading and writing files (``io``) and the whole-mesh algorithms
+#: (``algorithms``) work on the mesh only; the bundled samples (``data``) are files
+#: read into meshes; pictures and widgets (``viz``) draw what the layers below make;
+#: and only the applications on top (``exercises``, ``figures``, the ``cli``, the
+#: ``__main__`` entry point and the top-level ``__init__`` that gathers the public
+#: names) may use the pictures and each other. ``package`` is ``halfedge_edu/__init__``.
+ALLOWED: dict[str, frozenset[str]] = {
+    "core": frozenset(),
+    "io": frozenset({"core"}),
+    "algorithms": frozenset({"core"}),
+    "data": frozenset({"core", "io"}),
+    "viz": frozenset({"core", "algorithms", "data"}),
+    "exercises": frozenset({"core", "io", "algorithms", "data", "viz"}),
+    "figures": frozenset({"core", "io", "algorithms", "data", "viz"}),
+    "cli": frozenset({"core", "io", "algorithms", "data", "viz", "package", "exercises", "figures"}),
+    "__main__": frozenset({"core", "io", "algorithms", "data", "viz", "package", "exercises", "figures", "cli"}),
+    "package": frozenset({"core", "io", "algorithms", "data", "viz", "exercises", "figures", "cli"}),
+}
+
+
+class Arrow(NamedTuple):
+    """One import: ``source`` (a file of the package) imports ``target`` (a module name) at ``line``."""
+
+    source: Path
+    line: int
+    target: str
+
+
+def module_name(path: Path) -> str:
+    """``halfedge_edu.core.ops.flip`` for ``halfedge_edu/core/ops/flip.py`` (packages without ``__init__``)."""
+    parts = list(path.relative_to(PACKAGE_DIR.parent).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+def is_package(path: Path) -> bool:
+    return path.name == "__init__.py"
+
+
+def layer_of(module: str) -> str:
+    """The layer of a module name of the package: its first component below ``halfedge_edu``."""
+    parts = module.split(".")
+    return "package" if len(parts) == 1 else parts[1]
+
+
+def _is_module(name: str) -> bool:
+    """Whether a dotted name of the package is a module or a package on disk."""
+    relative = Path(*name.split(".")[1:]) if "." in name else Path()
+    base = PACKAGE_DIR / relative
+    return base.with_suffix(".py").is_file() or (base / "__init__.py").is_file()
+
+
+def imports_of(path: Path) -> list[Arrow]:
+    """Every import of a package module into the package, wherever it stands in the file."""
+    here = module_name(path)
+    package = here if is_package(path) else here.rpartition(".")[0]
+    arrows = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), filename=str(path))):
+        if isinstance(node, ast.Import):
+            arrows += [Arrow(path, node.lineno, alias.name) for alias in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                anchor = package.split(".")
+                base = ".".join(anchor[: len(anchor) - (node.level - 1)])
+                base = f"{base}.{node.module}" if node.module else base
+            else:
+                base = node.module or ""
+            for alias in node.names:
+                # ``from . import ops`` names a module; ``from .core import HalfedgeMesh`` a name in one.
+                candidate = f"{base}.{alias.name}"
+                arrows.append(Arrow(path, node.lineno, candidate if _is_module(candidate) else base))
+    inside = (arrow for arrow in arrows if arrow.target.split(".")[0] == "halfedge_edu")
+    return sorted(set(inside), key=lambda arrow: (arrow.line, arrow.target))
+
+
+def upward_arrows() -> list[str]:
+    """One sentence per import that runs up: ``file:line: layer -> layer (imports module)``."""
+    found = []
+    for path in sorted(PACKAGE_DIR.rglob("*.py")):
+        source_layer = layer_of(module_name(path))
+        for arrow in imports_of(path):
+            target_layer = layer_of(arrow.target)
+            if target_layer != source_layer and target_layer not in ALLOWED[source_layer]:
+                where = path.relative_to(PACKAGE_DIR.parent)
+                found.append(f"{where}:{arrow.line}: {source_layer} -> {target_layer} (imports {arrow.target})")
+    return found
+
+
+def test_every_layer_is_in_the_table():
+    layers = {layer_of(module_name(path)) for path in PACKAGE_DIR.rglob("*.py")}
+    assert layers <= set(ALLOWED), f"layers missing from ALLOWED: {sorted(layers - set(ALLOWED))}"
+
+
+def test_imports_run_one_way():
+    upward = upward_arrows()
+    assert not upward, "imports that run up the layers:\n" + "\n".join(upward)
+
+
+def test_the_reader_sees_lazy_and_relative_imports():
+    """The reader itself: a lazy relative import inside a function is an arrow too."""
+    probe = PACKAGE_DIR / "core" / "mesh.py"
+    targets = {arrow.target for arrow in imports_of(probe)}
+    assert "halfedge_edu.core.ops" in targets  # ``from . import ops`` at module level
+    assert "halfedge_edu.core.validate" in targets  # ``from .validate import validate`` inside a method
+    assert layer_of("halfedge_edu.viz.scene") == "viz"
+    assert layer_of("halfedge_edu") == "package"
