@@ -26,18 +26,26 @@ PACKAGE_DIR = Path(halfedge_edu.__file__).resolve().parent
 #: and only the applications on top (``exercises``, ``figures``, the ``cli``, the
 #: ``__main__`` entry point and the top-level ``__init__`` that gathers the public
 #: names) may use the pictures and each other. ``package`` is ``halfedge_edu/__init__``.
+#: ``_extras`` (which optional packages an extra brings, and the error naming it) imports
+#: nothing of the package, so any layer may ask it.
+_BASE = frozenset({"_extras"})
 ALLOWED: dict[str, frozenset[str]] = {
-    "core": frozenset(),
-    "io": frozenset({"core"}),
-    "algorithms": frozenset({"core"}),
-    "data": frozenset({"core", "io"}),
-    "viz": frozenset({"core", "algorithms", "data"}),
-    "exercises": frozenset({"core", "io", "algorithms", "data", "viz"}),
-    "figures": frozenset({"core", "io", "algorithms", "data", "viz"}),
-    "cli": frozenset({"core", "io", "algorithms", "data", "viz", "package", "exercises", "figures"}),
-    "__main__": frozenset({"core", "io", "algorithms", "data", "viz", "package", "exercises", "figures", "cli"}),
-    "package": frozenset({"core", "io", "algorithms", "data", "viz", "exercises", "figures", "cli"}),
+    "_extras": frozenset(),
+    "core": _BASE,
+    "io": _BASE | {"core"},
+    "algorithms": _BASE | {"core"},
+    "data": _BASE | {"core", "io"},
+    "viz": _BASE | {"core", "algorithms", "data"},
+    "exercises": _BASE | {"core", "io", "algorithms", "data", "viz"},
+    "figures": _BASE | {"core", "io", "algorithms", "data", "viz"},
+    "cli": _BASE | {"core", "io", "algorithms", "data", "viz", "package", "exercises", "figures"},
+    "__main__": _BASE | {"core", "io", "algorithms", "data", "viz", "package", "exercises", "figures", "cli"},
+    "package": _BASE | {"core", "io", "algorithms", "data", "viz", "exercises", "figures", "cli"},
 }
+
+#: Modules that belong to another layer than their name says: ``course.py`` is the
+#: ``course`` subcommand of the command line, kept in a file of its own.
+SAME_LAYER_AS: dict[str, str] = {"course": "cli"}
 
 
 class Arrow(NamedTuple):
@@ -63,7 +71,7 @@ def is_package(path: Path) -> bool:
 def layer_of(module: str) -> str:
     """The layer of a module name of the package: its first component below ``halfedge_edu``."""
     parts = module.split(".")
-    return "package" if len(parts) == 1 else parts[1]
+    return "package" if len(parts) == 1 else SAME_LAYER_AS.get(parts[1], parts[1])
 
 
 def _is_module(name: str) -> bool:
