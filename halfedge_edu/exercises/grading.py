@@ -317,8 +317,15 @@ def _execute(notebook, path: Path, cell_timeout: float, total_timeout: float, ke
         for sibling in path.parent.iterdir() if path.parent.is_dir() else []:
             if sibling.is_file() and sibling.suffix != ".ipynb" and sibling.stat().st_size < 50_000_000:
                 shutil.copy2(sibling, Path(folder) / sibling.name)
+        grading_cell = notebook.cells[-1]
+
+        def timeout_of(cell) -> int:
+            # The learner's cells get cell_timeout; the grader's own cell runs every check
+            # (each learner call already has its own limit), so only the total bounds it.
+            return int(total_timeout) if cell.source == grading_cell.source else int(cell_timeout)
+
         client = NotebookClient(
-            notebook, timeout=int(cell_timeout), interrupt_on_timeout=True, allow_errors=True,
+            notebook, timeout_func=timeout_of, interrupt_on_timeout=True, allow_errors=True,
             kernel_name=kernel_name, resources={"metadata": {"path": folder}},
         )
 

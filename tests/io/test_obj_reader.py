@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import io
 import os
-import time
 from pathlib import Path
 
 import numpy as np
@@ -156,17 +155,6 @@ def test_spot_reads_like_trimesh_reads_it():
     reference = trimesh.load(MESHES / "spot.obj", force="mesh", process=False, maintain_order=True)
     np.testing.assert_array_equal(data.vertices, reference.vertices)
     np.testing.assert_array_equal(data.faces, reference.faces)
-
-
-def test_bunny_parses_in_well_under_a_second():
-    best = min(_seconds(lambda: read_obj(MESHES / "stanford-bunny.obj")) for _ in range(3))
-    assert best < 1.0, f"reading the 2.4 MB bunny took {best:.2f} s"
-
-
-def _seconds(function) -> float:
-    start = time.perf_counter()
-    function()
-    return time.perf_counter() - start
 
 
 # ---------------------------------------------------------------- encodings and line ends

@@ -1,0 +1,52 @@
+"""Reading OBJ files: our own parser (taught in chapter 01) beside trimesh's, same run.
+
+    python benchmarks/bench_io.py [--repeat 5]
+
+Prints the median of several reads of each bundled mesh for ``hx.read_obj`` (arrays
+only), ``hx.load`` (arrays plus the halfedge build) and ``trimesh.load`` (its own OBJ
+reader, ``process=False`` so it does no more than read), and their ratio.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import time
+from pathlib import Path
+
+import trimesh
+
+import halfedge_edu as hx
+
+DATA = Path(hx.__file__).resolve().parent / "data"
+
+
+def median_seconds(function, repeat: int) -> float:
+    """The median of ``repeat`` timed calls (the middle run, robust to a noisy neighbour)."""
+    runs = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        function()
+        runs.append(time.perf_counter() - start)
+    return statistics.median(runs)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=5)
+    parser.add_argument("--quick", action="store_true", help="fewer repeats (run_all passes it)")
+    options = parser.parse_args()
+    repeat = 3 if options.quick else options.repeat
+
+    print(f"OBJ reading, median of {repeat} runs (ratio = ours / trimesh.load)")
+    print(f"{'mesh':<22}{'faces':>8}{'read_obj':>11}{'hx.load':>11}{'trimesh':>11}{'read ratio':>12}")
+    for path in sorted(DATA.glob("*.obj")):
+        faces = len(hx.read_obj(path).faces)
+        ours = median_seconds(lambda: hx.read_obj(path), repeat)
+        loaded = median_seconds(lambda: hx.load(path), repeat)
+        peer = median_seconds(lambda: trimesh.load(path, process=False, force="mesh"), repeat)
+        print(f"{path.name:<22}{faces:>8}{ours:>10.3f}s{loaded:>10.3f}s{peer:>10.3f}s{ours / peer:>11.2f}x")
+
+
+if __name__ == "__main__":
+    main()
