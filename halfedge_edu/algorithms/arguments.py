@@ -22,7 +22,7 @@ import numbers
 
 import numpy as np
 
-from ..core.errors import MeshInputError
+from ..core.errors import MeshInputError, TopologyError
 from ..core.mesh import HalfedgeMesh
 
 #: Largest coordinate size (absolute value) the algorithms accept. Their formulas
@@ -79,6 +79,33 @@ def check_mesh(mesh, name: str = "mesh") -> None:
             f"coordinates are too large for the computation (at most {MAX_COORDINATE:.0e}, so that the "
             f"products the algorithms take stay finite); scale the mesh down",
             element=("vertex", vertex),
+        )
+
+
+def refuse_pillows(mesh: HalfedgeMesh, what: str) -> None:
+    """Raise :class:`~halfedge_edu.TopologyError` if two faces of ``mesh`` are glued back to back.
+
+    ``from_faces`` refuses such a "pillow" (two triangles on the same three vertices),
+    but a mesh built from hand-made arrays can hold one. No edge of it can be split
+    (the new vertex would be joined to the opposite vertex twice), flipped or collapsed,
+    and a result holding it could not be rebuilt, so the algorithms that change
+    connectivity (``what``) refuse it up front. Found as an interior edge whose two
+    opposite corners are the same vertex, over all live edges at once.
+    """
+    edges = np.flatnonzero(~mesh.edge_deleted)                           # (E_live,)
+    first, second = 2 * edges, 2 * edges + 1
+    interior = (mesh.halfedge_face[first] >= 0) & (mesh.halfedge_face[second] >= 0)
+    opposite_first = mesh.halfedge_vertex[mesh.halfedge_prev[first]]   # (E_live,)
+    opposite_second = mesh.halfedge_vertex[mesh.halfedge_prev[second]]
+    glued = np.flatnonzero(interior & (opposite_first == opposite_second))
+    if len(glued):
+        e = int(edges[glued[0]])
+        f, g = int(mesh.halfedge_face[2 * e]), int(mesh.halfedge_face[2 * e + 1])
+        raise TopologyError(
+            f"{what} cannot work on this mesh: faces {min(f, g)} and {max(f, g)} are glued back to back along "
+            f"all three edges (a two-triangle 'pillow' on vertex {int(opposite_first[glued[0]])} and edge {e}, "
+            f"which from_faces refuses as a duplicate face), and none of its edges can be split, flipped or "
+            f"collapsed; remove one of the two faces"
         )
 
 
@@ -161,6 +188,7 @@ def check_simplify(mesh, target_faces, boundary_weight=100.0, max_normal_angle=8
     ``candidate_fraction`` is a fraction of the edges, above 0 and at most 1.
     """
     check_mesh(mesh)
+    refuse_pillows(mesh, "simplification")
     whole_number(target_faces, "target_faces", minimum=1)
     real_number(boundary_weight, "boundary_weight", minimum=0.0)
     real_number(max_normal_angle, "max_normal_angle", minimum=0.0, maximum=180.0)
@@ -174,6 +202,7 @@ def check_remesh(mesh, target_length=None, iterations=5, project=True, progress=
     ``target_length`` is None (the mean edge length) or a positive length.
     """
     check_mesh(mesh)
+    refuse_pillows(mesh, "remeshing")
     if target_length is not None:
         real_number(target_length, "target_length", above=0.0)
     whole_number(iterations, "iterations", minimum=0)

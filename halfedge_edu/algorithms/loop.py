@@ -49,7 +49,7 @@ import numpy as np
 from ..core import Edge, HalfedgeMesh, Vertex
 from ..core.build import INDEX, HalfedgeArrays
 from ._progress import progress_range
-from .arguments import callback, check_mesh, choice, flag, whole_number
+from .arguments import callback, check_mesh, choice, flag, refuse_pillows, whole_number
 
 VERTEX_WEIGHTS = ("warren", "loop")
 
@@ -80,6 +80,7 @@ def loop_subdivide(
     whole_number(levels, "levels", minimum=0)
     choice(weights, "weights", VERTEX_WEIGHTS)
     flag(progress, "progress")
+    refuse_pillows(mesh, "Loop subdivision")
     current = mesh
     if mesh.has_garbage or levels == 0:
         current = mesh.copy()
@@ -296,6 +297,7 @@ def loop_subdivide_by_operations(
     check_mesh(mesh)
     choice(weights, "weights", VERTEX_WEIGHTS)
     callback(on_step, "on_step")
+    refuse_pillows(mesh, "Loop subdivision")
     work = mesh.copy()
     if work.has_garbage:
         work.garbage_collect()

@@ -28,7 +28,7 @@ import numpy as np
 
 from ..core.errors import MeshWarning
 from ..core.mesh import HalfedgeMesh
-from .arguments import callback, check_mesh, real_number, whole_number
+from .arguments import callback, check_mesh, real_number, refuse_pillows, whole_number
 from .simplify import PULL_TO_MIDPOINT, REFINEMENT_STEPS, accumulate, boundary_quadrics, face_quadrics
 
 
@@ -210,6 +210,7 @@ def simplify_sequential(
         A new, garbage-collected :class:`HalfedgeMesh`.
     """
     check_mesh(mesh)
+    refuse_pillows(mesh, "simplification")
     whole_number(target_faces, "target_faces", minimum=1)
     real_number(max_normal_angle, "max_normal_angle", minimum=0.0, maximum=180.0)
     callback(on_step, "on_step")

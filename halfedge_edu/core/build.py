@@ -236,7 +236,7 @@ def _refuse_pillows(faces: np.ndarray, n_vertices: int, face_lines, source) -> N
         f"three vertices {vertex_set[order[pairs[0]]].tolist()} in opposite orders: glued along all "
         f"three edges they form a closed two-triangle 'pillow' that encloses nothing, which no "
         f"algorithm can refine or simplify (Loop subdivision would join two vertices by two edges); "
-        f"a mesh has at most one face on any three vertices (load with repair=True to drop the duplicate)",
+        f"a mesh has at most one face on any three vertices, and repairing drops the second",
         element=("face", g),
         line=_line(g, face_lines),
     )
