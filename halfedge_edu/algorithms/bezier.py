@@ -25,6 +25,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..core import HalfedgeMesh
+from ..core.build import real_array
+from ..core.errors import MeshInputError
+from .arguments import real_number, whole_number
 
 
 def _control_array(control_points, min_ndim: int, name: str) -> np.ndarray:
@@ -49,8 +52,8 @@ def de_casteljau(control_points, t: float) -> list[np.ndarray]:
         ``levels[k]`` has ``n + 1 - k`` points, and ``levels[-1]`` (1, d) holds the
         curve's point at ``t``.
     """
-    points = _control_array(control_points, 2, "control_points")
-    t = float(t)
+    points = _control_array(real_array(control_points, "control_points"), 2, "control_points")
+    t = real_number(t, "t")
     levels = [points]
     while len(levels[-1]) > 1:
         previous = levels[-1]
@@ -77,10 +80,9 @@ def bezier_curve(control_points, samples: int = 64) -> np.ndarray:
     Returns:
         (samples, d) float64 points along the curve.
     """
-    points = _control_array(control_points, 2, "control_points")
-    if int(samples) != samples or samples < 2:
-        raise ValueError(f"samples must be a whole number >= 2, got {samples!r}")
-    return _evaluate(points, np.linspace(0.0, 1.0, int(samples)))
+    points = _control_array(real_array(control_points, "control_points"), 2, "control_points")
+    samples = whole_number(samples, "samples", minimum=2)
+    return _evaluate(points, np.linspace(0.0, 1.0, samples))
 
 
 def bezier_surface_points(control_grid, resolution=(16, 16)) -> np.ndarray:
@@ -89,7 +91,7 @@ def bezier_surface_points(control_grid, resolution=(16, 16)) -> np.ndarray:
     Row ``i`` is ``u = i / (n_u - 1)`` and column ``j`` is ``v = j / (n_v - 1)``; ``u``
     runs along the first axis of ``control_grid``, ``v`` along the second.
     """
-    grid = _control_array(control_grid, 3, "control_grid")
+    grid = _control_array(real_array(control_grid, "control_grid"), 3, "control_grid")
     if grid.shape[2] != 3:
         raise ValueError(f"control_grid must have shape (m + 1, n + 1, 3), got {grid.shape}")
     n_u, n_v = _resolution(resolution)
@@ -99,10 +101,11 @@ def bezier_surface_points(control_grid, resolution=(16, 16)) -> np.ndarray:
 
 
 def _resolution(resolution) -> tuple[int, int]:
-    n_u, n_v = (resolution, resolution) if np.isscalar(resolution) else resolution
-    if int(n_u) != n_u or int(n_v) != n_v or n_u < 2 or n_v < 2:
-        raise ValueError(f"resolution must be whole numbers >= 2 (samples along u and v), got {resolution!r}")
-    return int(n_u), int(n_v)
+    sizes = (resolution, resolution) if np.isscalar(resolution) else tuple(resolution)
+    if len(sizes) != 2:
+        raise MeshInputError(f"resolution must be one whole number or two (samples along u and v), got {resolution!r}",
+                             element=("argument", "resolution"))
+    return whole_number(sizes[0], "resolution", minimum=2), whole_number(sizes[1], "resolution", minimum=2)
 
 
 def grid_triangles(n_u: int, n_v: int) -> np.ndarray:
@@ -112,6 +115,7 @@ def grid_triangles(n_u: int, n_v: int) -> np.ndarray:
     ``b = (i + 1, j)``, ``c = (i + 1, j + 1)``, ``d = (i, j + 1)`` becomes ``[a, b, c]``
     and ``[a, c, d]``, so the normals point along ``d/du x d/dv``.
     """
+    n_u, n_v = whole_number(n_u, "n_u", minimum=2), whole_number(n_v, "n_v", minimum=2)
     i, j = np.meshgrid(np.arange(n_u - 1), np.arange(n_v - 1), indexing="ij")
     a = (i * n_v + j).ravel()                                              # (Q,) square corners
     b, c, d = a + n_v, a + n_v + 1, a + 1

@@ -49,6 +49,7 @@ import numpy as np
 from ..core import Edge, HalfedgeMesh, Vertex
 from ..core.build import INDEX, HalfedgeArrays
 from ._progress import progress_range
+from .arguments import callback, check_mesh, choice, flag, refuse_pillows, whole_number
 
 VERTEX_WEIGHTS = ("warren", "loop")
 
@@ -75,10 +76,11 @@ def loop_subdivide(
     Attention: a mesh with deleted elements is compacted first (on a copy), so vertex
     ``V + e`` refers to the compacted numbering (``mesh.garbage_collect()``'s maps).
     """
-    if int(levels) != levels or levels < 0:
-        raise ValueError(f"levels must be a whole number >= 0, got {levels!r}")
-    if weights not in VERTEX_WEIGHTS:
-        raise ValueError(f"weights must be one of {VERTEX_WEIGHTS}, got {weights!r}")
+    check_mesh(mesh)
+    whole_number(levels, "levels", minimum=0)
+    choice(weights, "weights", VERTEX_WEIGHTS)
+    flag(progress, "progress")
+    refuse_pillows(mesh, "Loop subdivision")
     current = mesh
     if mesh.has_garbage or levels == 0:
         current = mesh.copy()
@@ -99,6 +101,8 @@ def loop_positions(mesh: HalfedgeMesh, weights: str = "warren") -> tuple[np.ndar
         ``(vertex_points (V, 3), edge_points (E, 3))``: where each old vertex moves and
         where the new vertex on each edge goes.
     """
+    check_mesh(mesh)
+    choice(weights, "weights", VERTEX_WEIGHTS)
     positions = mesh.positions                                      # (V, 3)
     n_vertices = len(positions)
     origin = mesh.halfedge_vertex                                   # (H,)
@@ -290,8 +294,10 @@ def loop_subdivide_by_operations(
     """
     from ..core.ops import flip, split
 
-    if weights not in VERTEX_WEIGHTS:
-        raise ValueError(f"weights must be one of {VERTEX_WEIGHTS}, got {weights!r}")
+    check_mesh(mesh)
+    choice(weights, "weights", VERTEX_WEIGHTS)
+    callback(on_step, "on_step")
+    refuse_pillows(mesh, "Loop subdivision")
     work = mesh.copy()
     if work.has_garbage:
         work.garbage_collect()

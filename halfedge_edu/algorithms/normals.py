@@ -30,6 +30,7 @@ import numpy as np
 
 from ..core import HalfedgeMesh
 from ..core.arrays import face_cross
+from .arguments import check_mesh, choice
 
 VERTEX_WEIGHTINGS = ("area", "angle", "uniform")
 
@@ -57,11 +58,13 @@ def face_normals(mesh: HalfedgeMesh) -> np.ndarray:
         zero (never NaN). For a mesh without deleted faces, row ``f`` is face ``f``,
         in the same order as the faces of ``mesh.to_arrays()``.
     """
+    check_mesh(mesh)
     return _unit_rows(face_cross(face_corners(mesh)))
 
 
 def face_areas(mesh: HalfedgeMesh) -> np.ndarray:
     """(n_face_slots,) area of every face (zero for deleted faces)."""
+    check_mesh(mesh)
     cross = face_cross(face_corners(mesh))
     return 0.5 * np.sqrt(np.einsum("ij,ij->i", cross, cross))
 
@@ -73,6 +76,7 @@ def corner_angles(mesh: HalfedgeMesh) -> np.ndarray:
     ``atan2(|u x w|, u . w)``, which stays accurate for angles near 0 and pi (where
     ``arccos`` of a dot product loses digits). Deleted faces get zeros.
     """
+    check_mesh(mesh)
     points = face_corners(mesh)                                    # (F, 3, 3)
     along = np.roll(points, -1, axis=1) - points                   # (F, 3, 3) to the next corner
     back = np.roll(points, 1, axis=1) - points                     # (F, 3, 3) to the previous one
@@ -116,8 +120,8 @@ def vertex_normals(mesh: HalfedgeMesh, weighting: str = "area") -> np.ndarray:
     over "all corners that belong to vertex v" is a ``np.bincount`` with weights, once
     per coordinate, which runs in C over all corners; no loop over vertices.
     """
-    if weighting not in VERTEX_WEIGHTINGS:
-        raise ValueError(f"weighting must be one of {VERTEX_WEIGHTINGS}, got {weighting!r}")
+    check_mesh(mesh)
+    choice(weighting, "weighting", VERTEX_WEIGHTINGS)
     corners = mesh.face_vertices()                                 # (F, 3) int
     live = ~mesh.face_deleted
     if weighting == "area":

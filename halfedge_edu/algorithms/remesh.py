@@ -47,12 +47,14 @@ from typing import Iterator, NamedTuple
 
 import numpy as np
 
+from ..core.errors import MeshInputError
 from ..core.mesh import HalfedgeMesh
 from ._progress import progress_range
 from ..core.arrays import (
     EdgeTable, compact, cross_rows, edge_table, expand, face_cross, merge_vertices, vertex_faces,
     vertex_neighbours,
 )
+from .arguments import check_mesh, check_remesh, whole_number
 from .collapse_rounds import choose_round, collapse_topology_ok, no_turned_faces
 from .normals import area_weighted_vertex_normals
 
@@ -605,6 +607,9 @@ def remesh(
     20 degrees is never flipped, and no collapse may swing a face by more than 30
     degrees, but smoothing may still move vertices across a crease and round it off.
     """
+    check_remesh(mesh, target_length, iterations, project, progress)
+    if mesh.n_faces == 0:
+        return _to_mesh(*mesh.to_arrays())
     target_length, iterations = _check_arguments(target_length, iterations)
     vertices, faces = mesh.to_arrays()
     for _, _, vertices, faces in _phases(mesh, target_length, iterations, project, progress):
@@ -625,6 +630,9 @@ def remesh_history(mesh: HalfedgeMesh, target_length: float | None = None, **opt
     arguments = inspect.signature(remesh).bind(mesh, target_length, **options)
     arguments.apply_defaults()
     given = arguments.arguments
+    check_remesh(**given)
+    if mesh.n_faces == 0:
+        return [RemeshStep(0, "input", mesh.copy())]
     target_length, iterations = _check_arguments(given["target_length"], given["iterations"])
     return list(_steps(mesh, target_length, iterations, given["project"], given["progress"]))
 
@@ -643,6 +651,9 @@ def remesh_step_by_step(
     ``"project"``. Each mesh is new. The work happens as you ask for the next step, so a
     stepper can stop whenever it likes. The arguments are those of :func:`remesh`.
     """
+    check_remesh(mesh, target_length, iterations, project)
+    if mesh.n_faces == 0:
+        return iter([RemeshStep(0, "input", mesh.copy())])
     target_length, iterations = _check_arguments(target_length, iterations)
     return _steps(mesh, target_length, iterations, project, False)
 
@@ -703,7 +714,14 @@ def quality_report(mesh: HalfedgeMesh, bins: int = 30) -> MeshQuality:
         mesh: the mesh (only read).
         bins: how many bins the edge-length histogram (from 0 to the longest edge) and the
             smallest-angle histogram (0 to 60 degrees) have.
+
+    Raises:
+        MeshInputError: the mesh has no faces (there is nothing to measure).
     """
+    check_mesh(mesh)
+    whole_number(bins, "bins", minimum=1)
+    if mesh.n_faces == 0:
+        raise MeshInputError("quality_report: the mesh has no faces, so there are no edges or angles to measure")
     vertices, faces = mesh.to_arrays()
     table = edge_table(faces, len(vertices))
     lengths = _edge_lengths(vertices, table.edges)

@@ -44,6 +44,7 @@ from ..core.arrays import (
 )
 from ..core.errors import MeshWarning
 from ..core.mesh import HalfedgeMesh
+from .arguments import check_simplify
 from .collapse_rounds import choose_round, collapse_topology_ok, no_turned_faces
 
 
@@ -296,6 +297,9 @@ def simplify(
         A new :class:`HalfedgeMesh`. To learn how many rounds it took and whether it
         reached the target, call :func:`simplify_with_report` instead.
     """
+    check_simplify(mesh, target_faces, boundary_weight, max_normal_angle, candidate_fraction, progress)
+    if mesh.n_faces == 0:
+        return _empty_result(mesh, target_faces).mesh
     return _simplify(mesh, target_faces, boundary_weight, max_normal_angle, candidate_fraction, progress).mesh
 
 
@@ -312,7 +316,17 @@ def simplify_with_report(mesh: HalfedgeMesh, target_faces: int, **options) -> Si
     # and a misspelt option is a TypeError naming it.
     arguments = inspect.signature(simplify).bind(mesh, target_faces, **options)
     arguments.apply_defaults()
+    check_simplify(**arguments.arguments)
+    if mesh.n_faces == 0:
+        return _empty_result(mesh, target_faces)
     return _simplify(**arguments.arguments)
+
+
+def _empty_result(mesh: HalfedgeMesh, target_faces: int) -> SimplifyResult:
+    """The empty mesh simplifies to itself: nothing to collapse, and no face above the target."""
+    empty = mesh.copy()
+    empty.garbage_collect()
+    return SimplifyResult(empty, SimplifyReport(0, 0, int(target_faces), rounds=0, reached_target=True))
 
 
 def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max_normal_angle: float,

@@ -28,6 +28,7 @@ import numpy as np
 
 from ..core.errors import MeshWarning
 from ..core.mesh import HalfedgeMesh
+from .arguments import callback, check_mesh, real_number, refuse_pillows, whole_number
 from .simplify import PULL_TO_MIDPOINT, REFINEMENT_STEPS, accumulate, boundary_quadrics, face_quadrics
 
 
@@ -208,9 +209,17 @@ def simplify_sequential(
     Returns:
         A new, garbage-collected :class:`HalfedgeMesh`.
     """
-    if int(target_faces) < 1:
-        raise ValueError(f"target_faces must be at least 1, got {target_faces}")
+    check_mesh(mesh)
+    refuse_pillows(mesh, "simplification")
+    whole_number(target_faces, "target_faces", minimum=1)
+    real_number(max_normal_angle, "max_normal_angle", minimum=0.0, maximum=180.0)
+    callback(on_step, "on_step")
+    if max_steps is not None:
+        whole_number(max_steps, "max_steps", minimum=0)
     work = mesh.copy()
+    if work.n_faces == 0:
+        work.garbage_collect()
+        return work
     queue = QuadricQueue(work)
     max_normal_cos = float(np.cos(np.radians(max_normal_angle)))
     steps = 0

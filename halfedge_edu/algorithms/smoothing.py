@@ -51,6 +51,7 @@ import numpy as np
 
 from ..core import HalfedgeMesh
 from ._progress import progress_range
+from .arguments import check_smooth, flag
 
 WEIGHTS = ("uniform", "cotangent")
 BOUNDARY_RULES = ("fixed", "along")
@@ -104,6 +105,8 @@ def smooth(
     ring order), so it is built without sorting, once for uniform weights. Vertices
     that stay still get their old position back after the product.
     """
+    check_smooth(mesh, iterations, weights, boundary, step, WEIGHTS, BOUNDARY_RULES)
+    flag(progress, "progress")
     _check_arguments(iterations, weights, boundary, step)
     from scipy.sparse import csr_matrix
 
@@ -229,6 +232,7 @@ def smooth_reference(
 
     Same arguments and result as :func:`smooth`, which the tests check it equals.
     """
+    check_smooth(mesh, iterations, weights, boundary, step, WEIGHTS, BOUNDARY_RULES)
     _check_arguments(iterations, weights, boundary, step)
     result = mesh.copy()
     for _ in range(int(iterations)):

@@ -75,18 +75,92 @@ def _line(face: int, face_lines: np.ndarray | None) -> int | None:
     return None if face_lines is None else int(face_lines[face])
 
 
+def real_array(values, what: str) -> np.ndarray:
+    """``values`` as a fresh float64 array, refusing what would convert with a loss or by accident.
+
+    Complex numbers (numpy would drop the imaginary part), booleans (True would become
+    1.0) and strings (numpy would parse "1.5") raise :class:`MeshInputError` naming
+    ``what``; so does anything numpy cannot turn into numbers at all.
+    """
+    try:
+        array = np.asarray(values)
+    except ValueError:
+        raise MeshInputError(f"{what} must be an array of numbers, but its rows have different lengths") from None
+    if array.dtype.kind in "cbUS" or (array.dtype.kind == "O" and any(
+        isinstance(item, (complex, np.complexfloating, bool, np.bool_, str, bytes)) for item in array.flat
+    )):
+        raise MeshInputError(_not_real(array, what))
+    try:
+        return np.array(array, dtype=np.float64)
+    except (TypeError, ValueError) as error:
+        raise MeshInputError(f"{what} are not numbers: {error}") from None
+
+
+def _not_real(array: np.ndarray, what: str) -> str:
+    """The message for an array that :func:`real_array` refuses: what its values are instead."""
+    if array.dtype.kind == "c" or any(isinstance(item, (complex, np.complexfloating)) for item in array.flat):
+        return f"{what} must be real numbers, got complex numbers ({array.dtype}) whose imaginary parts would be lost"
+    if array.dtype.kind == "b" or any(isinstance(item, (bool, np.bool_)) for item in array.flat):
+        return f"{what} must be real numbers, got True/False values ({array.dtype})"
+    return f"{what} are not numbers: got text ({array.dtype})"
+
+
+def _face_index_array(faces) -> np.ndarray:
+    """``faces`` as an (m, 3) array of whole numbers (any integer or float dtype), or an error."""
+    try:
+        face_array = np.asarray(faces)
+    except ValueError:
+        raise MeshInputError(
+            "faces must be an (m, 3) array of vertex indices (triangles), but its rows have different lengths"
+        ) from None
+    if face_array.size == 0:
+        return np.zeros((0, 3), dtype=INDEX)                   # no faces: the empty mesh
+    if face_array.ndim != 2 or face_array.shape[1] != 3:
+        if face_array.ndim == 2 and face_array.shape[1] < 3:
+            raise MeshInputError(
+                f"faces need at least 3 vertices each, got rows of {face_array.shape[1]}"
+            )
+        raise MeshInputError(
+            f"faces must be an (m, 3) array of vertex indices (triangles), got shape {face_array.shape}"
+        )
+    if not np.issubdtype(face_array.dtype, np.integer):
+        rounded = real_array(face_array, "face indices")
+        if not np.all(np.isfinite(rounded)) or not np.all(rounded == np.round(rounded)):
+            raise MeshInputError("face indices must be whole numbers")
+    return face_array
+
+
+def _check_face_lines(face_lines, n_faces: int, source) -> None:
+    """Refuse ``face_lines`` that is not one whole line number per face, and a ``source`` that is not text."""
+    if source is not None and not isinstance(source, str):
+        raise MeshInputError(f"source must be a file name (str) or None, got {type(source).__name__}",
+                             element=("argument", "source"))
+    if face_lines is None:
+        return
+    lines = np.asarray(face_lines)
+    if lines.shape != (n_faces,) or (n_faces and not np.issubdtype(lines.dtype, np.integer)):
+        raise MeshInputError(
+            f"face_lines must hold one whole line number per face: {n_faces} for {n_faces} faces, "
+            f"got shape {lines.shape} of {lines.dtype}",
+            element=("argument", "face_lines"),
+        )
+
+
 def check_input(
     vertices, faces, face_lines=None, source: str | None = None
 ) -> tuple[np.ndarray, np.ndarray]:
     """Check shapes, types, finiteness, index range and degenerate faces.
 
     Returns ``(positions (n, 3) float64, faces (m, 3) INDEX)`` as fresh arrays.
-    Raises :class:`MeshInputError` naming the first offending vertex or face.
+    Raises :class:`MeshInputError` naming the first offending vertex or face, or the
+    argument (``element=("argument", name)``) when ``face_lines`` or ``source`` is unusable.
+
+    No faces at all is allowed: it is the empty mesh, as in pmp-library, OpenMesh and
+    trimesh (its vertices, if any, are then all unreferenced and dropped with a warning).
     """
-    try:
-        positions = np.array(vertices, dtype=np.float64)
-    except (TypeError, ValueError) as error:
-        raise MeshInputError(f"vertex positions are not numbers: {error}") from None
+    positions = real_array(vertices, "vertex positions")
+    if positions.size == 0:
+        positions = positions.reshape(0, 3)
     if positions.ndim != 2 or positions.shape[1] != 3:
         raise MeshInputError(
             f"vertices must be an (n, 3) array of positions, got shape {positions.shape}"
@@ -98,26 +172,10 @@ def check_input(
             element=("vertex", bad),
         )
 
-    try:
-        face_array = np.asarray(faces)
-    except ValueError:
-        raise MeshInputError(
-            "faces must be an (m, 3) array of vertex indices (triangles), but its rows have different lengths"
-        ) from None
-    if face_array.ndim != 2 or face_array.shape[1] != 3:
-        if face_array.ndim == 2 and face_array.shape[1] < 3:
-            raise MeshInputError(
-                f"faces need at least 3 vertices each, got rows of {face_array.shape[1]}"
-            )
-        raise MeshInputError(
-            f"faces must be an (m, 3) array of vertex indices (triangles), got shape {face_array.shape}"
-        )
+    face_array = _face_index_array(faces)
+    _check_face_lines(face_lines, len(face_array), source)
     if len(face_array) == 0:
-        raise MeshInputError("the mesh has no faces")
-    if not np.issubdtype(face_array.dtype, np.integer):
-        rounded = np.asarray(face_array, dtype=np.float64)
-        if not np.all(np.isfinite(rounded)) or not np.all(rounded == np.round(rounded)):
-            raise MeshInputError("face indices must be whole numbers")
+        return positions, face_array
     n_vertices = len(positions)
     if face_array.min() < 0 or face_array.max() >= n_vertices:
         out_of_range = (face_array < 0) | (face_array >= n_vertices)
@@ -141,7 +199,47 @@ def check_input(
             element=("face", face),
             line=_line(face, face_lines),
         )
+    _refuse_pillows(face_array, n_vertices, face_lines, source)
     return positions, face_array
+
+
+def _refuse_pillows(faces: np.ndarray, n_vertices: int, face_lines, source) -> None:
+    """Raise if two faces use the same three vertices in opposite orders (a "pillow").
+
+    Such a pair is glued along all three of its edges: a closed surface of two
+    triangles that encloses nothing. It passes every halfedge rule, but it is not a
+    simplicial surface (two faces on the same three vertices), and no algorithm can
+    refine or simplify it: Loop subdivision would join two vertices by two edges. So it
+    is refused here, naming both faces. (Two faces in the *same* order share directed
+    edges, which :func:`build_arrays` reports; a pillow whose edges or corners touch
+    other faces is non-manifold and reported there too.) Only faces whose three corners
+    each have exactly two faces can form a lone pillow, so only those are compared.
+    """
+    faces_at = np.bincount(faces.ravel(), minlength=n_vertices)          # (n,) faces per vertex
+    candidates = np.flatnonzero((faces_at[faces] == 2).all(axis=1))     # (k,) usually none
+    if len(candidates) < 2:
+        return
+    corners = faces[candidates]                                          # (k, 3)
+    # A face's orientation is the parity of its corner order: rotations keep it, a swap flips it.
+    parity = ((corners[:, 0] > corners[:, 1]).astype(int) + (corners[:, 1] > corners[:, 2])
+              + (corners[:, 0] > corners[:, 2])) % 2                    # (k,)
+    vertex_set = np.sort(corners, axis=1)                                # (k, 3)
+    order = np.lexsort(vertex_set.T[::-1])
+    same_set = (vertex_set[order][1:] == vertex_set[order][:-1]).all(axis=1)
+    opposite = parity[order][1:] != parity[order][:-1]
+    pairs = np.flatnonzero(same_set & opposite)
+    if len(pairs) == 0:
+        return
+    f, g = sorted(int(candidates[order[k]]) for k in (pairs[0], pairs[0] + 1))
+    raise MeshInputError(
+        f"faces {f}{_where(f, face_lines, source)} and {g}{_where(g, face_lines, source)} use the same "
+        f"three vertices {vertex_set[order[pairs[0]]].tolist()} in opposite orders: glued along all "
+        f"three edges they form a closed two-triangle 'pillow' that encloses nothing, which no "
+        f"algorithm can refine or simplify (Loop subdivision would join two vertices by two edges); "
+        f"a mesh has at most one face on any three vertices, and repairing drops the second",
+        element=("face", g),
+        line=_line(g, face_lines),
+    )
 
 
 def drop_unreferenced(positions: np.ndarray, faces: np.ndarray, *, warn: bool = True):

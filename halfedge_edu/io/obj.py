@@ -189,7 +189,8 @@ def read_obj(path_or_file: str | os.PathLike | IO, *, triangulate: bool = True) 
     Raises:
         FileNotFoundError: the file does not exist.
         MeshInputError: a line that cannot be read (with ``.line`` set and the line
-            quoted), a binary or unreadable file, or a file without faces.
+            quoted), a binary or unreadable file, a file of zero bytes, or vertices
+            without faces. A file of comments only is the empty mesh (no vertices, no faces).
 
     Attention: vertices no face uses are kept here (``ObjData.vertices`` is every ``v``
     record); ``HalfedgeMesh.from_faces`` drops them with a warning. A negative index
@@ -255,8 +256,8 @@ def read_obj(path_or_file: str | os.PathLike | IO, *, triangulate: bool = True) 
 
     vertices = _parse_coordinates(coordinates, vertex_lines, text, source)
     if not faces:
-        raise MeshInputError(f"{source}: no faces found (no 'f' lines), so there is no mesh to build")
-    faces_array = np.array(faces, dtype=np.int64)  # (m, 3)
+        _refuse_faceless(text, len(vertices), source)
+    faces_array = np.array(faces, dtype=np.int64).reshape(-1, 3)  # (m, 3)
     lines_array = np.array(face_lines, dtype=np.int64)  # (m,)
 
     out_of_range = np.flatnonzero((faces_array >= len(vertices)).any(axis=1))
@@ -269,6 +270,22 @@ def read_obj(path_or_file: str | os.PathLike | IO, *, triangulate: bool = True) 
             f"vertex index {bad} is out of range (the file has {len(vertices)} vertices)",
         )
     return ObjData(vertices, faces_array, lines_array, source, n_polygons)
+
+
+def _refuse_faceless(text: str, n_vertices: int, source: str) -> None:
+    """Raise for a file without faces, unless it is the empty mesh.
+
+    A file of comments and blank lines only is the empty mesh (``hx.save`` writes the
+    empty mesh as two comment lines). Vertices without faces are a point cloud, not a
+    mesh, and a file of zero bytes is far more often a failed write than a mesh: both
+    are refused by name.
+    """
+    if not text:
+        raise MeshInputError(f"{source}: the file is empty (0 bytes): no vertices and no faces")
+    if n_vertices:
+        raise MeshInputError(
+            f"{source}: {n_vertices} vertices but no faces found (no 'f' lines): a point cloud, not a mesh"
+        )
 
 
 def _parse_coordinates(coordinates: list[list[str]], vertex_lines: list[int], text: str, source: str) -> np.ndarray:

@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 import halfedge_edu as hx
+from halfedge_edu.core.build import INDEX, build_arrays
 
 
 def canonical_form(mesh: hx.HalfedgeMesh) -> tuple[np.ndarray, np.ndarray]:
@@ -76,8 +77,13 @@ def jittered(mesh: hx.HalfedgeMesh, seed: int = 0, scale: float = 1e-3) -> hx.Ha
 
 
 def pillow() -> hx.HalfedgeMesh:
-    """Two triangles glued back to back: 3 vertices, 3 edges, 2 faces, closed."""
-    return hx.HalfedgeMesh.from_faces(np.eye(3), [[0, 1, 2], [0, 2, 1]])
+    """Two triangles glued back to back: 3 vertices, 3 edges, 2 faces, closed.
+
+    ``from_faces`` refuses it (two faces on the same three vertices), so it is built
+    from the halfedge arrays directly, as hand-made arrays can be: the operations must
+    still refuse it.
+    """
+    return hx.HalfedgeMesh(build_arrays(np.eye(3), np.array([[0, 1, 2], [0, 2, 1]], dtype=INDEX)))
 
 
 def tent() -> hx.HalfedgeMesh:
