@@ -11,7 +11,8 @@ at the first place near its anchor where the box overlaps no label placed before
 no vertex dot and no legend (:func:`place`): named labels first, then highlighted ones,
 then the rest, vertices before faces before halfedges. A label with no room anywhere
 near is listed in the picture's lower left corner ("no room for: h5, f2") instead.
-:func:`label_boxes` measures the boxes of what a plotter draws, for tests.
+:func:`label_boxes` measures the boxes of what a plotter draws, and :func:`overlapping_labels`
+says which overlap (for tests).
 """
 
 from __future__ import annotations
@@ -46,6 +47,8 @@ PADDING = {"vertex": 3.0, "face": 3.0, "halfedge": 3.0}
 BADGE_POINT = np.array([3.0, 2.0])
 #: Average character width as a share of the font size (vtk's Arial, measured: 0.45-0.55).
 CHARACTER_WIDTH = 0.56
+#: The distance between the baselines of two lines of text, as a share of the font size.
+LINE_SPACING = 1.25
 #: The text of the list of labels without room, and its distance from the picture's corner.
 LIST_ACTOR = "labels_without_room"
 LIST_MARGIN = 4.0
@@ -65,14 +68,19 @@ class Wanted(NamedTuple):
 
 
 def text_size(text: str, font_size: float, padding: float) -> tuple[float, float]:
-    """(width, height) in pixels of the box around ``text`` at ``font_size`` (vtk's pixels),
-    with ``padding`` pixels on each side."""
-    return CHARACTER_WIDTH * font_size * len(text) + 2 * padding, font_size + 2 * padding
+    """(width, height) in pixels of the box around ``text`` (one or more lines) at
+    ``font_size`` (vtk's pixels), with ``padding`` pixels on each side."""
+    lines = text.split("\n")
+    width = CHARACTER_WIDTH * font_size * max(len(line) for line in lines)
+    height = font_size * (1 + LINE_SPACING * (len(lines) - 1))
+    return width + 2 * padding, height + 2 * padding
 
 
-def overlaps(box: np.ndarray, boxes: np.ndarray) -> np.ndarray:
-    """(k,) bool: ``box`` (4,) ``(x0, y0, x1, y1)`` overlaps each of ``boxes`` (k, 4)."""
-    return ((box[0] < boxes[:, 2]) & (boxes[:, 0] < box[2]) & (box[1] < boxes[:, 3]) & (boxes[:, 1] < box[3]))
+def overlaps(box: np.ndarray, boxes: np.ndarray, gap: float = 0.0) -> np.ndarray:
+    """(k,) bool: ``box`` (4,) ``(x0, y0, x1, y1)`` overlaps each of ``boxes`` (k, 4), or
+    comes closer to it than ``gap`` pixels."""
+    return ((box[0] < boxes[:, 2] + gap) & (boxes[:, 0] < box[2] + gap)
+            & (box[1] < boxes[:, 3] + gap) & (boxes[:, 1] < box[3] + gap))
 
 
 def covers_dot(box: np.ndarray, dots: np.ndarray) -> np.ndarray:
@@ -103,7 +111,9 @@ def place(anchors: np.ndarray, sizes: np.ndarray, keep_clear, dots: np.ndarray, 
             box = np.array([centre[0] - w / 2, centre[1] - h / 2, centre[0] + w / 2, centre[1] + h / 2])
             if box[0] < 0 or box[1] < 0 or box[2] > width or box[3] > height:
                 continue
-            if overlaps(box, placed).any() or overlaps(box, obstacles).any() or covers_dot(box, dots).any():
+            # A pixel apart, so that a box measured again after a round trip through
+            # world coordinates (a little rounding) still clears its neighbours.
+            if overlaps(box, placed, 1.0).any() or overlaps(box, obstacles, 1.0).any() or covers_dot(box, dots).any():
                 continue
             centres[i] = centre
             placed = np.vstack([placed, box])
@@ -170,9 +180,25 @@ def label_boxes(plotter, window_size=None) -> list[tuple[str, np.ndarray]]:
     return measured
 
 
-def list_text(listed: list[str]) -> str:
-    """The line that lists labels without room in the picture."""
-    return "no room for: " + ", ".join(listed)
+def list_text(listed: list[str], font_size: float, window_size) -> str:
+    """The lines that list the labels without room, wrapped to the picture's width and
+    at most a third of its height (ending "and N more" when they do not all fit)."""
+    per_line = max(12, int((window_size[0] - 2 * LIST_MARGIN) / (CHARACTER_WIDTH * font_size)))
+    most_lines = max(1, int(window_size[1] / 3 / (LINE_SPACING * font_size)))
+    lines: list[list[str]] = [["no room for:"]]
+    for n, text in enumerate(listed):
+        word = text if n == len(listed) - 1 else f"{text},"
+        if len(" ".join(lines[-1] + [word])) > per_line:
+            lines.append([])
+        lines[-1].append(word)
+    if len(lines) > most_lines:
+        lines = lines[:most_lines]
+        shown = sum(len(line) for line in lines) - 1
+        while len(lines[-1]) > 1 and len(" ".join(lines[-1] + [f"and {len(listed) - shown} more"])) > per_line:
+            lines[-1].pop()
+            shown -= 1
+        lines[-1].append(f"and {len(listed) - shown} more")
+    return "\n".join(" ".join(line) for line in lines)
 
 
 def label_kinds(labels) -> "tuple[str, ...] | str":
@@ -336,8 +362,11 @@ class Labels:
         """(0 or 1, 4) the screen box of the list of labels without room."""
         if not listed:
             return np.zeros((0, 4))
-        width, height = text_size(list_text(listed), self.preset.label_size, 0.0)
+        width, height = text_size(self._list_text(listed), self.preset.label_size, 0.0)
         return np.array([[0.0, 0.0, LIST_MARGIN + width + 2, LIST_MARGIN + height + 2]])
+
+    def _list_text(self, listed: list[str]) -> str:
+        return list_text(listed, self.preset.label_size, self.window_size)
 
     def _show_list(self, listed: list[str]) -> None:
         """Write the labels without room in the picture's lower left corner (or hide that)."""
@@ -346,7 +375,7 @@ class Labels:
             if LIST_ACTOR in plotter.actors:
                 plotter.actors[LIST_ACTOR].SetVisibility(False)
             return
-        actor = plotter.add_text(list_text(listed), position=(LIST_MARGIN, LIST_MARGIN),
+        actor = plotter.add_text(self._list_text(listed), position=(LIST_MARGIN, LIST_MARGIN),
                                  color=self.preset.text, name=LIST_ACTOR, render=False)
         actor.GetTextProperty().SetFontSize(self.preset.label_size)   # pixels, as the labels
         actor.SetVisibility(True)
@@ -386,3 +415,17 @@ class Labels:
         plain = f"{PREFIX[kind]}{int(index)}"
         name = highlight.names.get((kind, int(index)))
         return plain if name is None else f"{name} ({int(index)})"
+
+
+def overlapping_labels(plotter, window_size=None) -> list[tuple[str, str]]:
+    """The problems of the labels ``plotter`` shows, measured with :func:`label_boxes`:
+    ``(text, other text)`` for two boxes that overlap, ``(text, "outside the picture")``
+    for a box not wholly inside it. Empty when every label can be read."""
+    width, height = tuple(window_size or plotter.window_size)
+    measured = label_boxes(plotter, (width, height))
+    problems = [(text, "outside the picture") for text, box in measured
+                if box[0] < 0 or box[1] < 0 or box[2] > width or box[3] > height]
+    for i, (text, box) in enumerate(measured):
+        others = np.array([b for _, b in measured[i + 1:]]).reshape(-1, 4)
+        problems += [(text, measured[i + 1 + j][0]) for j in np.flatnonzero(overlaps(box, others))]
+    return problems
