@@ -412,9 +412,10 @@ class Labels:
 
     @staticmethod
     def _text(highlight: Highlight, kind: str, index: int) -> str:
+        """``v3``, or a named element's ``vA (3)`` (a name that is the plain label stays plain)."""
         plain = f"{PREFIX[kind]}{int(index)}"
         name = highlight.names.get((kind, int(index)))
-        return plain if name is None else f"{name} ({int(index)})"
+        return plain if name is None or name == plain else f"{name} ({int(index)})"
 
 
 def overlapping_labels(plotter, window_size=None) -> list[tuple[str, str]]:
