@@ -83,7 +83,7 @@ def _named_picture_plotter(mesh, log, camera, closing):
     """Chapter 07's opening picture: the collapse's elements labelled by their names."""
     names = {}
     for name, element in log.named.items():
-        names[element] = f"{names[element]} = {name}" if element in names else name
+        names[element] = f"{names[element]}/{name}" if element in names else name
     named = lambda kind: [i for k, i in log.named.values() if k == kind]  # noqa: E731
     scene = HalfedgeScene(mesh, window_size=(380, 290), legend=False, labels=("vertex",), follow=False)
     closing(scene)
@@ -105,7 +105,7 @@ def test_chapter_07_opening_pictures_have_no_label_on_another(closing):
             scene = _named_picture_plotter(mesh, log, camera, closing)
             count += _readable(scene.plotter, f"{name}")
             if mesh is before and name == "cube":
-                assert any(text.startswith("gL = gR") for text in scene.labels_shown()["face"])
+                assert any(text.startswith("gL/gR") for text in scene.labels_shown()["face"])
     _record("chapter 07 opening", count)
     assert count >= 40
 
