@@ -179,14 +179,14 @@ def collapse_cases() -> bytes:
 
 @figure("collapse_refused", "collapses the link condition refuses: tetrahedron, figure 8, lone triangle")
 def collapse_refused() -> bytes:
-    from .data import sample
-    from .viz import CollapseStepper
+    from .viz import CollapseAtlas
 
-    size = (360, 270)
-    cases = [("tetrahedron", "tetrahedron"), ("figure8", "figure 8"), ("lone_triangle", "lone triangle")]
-    pictures = [_widget_picture(CollapseStepper(sample(name), 0, mode="static", window_size=size))
-                for name, _ in cases]
-    return _row(pictures, [title for _, title in cases])
+    # The atlas's pictures of the refusals: seen at a slant, their vertices labelled.
+    atlas = CollapseAtlas(mode="static")
+    try:
+        return _row([stepper.screenshot() for stepper in atlas.refused], atlas.refused_titles)
+    finally:
+        atlas.close()
 
 
 def default_folder() -> Path:

@@ -122,10 +122,13 @@ class Highlight:
         actors.set("highlight_vertices", data)
 
     def describe(self) -> list[str]:
-        """One line per role set: ``"h.twin: halfedge 1"``, in ROLES order."""
+        """One line per role set: ``"h.twin: halfedge 1"``, ``"neighbours of v: vertices
+        1, 4, 5"``, in ROLES order."""
+        plural = {"vertex": "vertices", "halfedge": "halfedges", "face": "faces"}
         lines = []
         for role in ROLES.values():
             if role.name in self.roles:
-                members = ", ".join(str(int(i)) for i in self.roles[role.name])
-                lines.append(f"{role.legend}: {role.kind} {members}")
+                members = self.roles[role.name]
+                kind = role.kind if len(members) == 1 else plural[role.kind]
+                lines.append(f"{role.legend}: {kind} {', '.join(str(int(i)) for i in members)}")
         return lines

@@ -4,9 +4,20 @@ Which elements get one depends on the mesh's size: on a tiny mesh all of them; o
 larger one the vertices near the highlight and the highlighted elements only. Named
 elements (a stepper's "vA", "h_AB") always get their name, as ``vA (3)``. A label whose
 element faces away from the camera is left out, so labels never show through the surface.
+
+No label covers another. Each label is measured on screen (its anchor projected with
+the camera, its box estimated from its font size and length, :func:`text_size`) and put
+at the first place near its anchor where the box overlaps no label placed before it,
+no vertex dot and no legend (:func:`place`): named labels first, then highlighted ones,
+then the rest, vertices before faces before halfedges. A label with no room anywhere
+near is listed in the picture's lower left corner ("no room for: h5, f2") instead.
+:func:`label_boxes` measures the boxes of what a plotter draws, and :func:`overlapping_labels`
+says which overlap (for tests).
 """
 
 from __future__ import annotations
+
+from typing import NamedTuple
 
 import numpy as np
 
@@ -16,10 +27,12 @@ from .geometry import SceneGeometry, facing
 from .highlights import Highlight
 from .neighbourhood import ring_mark
 from .palette import Preset
-from .screen import beside
+from .screen import from_screen, to_screen
 
 KINDS = ("vertex", "halfedge", "face")
 PREFIX = {"vertex": "v", "halfedge": "h", "face": "f"}
+#: Of labels of one rank, which kinds get the first choice of place.
+PLACING_ORDER = ("vertex", "face", "halfedge")
 #: With ``labels="auto"``: meshes with at most this many faces get every label.
 TINY_FACES = 12
 #: With ``labels="auto"``: meshes with at most this many vertices get every vertex label.
@@ -27,6 +40,165 @@ TINY_VERTICES = 40
 #: With explicit label kinds: meshes with at most this many faces get every label of
 #: those kinds; larger ones only near the highlight.
 LABEL_ALL_FACES = 40
+#: Pixels around a label's text that its box includes (the badge the text sits on).
+PADDING = {"vertex": 3.0, "face": 3.0, "halfedge": 3.0}
+#: Where a label's point lies from its box's lower left corner, in pixels: its badge is
+#: drawn left- and bottom-justified from that point (measured: 2 left, 1 below).
+BADGE_POINT = np.array([3.0, 2.0])
+#: Average character width as a share of the font size (vtk's Arial, measured: 0.45-0.55).
+CHARACTER_WIDTH = 0.56
+#: The distance between the baselines of two lines of text, as a share of the font size.
+LINE_SPACING = 1.25
+#: The text of the list of labels without room, and its distance from the picture's corner.
+LIST_ACTOR = "labels_without_room"
+LIST_MARGIN = 4.0
+#: Where a label may go around its anchor, in steps: (right, up) multiples.
+DIRECTIONS = ((1, 1), (-1, 1), (1, -1), (-1, -1), (1, 0), (-1, 0), (0, 1), (0, -1))
+
+
+class Wanted(NamedTuple):
+    """A label to place: its kind, text, (3,) world anchor, rank (0 named, 1 highlighted,
+    2 other: lower ranks are placed first) and element index."""
+
+    kind: str
+    text: str
+    anchor: np.ndarray
+    rank: int
+    index: int
+
+
+def text_size(text: str, font_size: float, padding: float) -> tuple[float, float]:
+    """(width, height) in pixels of the box around ``text`` (one or more lines) at
+    ``font_size`` (vtk's pixels), with ``padding`` pixels on each side."""
+    lines = text.split("\n")
+    width = CHARACTER_WIDTH * font_size * max(len(line) for line in lines)
+    height = font_size * (1 + LINE_SPACING * (len(lines) - 1))
+    return width + 2 * padding, height + 2 * padding
+
+
+def overlaps(box: np.ndarray, boxes: np.ndarray, gap: float = 0.0) -> np.ndarray:
+    """(k,) bool: ``box`` (4,) ``(x0, y0, x1, y1)`` overlaps each of ``boxes`` (k, 4), or
+    comes closer to it than ``gap`` pixels."""
+    return ((box[0] < boxes[:, 2] + gap) & (boxes[:, 0] < box[2] + gap)
+            & (box[1] < boxes[:, 3] + gap) & (boxes[:, 1] < box[3] + gap))
+
+
+def covers_dot(box: np.ndarray, dots: np.ndarray) -> np.ndarray:
+    """(k,) bool: ``box`` (4,) covers part of each disc of ``dots`` (k, 3) ``(x, y, radius)``."""
+    nearest_x = np.clip(dots[:, 0], box[0], box[2])
+    nearest_y = np.clip(dots[:, 1], box[1], box[3])
+    return (nearest_x - dots[:, 0]) ** 2 + (nearest_y - dots[:, 1]) ** 2 < dots[:, 2] ** 2
+
+
+def place(anchors: np.ndarray, sizes: np.ndarray, keep_clear, dots: np.ndarray, obstacles: np.ndarray,
+          window_size) -> np.ndarray:
+    """Centres (k, 2) in pixels for k label boxes, in order, each where it overlaps none
+    placed before, no dot and no obstacle, and lies inside the picture; NaN where none is free.
+
+    Args:
+        anchors: (k, 2) where each label belongs on screen.
+        sizes: (k, 2) each box's width and height.
+        keep_clear: (k,) a radius around the anchor the box keeps out of (a vertex label
+            beside its dot), 0 for a label that may sit on its anchor (a face's centre).
+        dots: (d, 3) vertex dots ``(x, y, radius)`` no box may cover.
+        obstacles: (o, 4) boxes ``(x0, y0, x1, y1)`` no label may overlap (a legend).
+    """
+    width, height = window_size
+    placed = np.zeros((0, 4))
+    centres = np.full((len(anchors), 2), np.nan)
+    for i, (anchor, (w, h), clear) in enumerate(zip(anchors, sizes, keep_clear)):
+        for centre in _candidates(anchor, w, h, clear):
+            box = np.array([centre[0] - w / 2, centre[1] - h / 2, centre[0] + w / 2, centre[1] + h / 2])
+            if box[0] < 0 or box[1] < 0 or box[2] > width or box[3] > height:
+                continue
+            # A pixel apart, so that a box measured again after a round trip through
+            # world coordinates (a little rounding) still clears its neighbours.
+            if overlaps(box, placed, 1.0).any() or overlaps(box, obstacles, 1.0).any() or covers_dot(box, dots).any():
+                continue
+            centres[i] = centre
+            placed = np.vstack([placed, box])
+            break
+    return centres
+
+
+def _candidates(anchor: np.ndarray, w: float, h: float, clear: float) -> list[np.ndarray]:
+    """Where a ``w`` by ``h`` box around ``anchor`` may go, nearest first."""
+    found = []
+    if clear > 0:
+        # Beside the dot: the box's nearest corner or side just off the dot, then farther.
+        for reach in (1.0, 1.8, 2.8):
+            for dx, dy in DIRECTIONS:
+                found.append(anchor + np.array([dx * (reach * clear + w / 2), dy * (reach * clear + h / 2)]))
+        return found
+    found.append(anchor.copy())
+    step_x, step_y = max(0.4 * w, 6.0), 0.6 * h
+    for ring in (1, 2, 3):
+        for dx, dy in ((0, 1), (0, -1), (1, 0), (-1, 0), (1, 1), (-1, 1), (1, -1), (-1, -1)):
+            found.append(anchor + np.array([dx * ring * step_x, dy * ring * step_y]))
+    return found
+
+
+def legend_boxes(plotter, window_size) -> np.ndarray:
+    """(k, 4) the screen boxes of the legends shown in ``plotter`` (labels keep off them)."""
+    boxes = []
+    size = np.array(window_size, dtype=float)
+    props = plotter.renderer.GetViewProps()
+    for i in range(props.GetNumberOfItems()):
+        prop = props.GetItemAsObject(i)
+        if prop.IsA("vtkLegendBoxActor") and prop.GetVisibility():
+            corner = np.array(prop.GetPositionCoordinate().GetValue()[:2]) * size
+            extent = np.array(prop.GetPosition2Coordinate().GetValue()[:2]) * size
+            boxes.append([*corner, *(corner + extent)])
+    return np.array(boxes, dtype=float).reshape(-1, 4)
+
+
+def label_boxes(plotter, window_size=None) -> list[tuple[str, np.ndarray]]:
+    """What ``plotter`` shows of index labels, measured: ``(text, (x0, y0, x1, y1))`` per
+    label in screen pixels (each label's point projected with the camera, its box from
+    :func:`text_size`), and the list of labels without room. For checking that no two overlap.
+    """
+    window_size = tuple(window_size or plotter.window_size)
+    measured = []
+    for name, actor in plotter.actors.items():
+        kind = name.split("_labels")[0]
+        if not (name.endswith("-labels") and kind in KINDS and actor.GetVisibility()):
+            continue
+        hierarchy = actor.GetMapper().GetInputAlgorithm()
+        data = hierarchy.GetInputDataObject(0, 0)
+        points = np.array([data.GetPoint(i) for i in range(data.GetNumberOfPoints())]).reshape(-1, 3)
+        texts = data.GetPointData().GetAbstractArray("labels")
+        font = hierarchy.GetTextProperty().GetFontSize()
+        for i, point in enumerate(to_screen(plotter, window_size, points)[:, :2]):
+            size = np.array(text_size(texts.GetValue(i), font, PADDING[kind]))
+            corner = point - BADGE_POINT
+            measured.append((texts.GetValue(i), np.concatenate([corner, corner + size])))
+    listing = plotter.actors.get(LIST_ACTOR)
+    if listing is not None and listing.GetVisibility():
+        text = listing.GetInput()
+        w, h = text_size(text, listing.GetTextProperty().GetFontSize(), 0.0)
+        measured.append((text, np.array([LIST_MARGIN, LIST_MARGIN, LIST_MARGIN + w, LIST_MARGIN + h])))
+    return measured
+
+
+def list_text(listed: list[str], font_size: float, window_size) -> str:
+    """The lines that list the labels without room, wrapped to the picture's width and
+    at most a third of its height (ending "and N more" when they do not all fit)."""
+    per_line = max(12, int((window_size[0] - 2 * LIST_MARGIN) / (CHARACTER_WIDTH * font_size)))
+    most_lines = max(1, int(window_size[1] / 3 / (LINE_SPACING * font_size)))
+    lines: list[list[str]] = [["no room for:"]]
+    for n, text in enumerate(listed):
+        word = text if n == len(listed) - 1 else f"{text},"
+        if len(" ".join(lines[-1] + [word])) > per_line:
+            lines.append([])
+        lines[-1].append(word)
+    if len(lines) > most_lines:
+        lines = lines[:most_lines]
+        shown = sum(len(line) for line in lines) - 1
+        while len(lines[-1]) > 1 and len(" ".join(lines[-1] + [f"and {len(listed) - shown} more"])) > per_line:
+            lines[-1].pop()
+            shown -= 1
+        lines[-1].append(f"and {len(listed) - shown} more")
+    return "\n".join(" ".join(line) for line in lines)
 
 
 def label_kinds(labels) -> "tuple[str, ...] | str":
@@ -54,7 +226,7 @@ class Labels:
     Args:
         actors: the scene's parts, where the label actors are added on first use.
         preset: sizes and colours.
-        window_size: the picture size, for placing vertex labels a few pixels aside.
+        window_size: the picture size, for measuring labels on screen.
         kinds: what :func:`label_kinds` returned for the scene's ``labels`` option.
     """
 
@@ -64,6 +236,7 @@ class Labels:
         self.window_size = window_size
         self.kinds = kinds
         self.texts: dict[str, list[str]] = {kind: [] for kind in KINDS}
+        self.listed: list[str] = []
 
     def choice(self, mesh, windowed: bool) -> dict[str, str]:
         """For each kind, which elements get a label: "all", "near" or "highlighted"."""
@@ -82,65 +255,130 @@ class Labels:
         ``arrow_halfedges`` are the halfedges drawn now, ``corners`` the arrows' placement
         (``(mesh, halfedges) -> (A, B, third)``): halfedge labels sit beside their arrows.
         """
-        look = self.preset
         choice = self.choice(mesh, windowed)
         near = ring_mark(mesh, focus, 1) if len(focus) and "near" in choice.values() else None
         eye = np.array(self.actors.plotter.camera.position)
         positions = mesh.positions
-        texts: dict[str, tuple[np.ndarray, list[str]]] = {}
+        wanted: list[Wanted] = []
 
         def chosen(kind: str) -> np.ndarray:
             return self._labelled(mesh, geometry, highlight, kind, choice.get(kind), near, arrow_halfedges)
 
+        def add(kind: str, indices: np.ndarray, anchors: np.ndarray) -> None:
+            members = np.concatenate([m for _, m in highlight.members(kind)] + [np.zeros(0, np.int64)])
+            for index, anchor in zip(indices, anchors):
+                index = int(index)
+                rank = 0 if (kind, index) in highlight.names else 1 if index in members else 2
+                wanted.append(Wanted(kind, self._text(highlight, kind, index), anchor, rank, index))
+
         vertices = chosen("vertex")
         if len(vertices):
             vertices = vertices[geometry.vertex_in_sight(mesh, eye, vertices)]
-            points = beside(self.actors.plotter, self.window_size, positions[vertices], 0.45 * look.highlight_vertex_size)
-            texts["vertex"] = (points, [self._text(highlight, "vertex", v) for v in vertices])
+            add("vertex", vertices, positions[vertices])
         faces = chosen("face")
         if len(faces):
             centroids = positions[geometry.corners_of(mesh, faces)].mean(axis=1)
             keep = facing(eye, centroids, geometry.face_normals[faces])
             faces, centroids = faces[keep], centroids[keep]
-            centroids = centroids + arrows.LIFT * geometry.scale * geometry.face_normals[faces]
-            texts["face"] = (centroids, [self._text(highlight, "face", f) for f in faces])
+            add("face", faces, centroids + arrows.LIFT * geometry.scale * geometry.face_normals[faces])
         halfedges = chosen("halfedge")
         if len(halfedges):
             A, B, third = corners(mesh, halfedges)
             middle = 0.5 * (A + B)
             points = middle + 0.6 * ((A + B + third) / 3.0 - middle)
             keep = facing(eye, points, np.cross(B - A, third - A))
-            texts["halfedge"] = (points[keep], [self._text(highlight, "halfedge", h) for h in halfedges[keep]])
-        self._show(texts)
+            add("halfedge", halfedges[keep], points[keep])
+        self._show(wanted, self._dots(mesh, geometry, highlight, focus, eye, windowed))
 
-    def _show(self, texts: dict[str, tuple[np.ndarray, list[str]]]) -> None:
+    def _dots(self, mesh, geometry: SceneGeometry, highlight: Highlight, focus: np.ndarray, eye: np.ndarray,
+              windowed: bool) -> np.ndarray:
+        """(k, 3) the vertex dots in sight as screen discs ``(x, y, radius)`` in pixels:
+        labels keep off them. On a large mesh only the dots near ``focus`` count."""
+        live = np.flatnonzero(~mesh.vertex_deleted)
+        if windowed:
+            live = np.flatnonzero(ring_mark(mesh, focus, 2) & ~mesh.vertex_deleted) if len(focus) else live[:0]
+        live = live[geometry.vertex_in_sight(mesh, eye, live)]
+        radius = np.full(len(live), 0.5 * self.preset.vertex_size)
+        highlighted = np.concatenate([m for _, m in highlight.members("vertex")] + [np.zeros(0, np.int64)])
+        radius[np.isin(live, highlighted)] = 0.5 * self.preset.highlight_vertex_size
+        screen = to_screen(self.actors.plotter, self.window_size, mesh.positions[live])
+        return np.column_stack([screen[:, :2], radius])
+
+    def _show(self, wanted: list[Wanted], dots: np.ndarray) -> None:
         import pyvista as pv
 
         look = self.preset
+        plotter = self.actors.plotter
+        # Every label sits on a badge drawn from its lower left corner (vtk draws the badge
+        # of a centred label in the wrong place): a dark one for vertices, a pale one that
+        # keeps face and halfedge labels readable over arrows and edges.
+        corner = dict(justification_horizontal="left", justification_vertical="bottom")
         styles = {
             "vertex": dict(text_color="#FFFFFF", shape_color=look.vertex, shape="rounded_rect",
-                           font_size=look.label_size, bold=True,
-                           justification_horizontal="left", justification_vertical="bottom"),
-            "face": dict(text_color=look.text, shape=None, font_size=look.label_size, bold=False, italic=True,
-                         justification_horizontal="center", justification_vertical="center"),
-            "halfedge": dict(text_color="#333333", shape=None, font_size=max(8, look.label_size - 1), bold=False,
-                             justification_horizontal="center", justification_vertical="center"),
+                           font_size=look.label_size, bold=True, **corner),
+            "face": dict(text_color=look.text, shape_color="#FFFFFF", shape="rounded_rect", shape_opacity=0.7,
+                         font_size=look.label_size, bold=False, italic=True, **corner),
+            "halfedge": dict(text_color="#333333", shape_color="#FFFFFF", shape="rounded_rect", shape_opacity=0.7,
+                             font_size=max(8, look.label_size - 1), bold=False, **corner),
         }
-        self.texts = {kind: list(texts.get(kind, ((), []))[1]) for kind in KINDS}
+        wanted = sorted(wanted, key=lambda w: (w.rank, PLACING_ORDER.index(w.kind), w.index))
+        anchors = to_screen(plotter, self.window_size, np.array([w.anchor for w in wanted]).reshape(-1, 3))
+        sizes = np.array([text_size(w.text, styles[w.kind]["font_size"], PADDING[w.kind])
+                          for w in wanted]).reshape(-1, 2)
+        # A vertex label keeps off the biggest dot its vertex may have.
+        keep_clear = [0.5 * look.highlight_vertex_size + 1 if w.kind == "vertex" else 0.0 for w in wanted]
+        legends = legend_boxes(plotter, self.window_size)
+        listed: list[str] = []
+        for _ in range(4):
+            # Labels without room are listed along the bottom; that strip is kept clear,
+            # which may leave other labels without room: repeat until the list settles.
+            obstacles = np.vstack([legends, self._list_box(listed)])
+            centres = place(anchors[:, :2], sizes, keep_clear, dots, obstacles, self.window_size)
+            now = [w.text for w, centre in zip(wanted, centres) if np.isnan(centre[0])]
+            if now == listed:
+                break
+            listed = now
+        self.listed = listed
+        self.texts = {kind: [w.text for w in wanted if w.kind == kind] for kind in KINDS}
+        self._show_list(listed)
         for kind in KINDS:
             name = f"{kind}_labels"
-            points, words = texts.get(kind, (np.zeros((0, 3)), []))
-            if len(words) == 0:
+            mine = [i for i, w in enumerate(wanted) if w.kind == kind and not np.isnan(centres[i, 0])]
+            if not mine:
                 if name in self.actors:
                     self.actors.hide(name)
                 continue
-            data = pv.PolyData(np.asarray(points, dtype=float))
-            data.point_data["labels"] = np.array(words)
+            points = centres[mine] - sizes[mine] / 2 + BADGE_POINT   # the badge is drawn from its point
+            screen = np.column_stack([points, anchors[mine, 2]])      # at the anchor's depth
+            data = pv.PolyData(from_screen(plotter, self.window_size, screen))
+            data.point_data["labels"] = np.array([wanted[i].text for i in mine])
             if name in self.actors:
                 # The label actor reads this dataset: refill it instead of a new actor.
                 self.actors.refill(name, data)
             else:
                 self.actors.add_labels(name, data, **styles[kind])
+
+    def _list_box(self, listed: list[str]) -> np.ndarray:
+        """(0 or 1, 4) the screen box of the list of labels without room."""
+        if not listed:
+            return np.zeros((0, 4))
+        width, height = text_size(self._list_text(listed), self.preset.label_size, 0.0)
+        return np.array([[0.0, 0.0, LIST_MARGIN + width + 2, LIST_MARGIN + height + 2]])
+
+    def _list_text(self, listed: list[str]) -> str:
+        return list_text(listed, self.preset.label_size, self.window_size)
+
+    def _show_list(self, listed: list[str]) -> None:
+        """Write the labels without room in the picture's lower left corner (or hide that)."""
+        plotter = self.actors.plotter
+        if not listed:
+            if LIST_ACTOR in plotter.actors:
+                plotter.actors[LIST_ACTOR].SetVisibility(False)
+            return
+        actor = plotter.add_text(self._list_text(listed), position=(LIST_MARGIN, LIST_MARGIN),
+                                 color=self.preset.text, name=LIST_ACTOR, render=False)
+        actor.GetTextProperty().SetFontSize(self.preset.label_size)   # pixels, as the labels
+        actor.SetVisibility(True)
 
     def _labelled(self, mesh, geometry: SceneGeometry, highlight: Highlight, kind: str, choice: str | None,
                   near: np.ndarray | None, arrow_halfedges: np.ndarray) -> np.ndarray:
@@ -174,6 +412,21 @@ class Labels:
 
     @staticmethod
     def _text(highlight: Highlight, kind: str, index: int) -> str:
+        """``v3``, or a named element's ``vA (3)`` (a name that is the plain label stays plain)."""
         plain = f"{PREFIX[kind]}{int(index)}"
         name = highlight.names.get((kind, int(index)))
-        return plain if name is None else f"{name} ({int(index)})"
+        return plain if name is None or name == plain else f"{name} ({int(index)})"
+
+
+def overlapping_labels(plotter, window_size=None) -> list[tuple[str, str]]:
+    """The problems of the labels ``plotter`` shows, measured with :func:`label_boxes`:
+    ``(text, other text)`` for two boxes that overlap, ``(text, "outside the picture")``
+    for a box not wholly inside it. Empty when every label can be read."""
+    width, height = tuple(window_size or plotter.window_size)
+    measured = label_boxes(plotter, (width, height))
+    problems = [(text, "outside the picture") for text, box in measured
+                if box[0] < 0 or box[1] < 0 or box[2] > width or box[3] > height]
+    for i, (text, box) in enumerate(measured):
+        others = np.array([b for _, b in measured[i + 1:]]).reshape(-1, 4)
+        problems += [(text, measured[i + 1 + j][0]) for j in np.flatnonzero(overlaps(box, others))]
+    return problems

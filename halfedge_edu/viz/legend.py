@@ -56,6 +56,10 @@ class Legend:
         self._shown = None
 
 
+#: The widest a legend gets, as a share of the picture's width.
+MOST_WIDTH = 0.5
+
+
 def legend_arrow():
     """A small arrow shape for legend entries of halfedge roles."""
     import pyvista as pv
@@ -87,7 +91,11 @@ def legend_box(entries, look: Preset, window_size):
     text = legend.GetEntryTextProperty()
     text.SetFontFamilyToArial()
     text.SetColor(0.0, 0.0, 0.0)
-    width = look.legend_size[0]
+    # Wide enough for the longest text at the labels' size (VTK shrinks the text to fit
+    # its box, which made a small picture's legend unreadable), within reason.
+    longest = max((len(text) for text, _, _ in entries), default=0)
+    wanted = (2.5 + 0.6 * longest) * look.label_size / window_size[0]
+    width = min(max(look.legend_size[0], wanted), MOST_WIDTH)
     row = look.label_size * 1.9 / window_size[1]
     height = min(0.96, row * len(entries))
     legend.GetPositionCoordinate().SetCoordinateSystemToNormalizedViewport()

@@ -38,6 +38,11 @@ class Role:
 
 
 _ROLE_LIST = [
+    # A check's finding (chapters 06-08): the pointer that is wrong, its value, the right one.
+    Role("wrong_owner", "halfedge", VERMILLION, "its pointer is wrong"),
+    Role("wrong_vertex", "vertex", VERMILLION, "its pointer is wrong"),
+    Role("wrong", "halfedge", REDDISH_PURPLE, "the wrong value"),
+    Role("right", "halfedge", BLUISH_GREEN, "the right value"),
     # Navigation from one halfedge h (chapter 03).
     Role("current", "halfedge", VERMILLION, "h (current)"),
     Role("twin", "halfedge", BLUE, "h.twin"),

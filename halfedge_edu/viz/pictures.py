@@ -147,3 +147,31 @@ def surface_png(mesh, *, size: tuple[int, int] = (380, 320), view=(1.0, 1.0, 1.0
         return plotter_png(plotter)
     finally:
         plotter.close()
+
+
+def legend_png(entries: list[tuple[str, str, str]], *, style: TitleStyle = NOTEBOOK_TITLES,
+               width: int = 230) -> bytes:
+    """A legend as a PNG, one row per ``(text, "#RRGGBB", kind)`` entry (what
+    ``scene.legend_entries()`` gives): an arrow, dot or square in the colour, then the
+    text, at the titles' font size. For still pictures whose scenes have no legend."""
+    from PIL import Image, ImageDraw, ImageFont
+
+    row = int(style.font_size * 1.6)
+    sheet = Image.new("RGB", (width, row * len(entries) + style.top * 2), "white")
+    draw = ImageDraw.Draw(sheet)
+    font = ImageFont.load_default(size=style.font_size)
+    for i, (text, color, kind) in enumerate(entries):
+        top = style.top + i * row
+        middle = top + row // 2
+        x0, x1 = style.left, style.left + 2 * style.font_size
+        if kind == "halfedge":
+            draw.line([(x0, middle), (x1 - 6, middle)], fill=color, width=3)
+            draw.polygon([(x1, middle), (x1 - 8, middle - 5), (x1 - 8, middle + 5)], fill=color)
+        elif kind == "vertex":
+            radius = style.font_size // 2
+            centre = (x0 + x1) // 2
+            draw.ellipse([centre - radius, middle - radius, centre + radius, middle + radius], fill=color)
+        else:
+            draw.rectangle([x0, middle - style.font_size // 2, x1, middle + style.font_size // 2], fill=color)
+        draw.text((x1 + 8, middle), text, fill=style.color, font=font, anchor="lm")
+    return png_bytes(sheet)

@@ -1,4 +1,5 @@
-"""Screen geometry shared by the scenes: unit vectors and placing labels beside points."""
+"""Screen geometry shared by the scenes: unit vectors, placing labels beside points, and
+world points to and from the picture's pixels."""
 
 from __future__ import annotations
 
@@ -25,3 +26,30 @@ def beside(plotter, window_size, points: np.ndarray, pixels: float) -> np.ndarra
     depth = (points - eye) @ forward                                   # (k,)
     world_per_pixel = 2.0 * depth * np.tan(np.radians(camera.view_angle / 2)) / window_size[1]
     return points + (pixels * world_per_pixel)[:, None] * (right + up)
+
+
+def _world_to_ndc(plotter, window_size) -> np.ndarray:
+    """(4, 4) the camera's world-to-normalised-device matrix for a ``window_size`` picture
+    (what vtk's ``WorldToDisplay`` applies, as one matrix for many points)."""
+    aspect = window_size[0] / window_size[1]
+    matrix = plotter.camera.GetCompositeProjectionTransformMatrix(aspect, -1.0, 1.0)
+    return np.array([[matrix.GetElement(i, j) for j in range(4)] for i in range(4)])
+
+
+def to_screen(plotter, window_size, points: np.ndarray) -> np.ndarray:
+    """(k, 3) world points -> (k, 3) display pixels ``(x, y, depth)``: x to the right and y
+    up from the picture's lower left corner (vtk's display coordinates), depth in [-1, 1]."""
+    points = np.asarray(points, dtype=float).reshape(-1, 3)
+    homogeneous = np.hstack([points, np.ones((len(points), 1))]) @ _world_to_ndc(plotter, window_size).T
+    ndc = homogeneous[:, :3] / homogeneous[:, 3:4]
+    size = np.array(window_size, dtype=float)
+    return np.column_stack([(ndc[:, :2] + 1.0) * 0.5 * size, ndc[:, 2]])
+
+
+def from_screen(plotter, window_size, screen: np.ndarray) -> np.ndarray:
+    """The inverse of :func:`to_screen`: (k, 3) ``(x, y, depth)`` pixels -> (k, 3) world points."""
+    screen = np.asarray(screen, dtype=float).reshape(-1, 3)
+    size = np.array(window_size, dtype=float)
+    ndc = np.column_stack([screen[:, :2] / (0.5 * size) - 1.0, screen[:, 2], np.ones(len(screen))])
+    world = ndc @ np.linalg.inv(_world_to_ndc(plotter, window_size)).T
+    return world[:, :3] / world[:, 3:4]

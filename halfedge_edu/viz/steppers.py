@@ -30,9 +30,10 @@ import numpy as np
 from ..core.elements import Halfedge
 from .neighbourhood import ring_window
 from .palette import panel_css, preset as _preset
-from .pictures import grid_png
+from .pictures import grid_png, legend_png
+from .screen import unit
 from .scene import MAX_ARROWS, HalfedgeScene
-from .widgets import StepperWidget, panel_button, table_html
+from .widgets import StepperWidget, legend_html, panel_button, table_html
 
 # Stepper roles by the kind of element they colour.
 _CHANGED = {"halfedge": "changed", "vertex": "changed_vertex", "face": "changed_face"}
@@ -530,11 +531,14 @@ class CollapseAtlas:
         self.refused_titles = [title for title, _, _ in refused]
         self.refused = [CollapseStepper(mesh, edge, mode="static", preset=self.look, window_size=thumb_size)
                         for _, mesh, edge in refused]
+        for stepper in self.refused:
+            self._show_refused(stepper)
         self.phases = [title for _, title in self.steppers[0].log.phases] if self.steppers else []
         self._phase = 0
 
         css = panel_css(self.look)
         self._status = widgets.HTML()
+        self._legend = widgets.HTML(layout=widgets.Layout(margin="0 0 0 12px"))
         self._captions = [widgets.HTML(layout=widgets.Layout(width=f"{case_size[0]}px")) for _ in self.steppers]
         buttons = widgets.HBox([
             self._button("start", lambda: self.go("start")),
@@ -547,7 +551,7 @@ class CollapseAtlas:
             widgets.VBox([widgets.HTML(f'<b style="font-size:{css["font"]}">{html.escape(title)}</b>'),
                           stepper.view.widget, caption])
             for title, stepper, caption in zip(self.titles, self.steppers, self._captions)
-        ])
+        ] + [self._legend])
         refusals = widgets.HBox([
             widgets.VBox([widgets.HTML(f'<b style="font-size:{css["font"]}">{html.escape(title)}</b>'),
                           stepper.view.widget,
@@ -568,6 +572,34 @@ class CollapseAtlas:
 
     def _button(self, label: str, action):
         return panel_button(self.look, label, "", action)
+
+    @staticmethod
+    def _show_refused(stepper) -> None:
+        """Show a refused collapse so its reason can be followed: the edge and its ends'
+        neighbours fill the picture, seen at a slant (a tetrahedron seen along its edge is
+        a flat rhombus), and every vertex there is labelled, as the reason names vertices."""
+        mesh, scene = stepper.before, stepper.scene
+        edge = next(index for kind, index in stepper.check.elements if kind == "edge")
+        ends = mesh.edge_vertices()[edge]                                      # (2,)
+        neighbours = [h.tip.index for v in ends for h in mesh.vertex(int(v)).outgoing()]
+        near = np.unique(np.concatenate([ends, neighbours]))
+        points = mesh.positions[near]                                         # (k, 3)
+        centre = mesh.positions[ends].mean(axis=0)
+        _, spread, axes = np.linalg.svd(points - points.mean(axis=0))
+        if spread[-1] < 1e-9 * spread[0]:
+            direction = axes[2]                  # a flat patch: straight onto its plane
+        else:
+            # A solid: from outside the edge, turned aside and a little along the edge.
+            along = unit(mesh.positions[ends[1]] - mesh.positions[ends[0]])
+            outward = unit(centre - mesh.positions[~mesh.vertex_deleted].mean(axis=0))
+            side = unit(np.cross(along, outward))
+            direction = unit(outward + 0.3 * along + 0.3 * side)
+        camera = scene.plotter.camera
+        camera.focal_point = tuple(centre)
+        camera.position = tuple(centre + direction)
+        scene.plotter.reset_camera(bounds=np.column_stack([points.min(axis=0), points.max(axis=0)]).ravel())
+        scene.set_roles(scene.roles, names={("vertex", int(v)): f"v{int(v)}" for v in near})
+        stepper.view.update()
 
     @property
     def phase(self) -> int:
@@ -597,8 +629,20 @@ class CollapseAtlas:
         self._phase = target
         for stepper in self.steppers:
             stepper.go(self._end_of_phase(stepper, target))
+            if target and self._end_of_phase(stepper, target) == self._end_of_phase(stepper, target - 1):
+                self._without_changes(stepper)
         self._refresh()
         return self._phase
+
+    @staticmethod
+    def _without_changes(stepper) -> None:
+        """Take the "changes now" highlight off a case that changes nothing in this phase
+        (it would still show the last change of an earlier phase)."""
+        scene = stepper.scene
+        now = {*_CHANGED.values(), *_OLD.values(), *_NEW.values()}
+        scene.set_roles({role: members for role, members in scene.roles.items() if role not in now},
+                        names=scene.names)
+        stepper.view.update()
 
     def step(self) -> int:
         """Every case to the end of the next phase."""
@@ -616,6 +660,7 @@ class CollapseAtlas:
         size = panel_css(self.look)["font"]
         self._status.value = (f'<div style="font-size:{size}">phase {self._phase} of {len(self.phases)}: '
                               f"<i>{html.escape(self._phase_title())}</i></div>")
+        self._legend.value = legend_html(self.legend_entries(), self.look)
         for caption, stepper in zip(self._captions, self.steppers):
             state = stepper.state
             notes = "".join(f"<div>{html.escape(n)}</div>" for n in stepper.log.notes)
@@ -635,9 +680,22 @@ class CollapseAtlas:
             lines.append(f"refused, {title} ({stepper.check.rule}): {stepper.check.reason}")
         return "\n".join(lines)
 
+    def legend_entries(self) -> list[tuple[str, str, str]]:
+        """What the colours of every picture of the atlas mean now, each once:
+        ``(text, "#RRGGBB", kind)`` as :meth:`HalfedgeScene.legend_entries`."""
+        entries: dict[tuple[str, str, str], None] = {}
+        for stepper in self.steppers + self.refused:
+            entries.update(dict.fromkeys(stepper.scene.legend_entries()))
+        return list(entries)
+
     def screenshot(self, path=None) -> bytes:
-        """Every picture of the atlas in one PNG: the cases in a row, the refusals below."""
-        return grid_png([[s.screenshot() for s in self.steppers], [s.screenshot() for s in self.refused]], path=path)
+        """Every picture of the atlas in one PNG, titled: the cases in a row with the
+        legend beside them, the refusals below."""
+        phase = f"phase {self._phase} of {len(self.phases)}"
+        return grid_png([[s.screenshot() for s in self.steppers] + [legend_png(self.legend_entries())],
+                         [s.screenshot() for s in self.refused]],
+                        [[f"{title} ({phase})" for title in self.titles] + ["legend"],
+                         [f"refused: {title}" for title in self.refused_titles]], path=path)
 
     def close(self) -> None:
         self.widget.close()

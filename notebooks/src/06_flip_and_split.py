@@ -39,7 +39,8 @@ flipped = strip.copy()
 flip(flipped, 1, log=log)
 quad = [index for name, (kind, index) in log.named.items() if kind == "halfedge"]
 side_by_side(
-    [named_picture(strip, log, {"named": quad}), named_picture(flipped, log, {"named": quad})],
+    [named_picture(strip, log, {"named": quad}, labels=("vertex",)),
+     named_picture(flipped, log, {"named": quad}, labels=("vertex",))],
     ["before: edge 1 joins v0 and v1", "after flip(1): edge 1 joins v2 and v3"],
 )
 
@@ -49,7 +50,9 @@ side_by_side(
 # The blue arrows are the six halfedges the flip works on; every label keeps its name
 # from before to after, so you can follow where each halfedge went. A label such as
 # `v0 (1)` reads "the flip calls it v0; in the mesh it is vertex 1", and `h0 (2)` is
-# halfedge 2; a plain `h9` or `v4` is an element the flip does not touch.
+# halfedge 2. Only the flip's names are written, so `h1` always means the flip's `h1`
+# (halfedge 3), never halfedge 1; a plain `v4` is vertex 4, which the flip does not touch
+# (and `v3` is both the flip's `v3` and vertex 3).
 
 # %% [markdown]
 # ## 1. The flip
@@ -324,9 +327,9 @@ check_flip(my_flip)
 # ### What a mistake looks like
 #
 # Here is a flip with one step forgotten: it does everything except step 4. The check
-# finds the vertex whose `halfedge` no longer leaves it, says which name it has in the
-# picture, and `result.show()` draws it (with its one-ring) on the mesh as it was
-# before the flip.
+# finds the vertex whose `halfedge` no longer leaves it and says which name it has in
+# the picture of the operation (`result.show()` draws that element with its one-ring on
+# the mesh as it was before; below, the wrong pointer itself is drawn after the flip).
 
 # %%
 def flip_without_step_4(mesh, e):
@@ -347,9 +350,29 @@ buggy = check_flip(flip_without_step_4)
 buggy
 
 # %%
-buggy.show(window_size=(420, 320))
+def wrong_pointer_picture(mesh, log, owner, wrong, right, size=(440, 330)):
+    """``mesh`` with the pointer a check complains about: element ``owner`` (kind, index)
+    points at halfedge ``wrong`` where the library's operation points at ``right``. The
+    labels use the operation's names (those of ``log``), as the check's message does."""
+    names = {element: name for name, element in log.named.items()}
+    kind, index = owner
+    roles = {"wrong_vertex" if kind == "vertex" else "wrong_owner": [index], "wrong": [wrong], "right": [right]}
+    return scene_picture(mesh, lambda scene: scene.set_roles(roles, names=names), window_size=size,
+                         labels=("vertex",))
+
+
+learner, reference, reference_log = hx.sample("cube"), hx.sample("cube"), OperationLog()
+flip_without_step_4(learner, 1)
+flip(reference, 1, log=reference_log)
+vertex = buggy.element[1]
+side_by_side([wrong_pointer_picture(learner, reference_log, ("vertex", vertex), learner.vertex_halfedge[vertex],
+                                    reference.vertex_halfedge[vertex])],
+             ["after flip_without_step_4(1) on the cube"])
 
 # %% [markdown]
+# `v1` (vertex 2) still points at `h1`, which the flip has turned to leave `v2`; the
+# library's flip moves that pointer to `h2`, which leaves `v1`.
+#
 # On the strip the missing step did not matter: no vertex there pointed at `h0` or
 # `h1`. On the cube it did. That is why the check runs several meshes: some mistakes
 # only show when a particular pointer happens to be involved.

@@ -26,9 +26,17 @@ from halfedge_edu.core.ops import OperationLog, can_collapse, collapse
 from halfedge_edu.viz import CollapseAtlas, CollapseStepper, grid, scene_picture
 
 
+def _names(log):
+    """Element -> its names in ``log``, joined where one element has two (``gL/gR``)."""
+    names = {}
+    for name, element in log.named.items():
+        names[element] = f"{names[element]}/{name}" if element in names else name
+    return names
+
+
 def named_picture(mesh, log, roles, size=(380, 290), camera=None):
     """A picture of ``mesh`` with the elements of ``log`` labelled by their names."""
-    names = {element: name for name, element in log.named.items()}
+    names = _names(log)
 
     def show(scene):
         if camera is not None:
@@ -391,12 +399,34 @@ buggy = check_collapse(collapse_reading_too_early)
 buggy
 
 # %%
-buggy.show(window_size=(420, 320))
+def wrong_pointer_picture(mesh, log, owner, wrong, right, size=(440, 330), camera=None):
+    """``mesh`` with the pointer a check complains about: element ``owner`` (kind, index)
+    points at halfedge ``wrong`` where the library's operation points at ``right``. The
+    labels use the operation's names (those of ``log``), as the check's message does."""
+    names = _names(log)
+    kind, index = owner
+    roles = {"wrong_vertex" if kind == "vertex" else "wrong_owner": [index], "wrong": [wrong], "right": [right]}
+
+    def show(scene):
+        if camera is not None:
+            scene.plotter.camera_position = camera
+        scene.set_roles(roles, names=names)
+
+    return scene_picture(mesh, show, window_size=size, labels=("vertex",), follow=False)
+
+
+learner = cube.copy()
+collapse_reading_too_early(learner, 0)
+halfedge = buggy.element[1]
+grid([[wrong_pointer_picture(cube, cube_log, ("halfedge", halfedge), learner.halfedge_next[halfedge],
+                             cube_after.halfedge_next[halfedge], camera=corner_view)]],
+     [["the cube before the collapse: h_R_A's next"]])
 
 # %% [markdown]
-# The picture shows halfedge 22 (`h_R_A`) on the cube before the collapse. Its `next`
-# was copied from `h_R_B` at the start, when it was still `h_B_L` (halfedge 5); by the
-# time it is written, the first replacement has put `h_A_L` there instead.
+# The picture shows halfedge 22 (`h_R_A`) on the cube before the collapse, and its
+# `next`: the wrong value `h_B_L` (halfedge 5), which the collapse deletes, and the
+# right one. That `next` was copied from `h_R_B` at the start, when it was still `h_B_L`;
+# by the time it is written, the first replacement has put `h_A_L` there instead.
 
 # %% [markdown]
 # ## Summary

@@ -25,6 +25,7 @@ import halfedge_edu as hx
 from halfedge_edu.core.ops import can_collapse, collapse, link_condition, link_of_edge, link_of_vertex
 from halfedge_edu.core.ops.link import BOUNDARY
 from halfedge_edu.viz import plotter_png, side_by_side
+from halfedge_edu.viz.screen import beside
 
 LINK_A, LINK_B, SHARED, EXTRA = "#E69F00", "#56B4E9", "#009E73", "#D55E00"   # Okabe-Ito colours
 
@@ -40,7 +41,7 @@ def draw_link(plotter, mesh, e, view=None):
     scale = float(np.median([edge.length for edge in mesh.edges]))
     normals = hx.vertex_normals(mesh)
     lifted = P + 0.02 * scale * normals                     # lines just above the surface
-    plotter.add_mesh(mesh.to_pyvista(), color="#EEEBE4", show_edges=True, edge_color="#B5B1A8",
+    plotter.add_mesh(mesh.to_pyvista(), color="#EEEBE4", show_edges=True, edge_color="#5F5B54", line_width=1.2,
                      opacity=0.55 if mesh.is_closed else 1.0)
 
     def lines(pairs, color, width):
@@ -67,11 +68,6 @@ def draw_link(plotter, mesh, e, view=None):
     points([lc.a, lc.b], "#222222", 18)
     points(lc.shared.vertices & lc.link_ab.vertices, SHARED, 22)
     points(lc.extra.vertices, EXTRA, 26)
-    labelled = [lc.a, lc.b] + sorted(v for v in lc.shared.vertices if v != BOUNDARY)
-    words = ["a" if v == lc.a else "b" if v == lc.b else str(v) for v in labelled]
-    plotter.add_point_labels(lifted[labelled] + 0.08 * scale * normals[labelled], words, font_size=13,
-                             text_color="black", shape_color="white", shape_opacity=0.7,
-                             show_points=False, always_visible=True)
     centre = P[~mesh.vertex_deleted].mean(axis=0)
     radius = float(np.linalg.norm(P[~mesh.vertex_deleted] - centre, axis=1).max())
     if view is None:
@@ -79,6 +75,14 @@ def draw_link(plotter, mesh, e, view=None):
     direction = np.asarray(view, dtype=float) / np.linalg.norm(view)
     up = (0.0, 0.0, 1.0) if abs(direction[2]) < 0.9 else (0.0, 1.0, 0.0)
     plotter.camera_position = [tuple(centre + 4.6 * radius * direction), tuple(centre), up]
+    # Labels a few pixels up and right of their dots on screen (the camera is set), so
+    # that no dot covers its own label.
+    labelled = [lc.a, lc.b] + sorted(v for v in lc.shared.vertices if v != BOUNDARY)
+    words = ["a" if v == lc.a else "b" if v == lc.b else str(v) for v in labelled]
+    plotter.add_point_labels(beside(plotter, plotter.window_size, lifted[labelled], 14), words, font_size=13,
+                             text_color="black", shape_color="white", shape_opacity=0.8,
+                             justification_horizontal="left", justification_vertical="bottom",
+                             show_points=False, always_visible=True)
     return lc
 
 

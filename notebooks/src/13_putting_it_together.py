@@ -25,8 +25,30 @@ from scipy.spatial import cKDTree
 
 import halfedge_edu as hx
 from halfedge_edu.algorithms.remesh import closest_points_on_triangles
-from halfedge_edu.viz.remesh_stepper import RemeshStepper, histogram_png, phase_quality
+from halfedge_edu.viz.remesh_stepper import RemeshStepper, draw_histograms, histogram_png, phase_quality
 from halfedge_edu.viz import side_by_side, surface_png
+
+
+
+def histograms(meshes, labels, L) -> bytes:
+    """``histogram_png`` of ``meshes``, with the legend to the right of the histograms
+    instead of over the bars of the last one."""
+    import io
+
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(11.4, 2.6), dpi=80)
+    draw_histograms(figure, [phase_quality(mesh, L) for mesh in meshes], labels)
+    last = figure.axes[-1]
+    legend = last.get_legend()
+    handles, texts = legend.legend_handles, [text.get_text() for text in legend.get_texts()]
+    legend.remove()
+    last.legend(handles, texts, loc="upper left", bbox_to_anchor=(1.03, 1.0), fontsize=9, frameon=False)
+    figure.tight_layout()
+    buffer = io.BytesIO()
+    figure.savefig(buffer, format="png", metadata={"Software": None})
+    return buffer.getvalue()
+
 
 R, r = 1.0, 0.35                                   # the torus: distance to the tube's centre, tube radius
 
@@ -232,7 +254,7 @@ for name, mesh in trips.items():
     print(report(name, mesh, L_spot, distance_both_ways(spot, mesh)))
 
 # %%
-Image(histogram_png(list(trips.values()), list(trips), L_spot, size=(9.6, 2.6)))
+Image(histograms(list(trips.values()), list(trips), L_spot))
 
 # %% [markdown]
 # Grey is Spot as it is; the outlines are the three round trips.
@@ -364,7 +386,7 @@ for name, mesh in answers.items():
     print(report(name, mesh, L_B, distance_both_ways(spot, mesh)))
 
 # %%
-Image(histogram_png(list(answers.values()), list(answers), L_B, size=(9.6, 2.6)))
+Image(histograms(list(answers.values()), list(answers), L_B))
 
 # %% [markdown]
 # **B** (remesh alone) and **C** (simplify, then remesh) give near-equilateral

@@ -1,0 +1,180 @@
+"""Labels can be read: no label box overlaps another, measured in the picture's pixels.
+
+Each check projects every drawn label's point with the scene's camera, estimates its box
+from its font size and text (``labels.label_boxes``) and asks ``overlapping_labels`` for
+boxes that overlap or leave the picture. The scenes are those issue 11 found crowded:
+chapter 07's opening pictures, the collapse stepper and the collapse atlas at every step,
+the split stepper at its end, the bunny's one-ring viewer; then every figure.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from halfedge_edu import figures
+from halfedge_edu.core.ops import OperationLog, collapse
+from halfedge_edu.data import sample
+from halfedge_edu.viz import CollapseAtlas, CollapseStepper, FlipStepper, HalfedgeScene, OneRingViewer, SplitStepper
+from halfedge_edu.viz import labels as labels_module
+from halfedge_edu.viz import pictures, scene as scene_module
+from halfedge_edu.viz.labels import label_boxes, overlapping_labels, place
+
+#: Label boxes checked by this module's tests, by test (printed with ``-s``).
+CHECKED: dict[str, int] = {}
+
+
+def _readable(plotter, where: str) -> int:
+    """Assert the labels ``plotter`` shows can all be read; return how many boxes were checked."""
+    problems = overlapping_labels(plotter)
+    assert problems == [], f"{where}: {problems}"
+    return len(label_boxes(plotter))
+
+
+def _record(name: str, count: int) -> None:
+    CHECKED[name] = count
+    print(f"{name}: {count} label boxes checked")
+
+
+def test_the_check_finds_two_labels_on_one_spot():
+    import pyvista as pv
+
+    plotter = pv.Plotter(off_screen=True, window_size=[300, 200])
+    try:
+        data = pv.PolyData(np.zeros((2, 3)))
+        data.point_data["labels"] = np.array(["v1", "v2"])
+        plotter.add_point_labels(data, "labels", name="vertex_labels", font_size=12, always_visible=True,
+                                 show_points=False, justification_horizontal="left", justification_vertical="bottom")
+        assert overlapping_labels(plotter) == [("v1", "v2")]
+    finally:
+        plotter.close()
+
+
+def test_a_measured_box_holds_every_pixel_of_its_label(closing):
+    scene = HalfedgeScene(sample("strip"), legend=False)
+    closing(scene)
+    scene.set_roles({"current": [0]})
+    texts = dict(label_boxes(scene.plotter))
+    scene.plotter.set_background("#FF00FF")     # a colour no label uses
+    for actor_name, actor in scene.plotter.actors.items():
+        if not actor_name.endswith("-labels"):
+            actor.SetVisibility(False)
+    scene.plotter.render()
+    image = np.asarray(scene.plotter.screenshot(return_img=True))
+    rows, columns = np.nonzero((image != (255, 0, 255)).any(axis=2))
+    height = image.shape[0]
+    inside = np.zeros(len(rows), dtype=bool)
+    for box in texts.values():
+        x0, y0, x1, y1 = box
+        inside |= (columns >= x0 - 1) & (columns <= x1 + 1) & (height - 1 - rows >= y0 - 1) & (height - 1 - rows <= y1 + 1)
+    assert len(texts) >= 10 and inside.all()
+
+
+def test_place_moves_a_label_off_another_and_drops_one_without_room():
+    anchors = np.array([[50.0, 50.0], [50.0, 50.0], [50.0, 50.0]])
+    sizes = np.array([[30.0, 14.0], [30.0, 14.0], [200.0, 14.0]])
+    centres = place(anchors, sizes, [0.0, 0.0, 0.0], np.zeros((0, 3)), np.zeros((0, 4)), (100, 100))
+    assert np.allclose(centres[0], [50.0, 50.0])
+    assert np.abs(centres[1] - centres[0]).max() >= 14.0      # moved clear of the first
+    assert np.isnan(centres[2]).all()                           # wider than the picture
+
+
+def _named_picture_plotter(mesh, log, camera, closing):
+    """Chapter 07's opening picture: the collapse's elements labelled by their names."""
+    names = {}
+    for name, element in log.named.items():
+        names[element] = f"{names[element]}/{name}" if element in names else name
+    named = lambda kind: [i for k, i in log.named.values() if k == kind]  # noqa: E731
+    scene = HalfedgeScene(mesh, window_size=(380, 290), legend=False, labels=("vertex",), follow=False)
+    closing(scene)
+    if camera is not None:
+        scene.plotter.camera_position = camera
+    scene.set_roles({"named": named("halfedge"), "named_vertex": named("vertex"), "named_face": named("face")},
+                    names=names)
+    return scene
+
+
+def test_chapter_07_opening_pictures_have_no_label_on_another(closing):
+    corner_view = [(-1.9, -2.4, -1.6), (0.5, 0.5, 0.5), (0.0, 0.0, 1.0)]
+    count = 0
+    for name, camera in (("cube", corner_view), ("single_collapse", None)):
+        before = sample(name)
+        after, log = before.copy(), OperationLog()
+        collapse(after, after.halfedge(0), log=log)
+        for mesh in (before, after):
+            scene = _named_picture_plotter(mesh, log, camera, closing)
+            count += _readable(scene.plotter, f"{name}")
+            if mesh is before and name == "cube":
+                assert any(text.startswith("gL/gR") for text in scene.labels_shown()["face"])
+    _record("chapter 07 opening", count)
+    assert count >= 40
+
+
+@pytest.mark.parametrize("name", ["cube", "single_collapse"])
+def test_collapse_stepper_labels_never_overlap(name, closing):
+    stepper = CollapseStepper(sample(name), 0, window_size=(480, 360))
+    closing(stepper)
+    count = 0
+    for step in range(stepper.n_steps + 1):
+        stepper.go(step)
+        count += _readable(stepper.scene.plotter, f"{name} step {step}")
+    _record(f"collapse stepper {name}", count)
+    assert count > 10 * stepper.n_steps
+
+
+def test_split_and_flip_steppers_labels_never_overlap(closing):
+    count = 0
+    for make in (SplitStepper, FlipStepper):
+        stepper = make(sample("strip"), 1, window_size=(480, 360))
+        closing(stepper)
+        for step in range(stepper.n_steps + 1):
+            stepper.go(step)
+            count += _readable(stepper.scene.plotter, f"{make.__name__} step {step}")
+    _record("split and flip steppers", count)
+    assert count > 100
+
+
+def test_collapse_atlas_labels_never_overlap_in_any_phase(closing):
+    atlas = CollapseAtlas()
+    closing(atlas)
+    count = sum(_readable(s.scene.plotter, f"refused {s.log.edge}") for s in atlas.refused)
+    for phase in range(len(atlas.phases) + 1):
+        atlas.go(phase)
+        count += sum(_readable(s.scene.plotter, f"phase {phase}") for s in atlas.steppers)
+    _record("collapse atlas", count)
+    assert count > 100
+
+
+def test_bunny_one_ring_viewer_labels_never_overlap(bunny, closing):
+    viewer = OneRingViewer(bunny, 100)
+    closing(viewer)
+    count = 0
+    for move in ("ccw", "ccw", "tip", "cw", 2000, "ccw"):
+        viewer.go(move)
+        count += _readable(viewer.scene.plotter, f"bunny after {move}")
+    _record("bunny one-ring viewer", count)
+    assert count > 30
+
+
+def test_every_figure_has_readable_labels(tmp_path, monkeypatch):
+    checked: list[int] = []
+    encode = pictures.plotter_png
+
+    def checked_png(plotter, path=None, **options):
+        checked.append(_readable(plotter, "a figure"))
+        return encode(plotter, path, **options)
+
+    for module in (pictures, scene_module, figures):
+        monkeypatch.setattr(module, "plotter_png", checked_png)
+    assert figures.main(["--out", str(tmp_path)]) == 0
+    _record("figures", sum(checked))
+    assert sum(checked) > 100
+
+
+def test_labels_module_lists_a_label_without_room(closing):
+    # A tiny picture of the cube with every label: not all fit, the rest are listed.
+    scene = HalfedgeScene(sample("cube"), window_size=(160, 120), legend=False, labels=True)
+    closing(scene)
+    listing = scene.plotter.actors[labels_module.LIST_ACTOR]
+    assert listing.GetVisibility() and listing.GetInput().startswith("no room for: ")
+    assert overlapping_labels(scene.plotter) == []
