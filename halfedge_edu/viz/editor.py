@@ -53,6 +53,7 @@ from __future__ import annotations
 import html
 import threading
 from collections.abc import Callable
+from contextlib import contextmanager
 
 import numpy as np
 
@@ -116,13 +117,37 @@ class MeshEditor(SceneWidget):
         self._last_text = ""
         self._validity = self._validity_of(working)
         self._syncing = False
-        super().__init__(working, mode=mode, preset=preset, labels=labels, rings=rings, window_size=window_size)
+        self._mesh = working
+        self._held = 0
+        self._stale = False
+        # The scene draws a copy taken at each redraw, so edits made while held
+        # (see held()) never leave the scene's mesh and its drawing apart.
+        super().__init__(working.copy(), mode=mode, preset=preset, labels=labels, rings=rings, window_size=window_size)
         if self.mode == "live":
             self.scene.plotter.enable_surface_point_picking(
                 callback=lambda point: on_main_thread(self._picked, point),
                 show_message=False, show_point=False, left_clicking=False, picker="cell")
 
     # -- public ----------------------------------------------------------------------------
+
+    @property
+    def mesh(self):
+        """The edited mesh (the picture shows a copy of it, taken at the last redraw)."""
+        return self._mesh
+
+    @contextmanager
+    def held(self):
+        """Edit without redrawing until the ``with`` block ends, then draw once.
+
+        For a script of many edits: ``with editor.held(): for e in edges: ...``.
+        Every edit is still validated and can be undone.
+        """
+        self._held += 1
+        try:
+            yield self
+        finally:
+            self._held -= 1
+            self._draw()
 
     @property
     def selection(self) -> tuple[str, int]:
@@ -154,7 +179,7 @@ class MeshEditor(SceneWidget):
         self._selection = self._checked_selection(self.mesh, kind, index)
         self._last_check = None
         self._say("")
-        self._changed()
+        self._draw()
         return self._selection
 
     def pick_at(self, point, kind: str | None = None) -> tuple[str, int]:
@@ -224,14 +249,12 @@ class MeshEditor(SceneWidget):
             self._say("nothing to undo")
             return False
         mesh, self._selection = self._history.pop()
-        self.scene.clear()            # the highlight may name elements the older mesh lacks
-        self.scene.mesh = mesh
+        self._mesh = mesh
         self._last_log, self._last_check = None, None
         self._last_text = "undone"
         self._validity = self._validity_of(mesh)
         self._say("undone")
-        self.scene.refresh()
-        self._changed()
+        self._draw(rebuild=True)
         return True
 
     def describe(self) -> str:
@@ -297,15 +320,26 @@ class MeshEditor(SceneWidget):
         self._validity = self._validity_of(mesh)
         self._say(f"{self._last_text}: {len(log.changes)} changes; {self._validity}",
                   error=self._validity != "valid")
-        self.scene.refresh()
-        self._changed()
+        self._draw(rebuild=True)
         return check if check is not None else OpCheck.ok(self._last_text)
 
     def _refuse(self, operation: str, check: OpCheck) -> OpCheck:
         self._last_check, self._last_text = check, f"{operation} of {self._selection_text()}"
         self._say(f"{operation} refused: {check.reason}", error=True)
-        self._changed()
+        self._draw()
         return check
+
+    def _draw(self, rebuild: bool = False) -> None:
+        """Show the current state (after ``held()`` ends, if held); ``rebuild``: the mesh changed."""
+        self._stale |= rebuild
+        if self._held:
+            return
+        if self._stale:
+            self.scene.clear()            # the old highlight may name elements the new mesh lacks
+            self.scene.mesh = self._mesh.copy()
+            self.scene.refresh()
+            self._stale = False
+        self._changed()
 
     # -- state in words --------------------------------------------------------------------
 
