@@ -410,31 +410,42 @@ class MeshEditor(SceneWidget):
         css = panel_css(self.look)
         kind, index = self._selection
         self._kind_box = widgets.Dropdown(options=KINDS, value=kind, description="select",
-                                          layout=widgets.Layout(width=f"calc({css['button_width']} * 2)"))
+                                          layout=widgets.Layout(width=f"calc({css['button_width']} * 1.6)"))
         self._kind_box.style.description_width = "auto"
         self._index_box = self._number_box(index, "index")
+        self._hint = widgets.HTML()
+        self._kind_box.observe(lambda change: self._show_hint(change["new"]), names="value")
+        self._show_hint(kind)
         self.buttons = {}
         choose = widgets.HBox([self._kind_box, self._index_box,
                                self._later_button("select", "select this element",
                                                   lambda: self.select(self._kind_box.value, self._index_box.value))])
-        edits = widgets.HBox([self._later_button(f"{name} ({key})", f"key {key}: {name} the selection",
-                                                 lambda name=name: self.apply(name), name=name)
+        edits = widgets.HBox([self._later_button(name, f"key {key}: {name} the selection",
+                                                 lambda name=name: self.apply(name))
                               for key, name in KEYS.items() if name != "undo"])
-        self._keys = widgets.Text(value="", placeholder="click here, then type f s c l u",
+        self._keys = widgets.Text(value="", placeholder="click, type f s c l u",
                                   description="keys", continuous_update=True,
-                                  layout=widgets.Layout(width=f"calc({css['button_width']} * 3)"))
+                                  layout=widgets.Layout(width=f"calc({css['button_width']} * 2.2)"))
+        self._keys.style.description_width = "auto"
         self._keys.observe(self._typed, names="value")
-        undo = widgets.HBox([self._later_button("undo (u)", "key u: back to before the last edit", self.undo,
-                                                name="undo"), self._keys])
+        undo = widgets.HBox([self._later_button("undo", "key u: back to before the last edit", self.undo), self._keys])
         self._sliders = [widgets.FloatSlider(description=axis, continuous_update=False, readout_format=".3f",
-                                             layout=widgets.Layout(width=f"calc({css['button_width']} * 4)"))
+                                             layout=widgets.Layout(width=f"calc({css['button_width']} * 3.5)"))
                          for axis in "xyz"]
         for slider in self._sliders:
             slider.observe(self._slid, names="value")
         self._sync_controls()
-        return [choose, edits, undo, widgets.VBox(self._sliders)]
+        return [choose, self._hint, edits, undo, widgets.VBox(self._sliders)]
 
-    def _later_button(self, label: str, tooltip: str, action: Callable[[], object], *, name: str | None = None):
+    def _show_hint(self, kind: str) -> None:
+        """Say how to select a ``kind`` here (only a widget value: safe on any thread)."""
+        size = panel_css(self.look)["font"]
+        how = (f"right-click the view to pick a {kind}, or type its index" if self.mode == "live"
+               else f"type a {kind} index and press select")
+        self._hint.value = f'<span style="font-size:{size};color:#555">{html.escape(how)}</span>'
+
+
+    def _later_button(self, label: str, tooltip: str, action: Callable[[], object]):
         """A panel button whose action runs on the main thread; errors go to the status line."""
         import ipywidgets as widgets
 
@@ -444,7 +455,7 @@ class MeshEditor(SceneWidget):
         button.style.font_size = css["font"]
         button.style.font_weight = "bold"
         button.on_click(lambda _: on_main_thread(self._guarded, action))
-        self.buttons[name or label] = button
+        self.buttons[label] = button
         return button
 
     def _guarded(self, action: Callable[[], object], *args) -> None:
@@ -471,7 +482,8 @@ class MeshEditor(SceneWidget):
         on_main_thread(self._guarded, self.move_vertex, v, position)
 
     def _picked(self, point) -> None:
-        self._guarded(self.pick_at, point)
+        """A right-click in the live view: the element of the kind chosen in the dropdown."""
+        self._guarded(self.pick_at, point, self._kind_box.value)
 
     def _sync_controls(self) -> None:
         """Bring the index box, kind and sliders to the selection, without editing."""
