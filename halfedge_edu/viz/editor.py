@@ -67,6 +67,8 @@ KINDS = ("vertex", "edge", "halfedge", "face")
 OPERATIONS = ("flip", "split", "collapse", "smooth")
 #: Key -> what it does (the CMU viewer's f, s, c; l for Laplacian smoothing; u for undo).
 KEYS = {"f": "flip", "s": "split", "c": "collapse", "l": "smooth", "u": "undo"}
+#: The ball on the selected vertex that a drag in the live view moves (reddish purple).
+HANDLE_COLOUR = "#CC79A7"
 #: Diff rows shown in the panel (``describe()`` lists them all).
 PANEL_DIFF_ROWS = 40
 
@@ -118,6 +120,7 @@ class MeshEditor(SceneWidget):
         self._validity = self._validity_of(working)
         self._syncing = False
         self._mesh = working
+        self._handle = None                       # (vertex, VTK sphere widget) in the live view
         self._held = 0
         self._stale = False
         # The scene draws a copy taken at each redraw, so edits made while held
@@ -403,6 +406,35 @@ class MeshEditor(SceneWidget):
                 if change.kind in _CHANGED_ROLE and _is_live(mesh, change.kind, change.index):
                     roles.setdefault(_CHANGED_ROLE[change.kind], []).append(change.index)
         self.scene.set_roles(roles)
+        if self.mode == "live":
+            self._place_handle()
+
+    def _place_handle(self) -> None:
+        """Live view: a ball on the selected vertex; dragging it moves the vertex.
+
+        The ball of the same vertex is moved, not made anew: a drag's callback redraws,
+        and deleting the VTK widget inside its own callback kills the kernel.
+        """
+        plotter = self.scene.plotter
+        kind, index = self._selection
+        if self._handle is not None and (kind, index) == ("vertex", self._handle[0]):
+            self._handle[1].SetCenter(*(float(c) for c in self.mesh.positions[index]))
+            return
+        plotter.clear_sphere_widgets()
+        self._handle = None
+        if kind != "vertex":
+            return
+        low, high = _slider_range(self.mesh)
+        ball = plotter.add_sphere_widget(lambda centre: on_main_thread(self._dragged, index, centre),
+                                         center=tuple(self.mesh.positions[index]),
+                                         radius=float((high - low).max()) / 40, color=HANDLE_COLOUR,
+                                         selected_color=HANDLE_COLOUR, test_callback=False,
+                                         interaction_event="end")
+        self._handle = (index, ball)
+
+    def _dragged(self, vertex: int, centre) -> None:
+        if self._selection == ("vertex", vertex) and not np.allclose(centre, self.mesh.positions[vertex]):
+            self._guarded(self.move_vertex, vertex, centre)
 
     def _controls(self) -> list:
         import ipywidgets as widgets

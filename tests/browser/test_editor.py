@@ -1,5 +1,6 @@
 """The mesh editor in a real JupyterLab: select an edge, flip it by button and by key,
-and see the live 3D view redraw and the pointer diff appear.
+and see the live 3D view redraw and the pointer diff appear; pick a face and a vertex by
+right-clicking the view, and drag the vertex.
 
 The Lab is the shared ``lab`` fixture; this test writes its own small notebook into the
 Lab's folder (a cube and an editor), so it does not wait for a whole chapter to run.
@@ -20,7 +21,10 @@ import halfedge_edu as hx
 from tests.browser.test_lab_chapter03 import (
     FRAME_TIMEOUT,
     MIN_CHANGED_SHARE,
+    MIN_COLOURS,
+    MIN_STD,
     changed_share,
+    drawn,
     open_and_run_all,
     wait_for,
 )
@@ -149,8 +153,43 @@ def _drive(page, lab, shots: Path) -> None:
     share = yellow_share(picked, x, y)
     assert share > 0.5, f"{editor.selected()} is selected, but only {share:.0%} around the click is yellow"
     timings["pick by right-click"] = lap()
+
+    # Pick a vertex, then drag the ball on it: the vertex moves.
+    editor.output.locator("select").first.select_option("vertex")
+    wait_for(lambda: "right-click the view to pick a vertex" in editor.output.inner_text(), 30,
+             "the kernel to know that a vertex is to be picked")
+    page.mouse.click(box["x"] + x, box["y"] + y, button="right")
+    wait_for(lambda: (editor.selected() or "").startswith("vertex"), 30, "a right-click to select a vertex")
+    png, handled = editor.settled_picture(picked, "the live view to show the vertex's handle")
+    (shots / "editor-6-picked-vertex.png").write_bytes(png)
+    vertex = editor.selected()
+    hx_, hy = handle_centre(handled)
+    page.mouse.move(box["x"] + hx_, box["y"] + hy)
+    page.mouse.down()
+    page.mouse.move(box["x"] + hx_ + 40, box["y"] + hy + 30, steps=8)
+    page.mouse.up()
+    wait_for(lambda: f"{vertex} moved" in editor.output.inner_text(), 30, f"a drag to move {vertex}")
+    png, dragged = editor.settled_picture(handled, "the live view to redraw the dragged vertex")
+    (shots / "editor-7-dragged-vertex.png").write_bytes(png)
+    # The kernel lives on: undo answers, and the view still draws the mesh.
+    undos = int(re.search(r"undo: (\d+)", editor.output.inner_text()).group(1))
+    editor.output.get_by_role("button", name="undo", exact=True).click()
+    wait_for(lambda: f"undo: {undos - 1}" in editor.output.inner_text(), 30, "undo after the drag")
+    png, undone = editor.settled_picture(dragged, "the live view to redraw after undo")
+    std, colours = drawn(undone)
+    assert std >= MIN_STD and colours >= MIN_COLOURS, "the view is blank after undoing the drag"
+    (shots / "editor-8-drag-undone.png").write_bytes(png)
+    timings["pick a vertex and drag it"] = lap()
     print(f"right-click picked {editor.selected()}; seconds: {timings}")
     print(f"screenshots in {shots}")
+
+
+def handle_centre(picture: np.ndarray) -> tuple[int, int]:
+    """(x, y) of the middle of the drag handle (reddish purple ball, HANDLE_COLOUR, shaded)."""
+    red, green, blue = picture[..., 0], picture[..., 1], picture[..., 2]
+    ys, xs = np.nonzero((red > 120) & (red > green + 40) & (blue > green + 15))
+    assert len(xs) > 20, "no drag handle on the selected vertex"
+    return int(np.median(xs)), int(np.median(ys))
 
 
 def yellow_share(picture: np.ndarray, x: int, y: int, half: int = 7) -> float:
