@@ -29,8 +29,10 @@ u     undo       back to the mesh before the last edit
 ====  =========  ===============================================================
 
 Keys are typed into the panel's "keys" box (a notebook page keeps the keyboard for
-itself, so the box is where the editor listens). A vertex is moved with the x, y, z
-sliders of the selected vertex or :meth:`MeshEditor.move_vertex`.
+itself, so the box is where the editor listens). A vertex is moved by dragging the
+ball on the selected vertex in the live view (a VTK sphere widget; the vertex moves
+when the mouse is let go), with the x, y, z sliders, or :meth:`MeshEditor.move_vertex`.
+Many edits from code draw once inside ``with editor.held(): ...``.
 
 After every edit the editor runs ``mesh.validate()`` and says "valid" or the broken
 rule, and shows the pointer diff of the edit: every pointer and position it wrote,
