@@ -74,6 +74,7 @@ def my_flip(mesh, e):
     # 1. turn the edge
     ### BEGIN SOLUTION
     mesh.halfedge_vertex[h0] = 3
+    mesh.topology_changed()
     ### END SOLUTION
     return mesh
 
@@ -92,6 +93,25 @@ def test_the_student_edition_replaces_the_answer_and_keeps_the_hints():
         "    # YOUR CODE HERE",
         '    raise NotImplementedError("write my_flip: replace this line with your code")',
         "    return mesh",
+    ]
+
+
+def test_a_region_of_single_assignments_becomes_blanks_with_their_hints():
+    source = (
+        "def build(faces):\n"
+        "    if new:\n"
+        "        ### BEGIN SOLUTION\n"
+        "        h = 2 * e        # 1. which halfedge?\n"
+        "        next_[made[n]] = made[(n + 1) % 3]\n"
+        "        ### END SOLUTION\n"
+        "    return h"
+    )
+    assert student_stub(source).splitlines() == [
+        "def build(faces):",
+        "    if new:",
+        "        h = ...          # 1. which halfedge?",
+        "        next_[made[n]] = ...",
+        "    return h",
     ]
 
 

@@ -23,9 +23,10 @@ Two editions from one source:
   (``halfedge-edu course`` hands it out). In every code cell, each region between the
   lines ``### BEGIN SOLUTION`` and ``### END SOLUTION`` becomes
   ``# YOUR CODE HERE`` and ``raise NotImplementedError("write NAME ...")`` at the
-  marker's indentation (``NAME`` is the function the region sits in); hints, comments
-  and "done for you" lines outside the markers stay. Cells tagged ``solution`` (the
-  answers' explanations) are left out.
+  marker's indentation (``NAME`` is the function the region sits in); a region made
+  only of one-line assignments and returns becomes blanks instead, ``h = ...  # hint`` (chapter 02's
+  fill-in-the-blanks). Hints, comments and "done for you" lines outside the markers
+  stay. Cells tagged ``solution`` (the answers' explanations) are left out.
 
 The markers are nbgrader's: ``nbgrader generate_assignment`` replaces exactly these lines
 (the stripped line must equal ``### BEGIN SOLUTION``) with the same kind of stub, so an
@@ -68,6 +69,8 @@ END_SOLUTION = "### END SOLUTION"
 SOLUTION_TAG = "solution"
 
 _FUNCTION_LINE = re.compile(r"^(\s*)def (\w+)\(")
+# One assignment or return, ``target = value  # comment``: a blank in the student edition.
+_ASSIGNMENT = re.compile(r"^(?P<indent>\s*)(?P<target>return|[\w.\[\]]+ =) (?P<value>[^=#][^#]*?)(?P<comment>\s+#.*)?$")
 
 _NEW_CELL = {
     "code": nbformat.v4.new_code_cell,
@@ -95,37 +98,63 @@ def cell_id(chapter: str, cell_type: str, source: str, taken: set[str]) -> str:
     return candidate
 
 
+def _blanks(region: list[str]) -> list[str] | None:
+    """A region of single assignments and returns as blanks (``h = ...  # hint``, ``return ...``),
+    or None if it holds anything else."""
+    blanks = []
+    for line in region:
+        assignment = _ASSIGNMENT.match(line)
+        if assignment is None:
+            return None
+        blank = f"{assignment['indent']}{assignment['target']} ..."
+        if assignment["comment"]:
+            column = len(line) - len(assignment["comment"].lstrip())
+            blank = blank.ljust(max(column, len(blank) + 2)) + assignment["comment"].lstrip()
+        blanks.append(blank)
+    return blanks
+
+
+def _stub(region: list[str], indent: str, function: str | None) -> list[str]:
+    """What the student edition shows instead of a solution region (see the module docstring)."""
+    blanks = _blanks(region)
+    if blanks:
+        return blanks
+    task = f"write {function}" if function else "your code here"
+    return [f"{indent}# YOUR CODE HERE", f'{indent}raise NotImplementedError("{task}: replace this line with your code")']
+
+
 def student_stub(source: str, where: str = "cell") -> str:
     """``source`` (one code cell) with each solution region replaced by a stub.
 
-    The stub keeps the ``### BEGIN SOLUTION`` line's indentation and names the function
-    the region sits in, so the learner's error says what to write:
-    ``raise NotImplementedError("write my_flip: replace this line with your code")``.
-    Raises ``ValueError`` naming ``where`` for an unclosed or nested region.
+    A region of single assignments (or returns) becomes blanks, ``h = ...`` with the line's hint
+    comment kept (otter-grader's ``# SOLUTION`` lines become ``...`` the same way).
+    Any other region becomes nbgrader's stub at the ``### BEGIN SOLUTION`` line's
+    indentation, naming the function the region sits in so the learner's error says
+    what to write: ``raise NotImplementedError("write my_flip: replace this line with
+    your code")``. Raises ``ValueError`` naming ``where`` for an unclosed or nested region.
     """
     kept: list[str] = []
-    in_solution = False
-    function = None
+    region: list[str] | None = None
+    function = indent = None
     for number, line in enumerate(source.split("\n"), start=1):
         stripped = line.strip()
         defined = _FUNCTION_LINE.match(line)
-        if defined and not in_solution:
+        if defined and region is None:
             function = defined.group(2)
         if stripped == BEGIN_SOLUTION:
-            if in_solution:
+            if region is not None:
                 raise ValueError(f"{where}, line {number}: {BEGIN_SOLUTION} inside another solution region")
-            in_solution = True
-            indent = line[: len(line) - len(line.lstrip())]
-            task = f"write {function}" if function else "your code here"
-            kept += [f"{indent}# YOUR CODE HERE",
-                     f'{indent}raise NotImplementedError("{task}: replace this line with your code")']
+            region, indent = [], line[: len(line) - len(line.lstrip())]
         elif stripped == END_SOLUTION:
-            if not in_solution:
+            if region is None:
                 raise ValueError(f"{where}, line {number}: {END_SOLUTION} without {BEGIN_SOLUTION}")
-            in_solution = False
-        elif not in_solution:
+            kept += _stub(region, indent, function)
+            region = None
+        elif region is not None:
+            region.append(line)
+        else:
             kept.append(line)
-    if in_solution:
+    if region is not None:
         raise ValueError(f"{where}: {BEGIN_SOLUTION} without {END_SOLUTION}")
     return "\n".join(kept)
 

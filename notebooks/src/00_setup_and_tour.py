@@ -201,10 +201,10 @@ spot = hx.sample("spot")
 #
 # **Next:** chapter 01 starts where every mesh starts: a file of triangles.
 
-# %% [markdown]
+# %% [markdown] tags=["solution"]
 # ## Answers
 
-# %%
+# %% tags=["solution"]
 print(spot, "| closed:", spot.is_closed)
 busiest = max(spot.vertices, key=lambda v: v.degree)
 print("vertex", busiest.index, "has", busiest.degree, "neighbours:", [u.index for u in busiest.neighbors()])
