@@ -33,7 +33,7 @@ from halfedge_edu.core.ops import flip, split
 from halfedge_edu.data import sample
 
 __all__ = [
-    "BUGS", "Caught", "ClassicBug", "build_closed_pairing_twins_by_sorted_ends", "build_closed_right", "catch",
+    "BUGS", "Caught", "ClassicBug", "picture", "build_closed_pairing_twins_by_sorted_ends", "build_closed_right", "catch",
     "check_loop_split", "collapse_forgetting_vertex_halfedges", "collapse_leaving_outer_next_stale",
     "collapse_reading_neighbours_too_early", "collapse_right", "flip_forgetting_face_halfedge",
     "flip_forgetting_vertex_halfedge", "flip_right", "loop_split_flipping_old_edges", "loop_split_right",
@@ -376,13 +376,8 @@ def loop_split_flipping_old_edges(mesh: HalfedgeMesh) -> HalfedgeMesh:
     return mesh
 
 
-def check_loop_split(loop_split: Callable) -> str:
-    """Run ``loop_split(mesh)`` on an octahedron and hold it to Loop's rule; "" when it keeps it.
-
-    Rule ``old-vertex-degree``: the 4-to-1 split keeps every old vertex's degree (each old
-    edge becomes two, one of which stays at the old vertex), and gives every new vertex
-    degree 6. A flipped half of an old edge changes an old vertex's degree.
-    """
+def _loop_split_problem(loop_split: Callable) -> tuple[str, int | None, HalfedgeMesh]:
+    """Run ``loop_split`` on an octahedron: (message, the old vertex it is about, the result)."""
     mesh = sample("octahedron")
     degrees = mesh.vertex_degrees().copy()
     result = loop_split(mesh.copy())
@@ -391,11 +386,21 @@ def check_loop_split(loop_split: Callable) -> str:
         if after[v] != degrees[v]:
             return (f"[old-vertex-degree] vertex {v} is an old vertex of degree {degrees[v]}, but after the split "
                     f"it has degree {after[v]}: a flip turned one of the halves of an old edge. Flip only the "
-                    f"new edges that cross an old triangle, never the halves of an old edge.")
+                    f"new edges that cross an old triangle, never the halves of an old edge.", v, result)
     new = after[len(degrees):result.n_vertices]
     if np.any(new != 6):
-        return f"[new-vertex-degree] a new vertex has degree {int(new[new != 6][0])}, not 6."
-    return ""
+        return f"[new-vertex-degree] a new vertex has degree {int(new[new != 6][0])}, not 6.", None, result
+    return "", None, result
+
+
+def check_loop_split(loop_split: Callable) -> str:
+    """Run ``loop_split(mesh)`` on an octahedron and hold it to Loop's rule; "" when it keeps it.
+
+    Rule ``old-vertex-degree``: the 4-to-1 split keeps every old vertex's degree (each old
+    edge becomes two, one of which stays at the old vertex), and gives every new vertex
+    degree 6. A flipped half of an old edge changes an old vertex's degree.
+    """
+    return _loop_split_problem(loop_split)[0]
 
 
 # --------------------------------------------------------------------------------------
@@ -448,10 +453,11 @@ def _flip_demo(wanted: Callable[[HalfedgeMesh, int], bool]) -> Callable[[Callabl
     return demo
 
 
-def _collapse_demo(mesh_name: str, wanted: Callable[[HalfedgeMesh, int], bool]) -> Callable[[Callable], HalfedgeMesh]:
-    """Collapse, on ``mesh_name``, the first halfedge (of a collapsible edge) where ``wanted(mesh, h)`` holds."""
+def _collapse_demo(make: Callable[[], HalfedgeMesh],
+                   wanted: Callable[[HalfedgeMesh, int], bool]) -> Callable[[Callable], HalfedgeMesh]:
+    """Collapse, on ``make()``, the first halfedge (of a collapsible edge) where ``wanted(mesh, h)`` holds."""
     def demo(operation: Callable) -> HalfedgeMesh:
-        mesh = sample(mesh_name)
+        mesh = make()
         h = next(h for h in range(2 * mesh.n_edges) if mesh.can_collapse(h >> 1) and wanted(mesh, h))
         operation(mesh, h)
         return mesh
@@ -497,21 +503,21 @@ BUGS: dict[str, ClassicBug] = {bug.name: bug for bug in (
         "Let f0 point at h0 and f1 at h1: those two stay in their faces."),
     ClassicBug(
         collapse_leaving_outer_next_stale, collapse_right,
-        _collapse_demo("single_collapse", lambda m, h: True),
+        _collapse_demo(lambda: sample("single_collapse"), lambda m, h: True),
         "deleted-reference", "validate",
         "h_A_L takes the place of h_B_L in the face beyond it. The halfedge before h_B_L lies outside "
         "the two removed faces, so it is easy to forget: its next still names h_B_L, which is deleted.",
         "Link both ways, always: nxt[before] = new and prv[new] = before (and the same after new)."),
     ClassicBug(
         collapse_forgetting_vertex_halfedges, collapse_right,
-        _collapse_demo("icosphere", lambda m, h: _leaves_along(m, int(m.halfedge_vertex[h ^ 1]), h ^ 1)),
+        _collapse_demo(lambda: sample("icosphere", subdivisions=1), lambda m, h: _leaves_along(m, int(m.halfedge_vertex[h ^ 1]), h ^ 1)),
         "deleted-reference", "validate",
         "The collapse deletes h_AB, h_L_B and h_R_B with their edges. A vertex that kept one of them as "
         "its halfedge (vA, vL or vR) now points at a deleted halfedge.",
         "Step 5: repoint vL to h_L_A, vR to h_R_A and vA to h_A_R when they used a deleted halfedge."),
     ClassicBug(
         collapse_reading_neighbours_too_early, collapse_right,
-        _collapse_demo("cube", lambda m, h: m.vertex(int(m.halfedge_vertex[h])).degree == 3),
+        _collapse_demo(lambda: sample("cube"), lambda m, h: m.vertex(int(m.halfedge_vertex[h])).degree == 3),
         "deleted-reference", "validate",
         "When vB has degree 3, the faces beyond h_B_L and h_R_B are the same face. Relinking the left "
         "side changes the prev and next the right side must use; read before that, they are stale and "
@@ -562,11 +568,32 @@ def catch(bug: ClassicBug, function: Callable | None = None) -> Caught | None:
         result = check_one_ring(function)
         return None if result else Caught(bug.rule, result.element, f"[{bug.rule}] {result.message}", result.mesh)
     if bug.caught_by == "check_loop_split":
-        message = check_loop_split(function)
-        return Caught(bug.rule, None, message, None) if message else None
+        message, vertex, result = _loop_split_problem(function)
+        return Caught(bug.rule, ("vertex", vertex), message, result) if message else None
     mesh = bug.demo(function)
     try:
         mesh.validate()
     except MeshInvariantError as error:
         return Caught(error.rule, error.element, str(error), mesh)
     return None
+
+
+def picture(caught: Caught, **scene_options) -> bytes:
+    """PNG bytes of the mesh the bug left, with the element that breaks the rule highlighted.
+
+    A halfedge is drawn with its twin, next and prev; a vertex or a face alone (walking
+    a broken vertex's one-ring might not end). Needs pyvista (``halfedge_edu[notebooks]``).
+    """
+    from halfedge_edu.viz import scene_picture
+
+    kind, index = caught.element
+
+    def highlight(scene) -> None:
+        if kind == "halfedge":
+            scene.show_halfedge(index)
+        elif kind == "vertex":
+            scene.set_roles({"origin": [index]})
+        else:
+            scene.set_roles({"face": [index]})
+
+    return scene_picture(caught.mesh, highlight, **scene_options)
