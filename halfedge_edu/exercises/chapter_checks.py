@@ -30,7 +30,7 @@ from halfedge_edu.core.repair import repair_faces
 from halfedge_edu.data import sample
 from halfedge_edu.io import read_obj
 
-from .checks import TIME_LIMIT, CheckResult, _describe_error, _failed, _passed, _run
+from .checks import TIME_LIMIT, CheckResult, _describe_error, _failed, _passed, _run, _unfinished
 
 __all__ = ["BOWTIE_FACES", "BOWTIE_VERTICES", "check_collapse_is_safe", "check_cut", "check_fan",
            "check_laplacian_step", "smooth_once_in_place"]
@@ -38,6 +38,12 @@ __all__ = ["BOWTIE_FACES", "BOWTIE_VERTICES", "check_collapse_is_safe", "check_c
 #: Chapter 04's bowtie: two triangles that share only vertex 0.
 BOWTIE_VERTICES = np.array([[0, 0, 0], [1, -0.5, 0], [1, 0.5, 0], [-1, 0.5, 0], [-1, -0.5, 0]], dtype=float)
 BOWTIE_FACES = np.array([[0, 1, 2], [0, 3, 4]])
+
+
+def _blanks_left(exercise: str, name: str, function: Callable) -> CheckResult | None:
+    """The "fill in the blanks" failure if the learner's function still holds a ``...``."""
+    unfinished = _unfinished(function, name)
+    return _failed(exercise, [], None, unfinished) if unfinished else None
 
 
 def _call(exercise: str, name: str, function: Callable, *args, mesh_name: str | None = None,
@@ -54,6 +60,8 @@ def _call(exercise: str, name: str, function: Callable, *args, mesh_name: str | 
 
 def check_fan(fan: Callable) -> CheckResult:
     """``fan(corners) -> [(a, b, c), ...]`` against the OBJ reader's fans of 3 to 8 corners."""
+    if (blanks := _blanks_left("fan", "fan", fan)) is not None:
+        return blanks
     checked: list[str] = []
     for n in range(3, 9):
         text = "v 0 0 0\n" * n + "f " + " ".join(str(i) for i in range(1, n + 1)) + "\n"
@@ -76,6 +84,8 @@ def check_fan(fan: Callable) -> CheckResult:
 
 def check_cut(cut_bowtie: Callable) -> CheckResult:
     """``cut_bowtie(vertices, faces) -> (vertices, faces)`` against ``repair_faces`` on the bowtie."""
+    if (blanks := _blanks_left("cut", "cut_bowtie", cut_bowtie)) is not None:
+        return blanks
     answer, failure = _call("cut", "cut_bowtie", cut_bowtie, BOWTIE_VERTICES.copy(), BOWTIE_FACES.copy(),
                             mesh_name="bowtie")
     if failure is not None:
@@ -113,6 +123,8 @@ def smooth_once_in_place(mesh: HalfedgeMesh, order) -> np.ndarray:
 
 def check_laplacian_step(step: Callable) -> CheckResult:
     """``step(mesh) -> (V, 3)`` positions against ``smooth(mesh, 1)`` on three meshes."""
+    if (blanks := _blanks_left("laplacian_step", "laplacian_step", step)) is not None:
+        return blanks
     patch = sample("open_patch")
     patch.vertex(5).position = [1.0, 1.0, 0.5]        # something to smooth
     meshes = {"cube": sample("cube"), "open_patch": patch, "icosphere": sample("icosphere", subdivisions=1)}
@@ -165,6 +177,8 @@ def check_collapse_is_safe(is_safe: Callable) -> CheckResult:
     The last mesh is an icosphere after 25 random collapses, which leaves vertices of
     low degree, where the interesting cases live.
     """
+    if (blanks := _blanks_left("collapse_is_safe", "collapse_is_safe", is_safe)) is not None:
+        return blanks
     sphere = sample("icosphere", subdivisions=1)
     rng = np.random.default_rng(8)
     for _ in range(25):

@@ -81,3 +81,12 @@ def test_check_laplacian_step_refuses_a_function_that_moves_the_mesh():
 def test_check_collapse_is_safe_explains_the_tetrahedron():
     result = check_collapse_is_safe(lambda mesh, e: True)
     assert not result and "tetrahedron" in result.message and "lies in both links" in result.message
+
+
+def blank_fan(corners):
+    return ...
+
+
+def test_a_blank_left_in_the_function_is_named_before_it_runs():
+    result = check_fan(blank_fan)
+    assert not result and "still has blanks (...)" in result.message
