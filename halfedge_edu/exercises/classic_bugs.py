@@ -581,19 +581,23 @@ def catch(bug: ClassicBug, function: Callable | None = None) -> Caught | None:
 def picture(caught: Caught, **scene_options) -> bytes:
     """PNG bytes of the mesh the bug left, with the element that breaks the rule highlighted.
 
-    A halfedge is drawn with its twin, next and prev; a vertex or a face alone (walking
-    a broken vertex's one-ring might not end). Needs pyvista (``halfedge_edu[notebooks]``).
+    A halfedge is drawn with its twin, next and prev; a vertex with its ``halfedge`` as
+    the current (orange) arrow when that halfedge is live, a face alone (walking a
+    broken vertex's one-ring might not end). Needs pyvista (``halfedge_edu[notebooks]``).
     """
     from halfedge_edu.viz import scene_picture
 
     kind, index = caught.element
+    mesh = caught.mesh
 
     def highlight(scene) -> None:
         if kind == "halfedge":
             scene.show_halfedge(index)
         elif kind == "vertex":
-            scene.set_roles({"origin": [index]})
+            h = int(mesh.vertex_halfedge[index])
+            live = 0 <= h < mesh.n_halfedge_slots and not mesh.halfedge_deleted[h]
+            scene.set_roles({"origin": [index], "current": [h] if live else []})
         else:
             scene.set_roles({"face": [index]})
 
-    return scene_picture(caught.mesh, highlight, **scene_options)
+    return scene_picture(mesh, highlight, **scene_options)
