@@ -285,7 +285,7 @@ print("pages repaired:", repaired_pages)
 #
 # **1. Predict, then check.** For each face list below, decide: manifold, a
 # non-manifold edge, a non-manifold vertex, or faces that disagree about direction?
-# Write your guesses down, then run the answer cell further below.
+# Write your guesses down, then check each with `hx.manifold_report(soups[name])`.
 #
 # - `bowtie`: two triangles that share only vertex 0;
 # - `book`: four triangles on the edge `(0, 1)`;
