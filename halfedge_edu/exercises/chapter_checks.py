@@ -30,7 +30,8 @@ from halfedge_edu.core.repair import repair_faces
 from halfedge_edu.data import sample
 from halfedge_edu.io import read_obj
 
-from .checks import TIME_LIMIT, CheckResult, _describe_error, _failed, _passed, _run, _unfinished
+from .checks import TIME_LIMIT, CheckResult, _describe_error
+from .checks import _failed as failed, _passed as passed, _run as run, _unfinished as unfinished
 
 __all__ = ["BOWTIE_FACES", "BOWTIE_VERTICES", "check_collapse_is_safe", "check_cut", "check_fan",
            "check_laplacian_step", "smooth_once_in_place"]
@@ -42,19 +43,19 @@ BOWTIE_FACES = np.array([[0, 1, 2], [0, 3, 4]])
 
 def _blanks_left(exercise: str, name: str, function: Callable) -> CheckResult | None:
     """The "fill in the blanks" failure if the learner's function still holds a ``...``."""
-    unfinished = _unfinished(function, name)
-    return _failed(exercise, [], None, unfinished) if unfinished else None
+    words = unfinished(function, name)
+    return failed(exercise, [], None, words) if words else None
 
 
 def _call(exercise: str, name: str, function: Callable, *args, mesh_name: str | None = None,
           checked: list[str] | None = None) -> tuple[object, CheckResult | None]:
     """Run the learner's function: ``(value, None)``, or ``(None, a failed result saying why)``."""
-    status, value = _run(function, *args)
+    status, value = run(function, *args)
     if status == "timeout":
-        return None, _failed(exercise, checked or [], mesh_name,
+        return None, failed(exercise, checked or [], mesh_name,
                              f"your {name} did not return within {TIME_LIMIT:g} s: a loop probably never ends.")
     if status == "error":
-        return None, _failed(exercise, checked or [], mesh_name, _describe_error(name, value))
+        return None, failed(exercise, checked or [], mesh_name, _describe_error(name, value))
     return value, None
 
 
@@ -73,13 +74,13 @@ def check_fan(fan: Callable) -> CheckResult:
         try:
             mine = [[int(corner) for corner in triangle] for triangle in answer]
         except TypeError:
-            return _failed("fan", checked, name, f"fan should return a list of triangles (a, b, c), "
+            return failed("fan", checked, name, f"fan should return a list of triangles (a, b, c), "
                            f"but yours returned {answer!r:.60}.")
         if mine != expected:
-            return _failed("fan", checked, name, f"the reader makes {expected}, yours makes {mine}. Every "
+            return failed("fan", checked, name, f"the reader makes {expected}, yours makes {mine}. Every "
                            f"triangle shares the first corner: (a, b, c), (a, c, d), ...")
         checked.append(name)
-    return _passed("fan", checked, "Your fan matches the reader.")
+    return passed("fan", checked, "Your fan matches the reader.")
 
 
 def check_cut(cut_bowtie: Callable) -> CheckResult:
@@ -96,14 +97,14 @@ def check_cut(cut_bowtie: Callable) -> CheckResult:
             warnings.simplefilter("ignore", MeshWarning)   # an unused copy is dropped: still a mesh
             mesh = HalfedgeMesh.from_faces(cut_vertices, cut_faces)
     except MeshInputError as error:
-        return _failed("cut", [], "bowtie", f"your faces do not build a halfedge mesh: {error}")
+        return failed("cut", [], "bowtie", f"your faces do not build a halfedge mesh: {error}")
     except (TypeError, ValueError) as error:
-        return _failed("cut", [], "bowtie", f"cut_bowtie should return (vertices, faces); building from "
+        return failed("cut", [], "bowtie", f"cut_bowtie should return (vertices, faces); building from "
                        f"yours failed: {type(error).__name__}: {error}")
     _, repaired, _ = repair_faces(BOWTIE_VERTICES, BOWTIE_FACES)
     if np.array_equal(np.asarray(cut_faces), repaired):
-        return _passed("cut", ["bowtie"], f"{mesh}: the same faces as repair_faces.")
-    return _failed("cut", [], "bowtie", f"it builds ({mesh}), but repair_faces gives {repaired.tolist()} "
+        return passed("cut", ["bowtie"], f"{mesh}: the same faces as repair_faces.")
+    return failed("cut", [], "bowtie", f"it builds ({mesh}), but repair_faces gives {repaired.tolist()} "
                    f"and yours {np.asarray(cut_faces).tolist()}: give the second fan the copy, vertex 5.")
 
 
@@ -135,11 +136,11 @@ def check_laplacian_step(step: Callable) -> CheckResult:
         if failure is not None:
             return failure
         if not np.array_equal(mesh.positions, before):
-            return _failed("laplacian_step", checked, name, "your function changed mesh.positions. Return a new "
+            return failed("laplacian_step", checked, name, "your function changed mesh.positions. Return a new "
                            "array instead; the mesh should stay as it was.")
         yours = np.asarray(answer, dtype=float)
         if yours.shape != before.shape:
-            return _failed("laplacian_step", checked, name,
+            return failed("laplacian_step", checked, name,
                            f"expected an array of shape {before.shape}, got {yours.shape}.")
         wanted = smooth(mesh, 1).positions
         wrong = np.flatnonzero(~np.isclose(yours, wanted).all(axis=1))
@@ -149,18 +150,18 @@ def check_laplacian_step(step: Callable) -> CheckResult:
         v = mesh.vertex(int(wrong[0]))
         element = ("vertex", v.index)
         if v.is_boundary:
-            return _failed("laplacian_step", checked, name, f"vertex {v.index} is on the boundary and should stay "
+            return failed("laplacian_step", checked, name, f"vertex {v.index} is on the boundary and should stay "
                            f"at {before[v.index].round(4)}, but yours moved it.", element, mesh)
         if np.allclose(yours, smooth_once_in_place(mesh, range(mesh.n_vertices))):
-            return _failed("laplacian_step", checked, name,
+            return failed("laplacian_step", checked, name,
                            f"vertex {v.index} should be at {wanted[v.index].round(4)}, yours is at "
                            f"{yours[v.index].round(4)}. Your result matches updating the positions in place "
                            f"(Gauss-Seidel): read every neighbour from a copy of the old positions.", element, mesh)
-        return _failed("laplacian_step", checked, name,
+        return failed("laplacian_step", checked, name,
                        f"vertex {v.index} should move to the mean of its neighbours "
                        f"{[u.index for u in v.neighbors()]}, {wanted[v.index].round(4)}, but yours is at "
                        f"{yours[v.index].round(4)}.", element, mesh)
-    return _passed("laplacian_step", checked, "It agrees with smooth(mesh, 1).")
+    return passed("laplacian_step", checked, "It agrees with smooth(mesh, 1).")
 
 
 def _vertex_set(vertices) -> str:
@@ -200,12 +201,12 @@ def check_collapse_is_safe(is_safe: Callable) -> CheckResult:
                      f"the opposite vertices are {_vertex_set(lc.link_ab.vertices)}")
             element = ("halfedge", 2 * edge.index)
             if lc.extra.edges and not lc.extra.vertices:
-                return _failed("collapse_is_safe", checked, name, words + (
+                return failed("collapse_is_safe", checked, name, words + (
                     f", so the vertex part holds; but the edge {_edge_set(lc.extra.edges)} lies in both links "
                     "(both a and b make a triangle with it), so the collapse is NOT safe. Also test whether the "
                     "two opposite vertices are joined by an edge whose triangles reach both a and b."), element, mesh)
             verdict = "safe" if lc else "NOT safe"
-            return _failed("collapse_is_safe", checked, name, words + (
+            return failed("collapse_is_safe", checked, name, words + (
                 f", so the collapse is {verdict}; yours says {'safe' if answer else 'not safe'}."), element, mesh)
         checked.append(name)
-    return _passed("collapse_is_safe", checked, "It agrees with link_condition on every edge.")
+    return passed("collapse_is_safe", checked, "It agrees with link_condition on every edge.")
