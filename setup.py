@@ -12,8 +12,8 @@ project has a public address; tests/test_environments.py checks that it equals
 ``[project.urls] Repository`` and that every relative link names a file in the repository.
 
 ``build_py`` here also writes
-``halfedge_edu/chapters/NN_*.ipynb``: the executed notebooks of ``notebooks/`` with
-their outputs removed, by ``halfedge_edu/course.py`` (loaded by path, standard library
+``halfedge_edu/chapters/NN_*.ipynb``: the executed student edition of the chapters,
+``notebooks/student/``, with their outputs removed, by ``halfedge_edu/course.py`` (loaded by path, standard library
 only, so the isolated build needs nothing more than setuptools). Why at build time and
 not checked in: see course.py's docstring.
 """
@@ -63,14 +63,16 @@ def _course_module():
 
 
 class BuildWithChapters(build_py):
-    """setuptools' build_py, then the chapters without outputs into the built package."""
+    """setuptools' build_py, then the chapters' student edition without outputs into the built package."""
 
     def run(self) -> None:
         super().run()
         if not self.editable_mode:
-            written = _course_module().write_chapters(ROOT / "notebooks", Path(self.build_lib) / "halfedge_edu" / "chapters")
+            student = ROOT / "notebooks" / "student"
+            written = _course_module().write_chapters(student, Path(self.build_lib) / "halfedge_edu" / "chapters")
             if not written:
-                raise RuntimeError("no notebooks/NN_*.ipynb to put in the wheel: build from a full clone or the sdist")
+                raise RuntimeError("no notebooks/student/NN_*.ipynb to put in the wheel: build from a full clone "
+                                   "or the sdist")
 
 
 if __name__ == "__main__":  # setuptools runs this file as __main__; tests import it for readme_for_index

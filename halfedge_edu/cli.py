@@ -3,6 +3,8 @@
 ``info`` and ``check`` read one mesh file and print plain text. ``subdivide``,
 ``simplify``, ``smooth``, ``remesh`` and ``convert`` read IN, run one algorithm and
 write OUT (the format picked by OUT's suffix), then print a one-line summary.
+``course DEST`` copies the student edition of the chapters; ``grade`` grades learners'
+chapter notebooks into JSON and JUnit reports (exit 0 whenever grading ran).
 
 Promises, each tested in tests/test_cli.py:
 
@@ -57,12 +59,9 @@ MAX_LISTED = 10
 #: algorithms' work arrays.
 DEFAULT_MAX_FACES = 10_000_000
 
-#: The largest coordinate (in absolute value) a computing command accepts. The most
-#: any algorithm multiplies is six coordinates: simplify inverts 3x3 quadric matrices
-#: whose entries are squared lengths, and their determinant is a product of three.
-#: (1e40)^6 = 1e240 leaves room below float64's 1.8e308 for sums over many faces;
-#: measured, simplify overflows from about 1e51 and remesh from about 1e77.
-MAX_COORDINATE = 1e40
+#: The largest coordinate (in absolute value) a computing command accepts: the same
+#: limit every public algorithm checks (its reason is written where it is defined).
+from halfedge_edu.algorithms.arguments import MAX_COORDINATE  # noqa: E402
 
 
 class InputProblem(Exception):
@@ -263,10 +262,85 @@ def build_parser() -> argparse.ArgumentParser:
         ),
     )
     add_course_parser(commands)
+    _add_grade(commands)
     return parser
 
 
 INPUT_HELP = "a .obj, .ply, .stl, .off, .glb or .gltf file"
+
+
+def _seconds(text: str) -> float:
+    """An argparse type: a positive number of seconds."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number of seconds") from None
+    if not value > 0 or value != value or value == float("inf"):
+        raise argparse.ArgumentTypeError(f"must be a positive number of seconds, got {text}")
+    return value
+
+
+def _add_grade(commands) -> None:
+    """``grade SUBMISSION.ipynb... --out DIR``: see :func:`run_grade`."""
+    grade = commands.add_parser(
+        "grade",
+        help="run learners' chapter notebooks and grade their exercises (JSON and JUnit reports)",
+        description=(
+            "Run each submitted chapter notebook top to bottom in a fresh kernel, check "
+            "each exercise's function with the package's reference tests and write "
+            "DIR/NAME.json (Gradescope/otter results.json) and DIR/NAME.xml (JUnit). "
+            "Exit status 0 when grading ran, whatever the scores; 2 for bad arguments. "
+            "Grading runs the learner's code: run it in your CI's sandbox."
+        ),
+    )
+    grade.add_argument("submissions", type=Path, nargs="+", metavar="SUBMISSION.ipynb",
+                       help="the learners' notebooks (the chapter comes from the notebook or its file name)")
+    grade.add_argument("--out", type=Path, required=True, metavar="DIR",
+                       help="the folder for the reports (created if missing)")
+    grade.add_argument("--chapter", metavar="NN",
+                       help="grade every submission as this chapter (default: from each notebook)")
+    grade.add_argument("--cell-timeout", type=_seconds, default=60, metavar="S",
+                       help="seconds one cell may run before it is interrupted (default 60)")
+    grade.add_argument("--timeout", type=_seconds, default=600, metavar="S",
+                       help="seconds a whole notebook may run (default 600)")
+    grade.set_defaults(run=run_grade)
+
+
+def run_grade(args: argparse.Namespace) -> int:
+    """``grade SUBMISSION.ipynb... --out DIR``: per submission DIR/NAME.json and DIR/NAME.xml and one line.
+
+    The JSON follows Gradescope's ``results.json`` schema (otter-grader writes it too),
+    the XML is JUnit (GitHub Classroom, GitLab and Jenkins show it). Exit status 0
+    whenever grading ran, whatever the scores; every argument is checked before the
+    first submission runs, so a bad one costs no grading time. What one grade does:
+    ``halfedge_edu.exercises.grading``.
+    """
+    for submission in args.submissions:
+        if not submission.is_file():
+            raise InputProblem(f"{submission}: no such file" if not submission.exists()
+                               else f"{submission}: is not a file")
+    if args.out.exists() and not args.out.is_dir():
+        raise InputProblem(f"{args.out}: exists and is not a folder")
+    stems = [submission.stem for submission in args.submissions]
+    doubled = sorted({stem for stem in stems if stems.count(stem) > 1})
+    if doubled:
+        raise InputProblem(f"two submissions share the name {doubled[0]!r}: their reports would overwrite "
+                           f"each other; give each its own file name")
+
+    from halfedge_edu.exercises.grading import GradingError, grade_notebook, submission_chapter, summary_line
+
+    try:
+        chapters = [submission_chapter(submission, args.chapter) for submission in args.submissions]
+        args.out.mkdir(parents=True, exist_ok=True)
+    except (GradingError, OSError) as problem:
+        raise InputProblem(str(problem)) from problem
+    for submission, chapter in zip(args.submissions, chapters):
+        grade = grade_notebook(submission, chapter=chapter, cell_timeout=args.cell_timeout,
+                               total_timeout=args.timeout)
+        (args.out / f"{submission.stem}.json").write_text(grade.to_json() + "\n", encoding="utf-8")
+        (args.out / f"{submission.stem}.xml").write_text(grade.to_junit_xml() + "\n", encoding="utf-8")
+        _print(summary_line(grade))
+    return EXIT_OK
 
 
 def _add_repair(command: argparse.ArgumentParser) -> None:

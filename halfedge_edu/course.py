@@ -1,7 +1,9 @@
 """The course from the wheel: ``halfedge-edu course DEST`` (also ``python -m halfedge_edu course DEST``).
 
-Copies the chapters (``00_setup_and_tour.ipynb`` ... ``13_putting_it_together.ipynb``)
-into DEST with their stored outputs removed, so that ``pip install
+Copies the **student edition** of the chapters (``00_setup_and_tour.ipynb`` ...
+``13_putting_it_together.ipynb``: each exercise's answer replaced by a stub, the answer
+cells left out; see tools/build_notebooks.py) into DEST with their stored outputs
+removed, so that ``pip install
 "halfedge_edu[notebooks]"`` followed by ``halfedge-edu course my-course`` and
 ``jupyter lab my-course`` is enough to start. The meshes the chapters load are package
 data (``hx.sample("spot")``, ``hx.sample("bunny")``), already installed with the
@@ -10,13 +12,15 @@ library; the chapters need no other file.
 How the wheel gets the chapters: at build time, not in the repository. ``setup.py``
 extends setuptools' ``build_py`` to run :func:`write_chapters` from this file (loaded by
 path, so the build needs neither numpy nor an installed halfedge_edu) on the executed
-``notebooks/NN_*.ipynb`` and put the results in ``halfedge_edu/chapters/`` inside the
-wheel. The alternative, checked-in copies under ``halfedge_edu/chapters/`` kept in step
+student edition ``notebooks/student/NN_*.ipynb`` and put the results in
+``halfedge_edu/chapters/`` inside the wheel. The alternative, checked-in copies under ``halfedge_edu/chapters/`` kept in step
 by a test, would duplicate 14 notebooks in git and need one more regeneration step every
 time the chapters are rebuilt; building them cannot drift. ``MANIFEST.in`` puts
-``notebooks/*.ipynb`` into the sdist so that a wheel built from the sdist has them too.
-In a source checkout (``pip install -e .``) there is no ``chapters/`` folder: the command
-then reads the repository's ``notebooks/`` and strips the outputs as it copies.
+``notebooks/student/*.ipynb`` into the sdist so that a wheel built from the sdist has
+them too. In a source checkout (``pip install -e .``) there is no ``chapters/`` folder:
+the command then reads the repository's ``notebooks/student/`` and strips the outputs as
+it copies. The solution edition (``notebooks/NN_*.ipynb``) stays in the repository, for
+instructors; it is not in the wheel.
 
 Outputs are removed because they are most of a notebook's size (pictures), because a
 student should see each output appear when running the cell, and because a fresh copy
@@ -36,10 +40,12 @@ import json
 from dataclasses import dataclass
 from pathlib import Path
 
-# Chapter notebooks are named NN_topic.ipynb; other notebooks (scratch files) are not shipped.
-CHAPTER_GLOB = "[0-9][0-9]_*.ipynb"
+# Chapter notebooks are named NN_topic.ipynb (NNb_topic.ipynb for one inserted after NN);
+# other notebooks (scratch files) are not shipped.
+CHAPTER_GLOB = "[0-9][0-9]*_*.ipynb"
 PACKAGE_CHAPTERS = Path(__file__).resolve().parent / "chapters"
-REPOSITORY_NOTEBOOKS = Path(__file__).resolve().parents[1] / "notebooks"
+#: The student edition in a source checkout; what setup.py puts in the wheel.
+REPOSITORY_NOTEBOOKS = Path(__file__).resolve().parents[1] / "notebooks" / "student"
 
 
 def strip_outputs(notebook: dict) -> dict:
@@ -102,7 +108,7 @@ class CourseCopy:
 
 
 def copy_course(destination: Path) -> CourseCopy:
-    """Copy every chapter, without outputs, into ``destination`` (created if missing).
+    """Copy every chapter of the student edition, without outputs, into ``destination`` (created if missing).
 
     Raises ``NotADirectoryError`` if ``destination`` exists and is not a folder, and
     ``FileNotFoundError`` if the installation has no chapters (:func:`chapter_source`).
@@ -127,10 +133,10 @@ def add_course_parser(commands: argparse._SubParsersAction) -> argparse.Argument
     """Register ``course DEST`` on the command line's subcommands (called by ``cli.build_parser``)."""
     course = commands.add_parser(
         "course",
-        help="copy the chapters (without outputs) into a folder, to open in JupyterLab",
+        help="copy the chapters (student edition, without outputs) into a folder, to open in JupyterLab",
         description=(
-            "Copy the course's chapters, without their stored outputs, into DEST (created "
-            "if missing). Chapters already in DEST are kept, never overwritten. Then: "
+            "Copy the course's chapters, student edition (exercises without their answers), "
+            "without their stored outputs, into DEST (created if missing). Chapters already in DEST are kept, never overwritten. Then: "
             "jupyter lab DEST. Needs the notebooks extra: pip install \"halfedge_edu[notebooks]\"."
         ),
     )

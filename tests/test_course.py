@@ -1,4 +1,4 @@
-"""`halfedge-edu course DEST`: the chapters, without outputs, out of the installed package.
+"""`halfedge-edu course DEST`: the chapters' student edition, without outputs, out of the installed package.
 
 The last test is the promise a pip user relies on: a wheel built from this checkout,
 installed into a fresh virtual environment (no editable install, no repository beside
@@ -19,13 +19,21 @@ import pytest
 from halfedge_edu import cli, course
 
 ROOT = Path(__file__).resolve().parents[1]
-CHAPTERS = sorted(p.name for p in (ROOT / "notebooks").glob(course.CHAPTER_GLOB))
+STUDENT = ROOT / "notebooks" / "student"
+CHAPTERS = sorted(p.name for p in STUDENT.glob(course.CHAPTER_GLOB))
+
+
+def test_the_course_is_every_chapter_of_the_student_edition():
+    sources = sorted(p.stem for p in (ROOT / "notebooks" / "src").glob("[0-9][0-9]*_*.py"))
+    assert [Path(name).stem for name in CHAPTERS] == sources
+    assert course.REPOSITORY_NOTEBOOKS == STUDENT
 
 
 def assert_is_a_clean_chapter(path: Path) -> None:
-    """Valid notebook JSON whose code cells have no outputs and no execution counts."""
+    """Valid notebook JSON of the student edition whose code cells have no outputs and no execution counts."""
     notebook = json.loads(path.read_text(encoding="utf-8"))
     assert notebook["nbformat"] == 4, path
+    assert notebook["metadata"]["halfedge_edu"]["edition"] == "student", f"{path.name} is not the student edition"
     assert "widgets" not in notebook["metadata"], f"{path.name} keeps saved widget state"
     code = [cell for cell in notebook["cells"] if cell["cell_type"] == "code"]
     assert code, f"{path.name} has no code cells"
@@ -34,7 +42,7 @@ def assert_is_a_clean_chapter(path: Path) -> None:
 
 
 def test_strip_outputs_keeps_sources_and_removes_outputs():
-    notebook = json.loads((ROOT / "notebooks" / CHAPTERS[3]).read_text(encoding="utf-8"))
+    notebook = json.loads((STUDENT / CHAPTERS[3]).read_text(encoding="utf-8"))
     stripped = course.strip_outputs(notebook)
     assert [c["source"] for c in stripped["cells"]] == [c["source"] for c in notebook["cells"]]
     assert any(c.get("outputs") for c in notebook["cells"]), "the stored chapter has outputs to remove"

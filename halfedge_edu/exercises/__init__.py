@@ -22,9 +22,10 @@ from .harness import CheckResult
 from .algorithm_checks import check_de_casteljau, check_loop_rules, check_optimal_point, check_plane_quadric
 from .ops_checks import check_collapse, check_flip
 from .remesh_checks import check_tangential_smoothing
+from .chapter_checks import check_collapse_is_safe, check_cut, check_fan, check_laplacian_step
 
 __all__ = [
     "CheckResult", "check_build", "check_collapse", "check_de_casteljau", "check_flip",
     "check_loop_rules", "check_one_ring", "check_optimal_point", "check_plane_quadric",
-    "check_tangential_smoothing",
+    "check_tangential_smoothing", "check_collapse_is_safe", "check_cut", "check_fan", "check_laplacian_step",
 ]

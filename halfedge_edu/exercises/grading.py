@@ -48,8 +48,8 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 __all__ = [
-    "EXERCISES", "Exercise", "ExerciseGrade", "Grade", "GradingError", "chapter_of",
-    "exercises_for", "grade_notebook",
+    "EXERCISES", "Exercise", "ExerciseGrade", "Grade", "GradingError", "chapter_of", "check_function",
+    "exercises_for", "grade_notebook", "submission_chapter",
 ]
 
 
@@ -59,7 +59,7 @@ class Exercise:
 
     Attributes:
         name: short id used in reports ("flip").
-        chapter: the two-digit number of the chapter that teaches it ("06").
+        chapter: the number of the chapter that teaches it ("06"; "08b" for the debugging lab).
         functions: the names the learner's notebook defines, passed to the check in order.
         check: the name of the ``halfedge_edu.exercises`` helper that judges them.
         points: what a passing check earns.
@@ -75,10 +75,17 @@ class Exercise:
 #: Every graded exercise, in chapter order. The function names are the ones each
 #: chapter's exercise cell asks the learner to fill in.
 EXERCISES: tuple[Exercise, ...] = (
+    Exercise("fan", "01", ("fan",), "check_fan"),
     Exercise("build", "02", ("build",), "check_build"),
     Exercise("one_ring", "03", ("one_ring",), "check_one_ring"),
+    Exercise("cut", "04", ("cut_bowtie",), "check_cut"),
+    Exercise("laplacian_step", "05", ("laplacian_step",), "check_laplacian_step"),
     Exercise("flip", "06", ("my_flip",), "check_flip"),
     Exercise("collapse", "07", ("my_collapse",), "check_collapse"),
+    Exercise("collapse_is_safe", "08", ("collapse_is_safe",), "check_collapse_is_safe"),
+    Exercise("fixed_flip", "08b", ("fixed_flip",), "check_flip"),
+    Exercise("fixed_collapse", "08b", ("fixed_collapse",), "check_collapse"),
+    Exercise("fixed_one_ring", "08b", ("fixed_one_ring",), "check_one_ring"),
     Exercise("loop_rules", "09", ("edge_point", "vertex_point"), "check_loop_rules"),
     Exercise("plane_quadric", "10", ("plane_quadric",), "check_plane_quadric"),
     Exercise("optimal_point", "10", ("optimal_point",), "check_optimal_point"),
@@ -175,14 +182,56 @@ def exercises_for(chapter: str) -> list[Exercise]:
     return found
 
 
+#: A chapter's number as its file name starts: "06", or "08b" for a chapter inserted after 08.
+_CHAPTER = r"\d\d[a-z]?"
+
+
 def chapter_of(notebook: dict, path: Path) -> str | None:
     """The chapter a submission belongs to: the notebook's ``halfedge_edu.chapter``
-    metadata (the editions stamp it), else the two digits its file name starts with."""
+    metadata (the editions stamp it), else the number its file name starts with."""
     stamped = notebook.get("metadata", {}).get("halfedge_edu", {}).get("chapter")
-    if isinstance(stamped, str) and re.fullmatch(r"\d\d", stamped):
+    if isinstance(stamped, str) and re.fullmatch(_CHAPTER, stamped):
         return stamped
-    match = re.match(r"(\d\d)_", path.name)
+    return _chapter_from_name(path)
+
+
+def _chapter_from_name(path: Path) -> str | None:
+    match = re.match(rf"({_CHAPTER})_", path.name)
     return match.group(1) if match else None
+
+
+def submission_chapter(path: str | Path, chapter: str | None = None) -> str:
+    """The chapter ``path`` will be graded as (``chapter`` if given), checked to have exercises.
+
+    Raises :class:`GradingError` when it cannot be told (no stamp, no ``NN_`` file name)
+    or has no graded exercises: the grader's arguments are wrong, not the submission.
+    A notebook that cannot be read is graded by its file name.
+    """
+    import nbformat
+
+    path = Path(path)
+    if chapter is None:
+        try:
+            chapter = chapter_of(nbformat.read(path, as_version=4), path)
+        except Exception:  # unreadable: the file name may still say the chapter
+            chapter = _chapter_from_name(path)
+    if chapter is None:
+        raise GradingError(f"{path}: cannot tell the chapter (no halfedge_edu.chapter metadata and the file "
+                           f"name does not start with NN_); give it with --chapter (chapter=...)")
+    exercises_for(chapter)
+    return chapter
+
+
+def check_function(exercise: Exercise):
+    """The ``check_*`` helper that judges ``exercise``: from ``halfedge_edu.exercises``, or
+    from :mod:`halfedge_edu.exercises.chapter_checks` for the checks of chapters 01, 04, 05, 08."""
+    from halfedge_edu import exercises
+    from halfedge_edu.exercises import chapter_checks
+
+    found = getattr(exercises, exercise.check, None) or getattr(chapter_checks, exercise.check, None)
+    if found is None:
+        raise GradingError(f"exercise {exercise.name!r} names the check {exercise.check!r}, which does not exist")
+    return found
 
 
 # The cell the grader appends. It runs in the learner's kernel after their cells, so it
@@ -203,8 +252,6 @@ def run_checks(namespace: dict, exercise_names: list[str]) -> dict[str, dict]:
     ``{"passed": bool, "output": str}``. A missing function or a check that itself
     fails is reported as a failed exercise with the reason, never raised.
     """
-    from halfedge_edu import exercises as checks
-
     by_name = {exercise.name: exercise for exercise in EXERCISES}
     results: dict[str, dict] = {}
     for name in exercise_names:
@@ -216,7 +263,7 @@ def run_checks(namespace: dict, exercise_names: list[str]) -> dict[str, dict]:
                 f"{' and '.join(exercise.functions)}; keep those names")}
             continue
         try:
-            result = getattr(checks, exercise.check)(*(namespace[f] for f in exercise.functions))
+            result = check_function(exercise)(*(namespace[f] for f in exercise.functions))
         except BaseException as error:  # the check ran the learner's code; report, never crash
             results[name] = {"passed": False, "output": f"the check stopped: {type(error).__name__}: {error}"}
             continue
@@ -250,7 +297,7 @@ def grade_notebook(path: str | Path, *, chapter: str | None = None, cell_timeout
 
     Args:
         path: the learner's ``.ipynb``.
-        chapter: "06" and so on; by default from the notebook (see :func:`chapter_of`).
+        chapter: "06" and so on; by default from the notebook (see :func:`submission_chapter`).
         cell_timeout: seconds one cell may run before it is interrupted.
         total_timeout: seconds the whole run may take; past that the kernel is stopped
             and what was not checked scores zero.
@@ -258,26 +305,19 @@ def grade_notebook(path: str | Path, *, chapter: str | None = None, cell_timeout
 
     Returns:
         A :class:`Grade`. Raises :class:`GradingError` only for the grader's own
-        arguments (a chapter with no exercises); every problem of the submission is
-        reported inside the grade.
+        arguments (a chapter that cannot be told or has no exercises); every problem of
+        the submission is reported inside the grade.
     """
     import nbformat
 
     path = Path(path)
     started = time.monotonic()
+    chosen = submission_chapter(path, chapter)
     try:
         notebook = nbformat.read(path, as_version=4)
     except Exception as error:  # any unreadable file is the submission's problem
-        chosen = chapter or (re.match(r"(\d\d)_", path.name) or [None, None])[1]
-        if chosen is None:
-            raise GradingError(f"{path}: not a readable notebook ({type(error).__name__}) and no chapter "
-                               f"given; pass chapter=...") from error
         return _zero(path, chosen, f"the submission is not a readable notebook: {type(error).__name__}: {error}",
                      started)
-    chosen = chapter or chapter_of(notebook, path)
-    if chosen is None:
-        raise GradingError(f"{path}: cannot tell the chapter (no halfedge_edu.chapter metadata and the file "
-                           f"name does not start with NN_); pass chapter=...")
     exercises = exercises_for(chosen)
 
     key = f"@@halfedge_edu-grade-{secrets.token_hex(8)}@@"

@@ -33,6 +33,8 @@ The modules, one concern each (as pyvista splits its plotting package), from the
 - ``camera``: where the camera stands: the whole mesh, some vertices, following the highlight.
 - ``scene``: :class:`HalfedgeScene`, which owns the surface and decides what is redrawn when.
 - ``painted_scene``: a mesh with coloured layers (Loop, QEM, remeshing, Bezier widgets).
+- ``editor``: :class:`MeshEditor`, edit a mesh by hand (select, flip/split/collapse/smooth,
+  drag a vertex, undo, the pointer diff of the last edit).
 - ``widgets``, ``steppers``, ``loop_stepper``, ``qem_stepper``, ``remesh_stepper``,
   ``bezier_widgets``: the notebook widgets.
 
@@ -52,6 +54,7 @@ from halfedge_edu._extras import require
 require("notebooks", "halfedge_edu.viz")
 
 from .bezier_widgets import BezierSurfaceEditor, DeCasteljauViewer
+from .editor import MeshEditor
 from .loop_stepper import LoopStepper
 from .palette import PRESETS, ROLES
 from .pictures import grid, plotter_png, side_by_side, surface_png
@@ -66,5 +69,5 @@ __all__ = [
     "PRESETS", "ROLES", "choose_mode", "HalfedgeScene", "HalfedgeExplorer", "OneRingViewer",
     "FlipStepper", "SplitStepper", "CollapseStepper", "CollapseAtlas", "LoopStepper",
     "QEMStepper", "RemeshStepper", "DeCasteljauViewer", "BezierSurfaceEditor", "side_by_side", "grid",
-    "plotter_png", "surface_png", "scene_picture",
+    "plotter_png", "surface_png", "scene_picture", "MeshEditor",
 ]

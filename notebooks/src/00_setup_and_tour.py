@@ -148,6 +148,7 @@ print("survivor:", survivor.index, "| now", bunny)
 # | 06 | Edge flip and edge split | the first local edits |
 # | 07 | Edge collapse | the edit behind simplification |
 # | 08 | The link condition | when a collapse would break the mesh |
+# | 08b | Debugging lab | nine classic halfedge bugs, and how `validate()` finds them |
 # | 09 | Loop subdivision | smoother meshes from coarser ones |
 # | 10 | Quadric error simplification | coarser meshes that keep the shape |
 # | 11 | Isotropic remeshing | even, well-shaped triangles |
@@ -157,7 +158,8 @@ print("survivor:", survivor.index, "| now", bunny)
 # Every chapter has the same shape: **learning goals**, a **picture** first, the idea
 # in a few short cells, code you can change, at least one **widget**, a **check
 # yourself** cell, **exercises** with a `check_...` helper that tells you in words what
-# is off, the **answers** at the very end, and a short **summary**.
+# is off, a short **summary**, and the **answers** at the very end (in the solution
+# edition; the student edition, which `halfedge-edu course` hands out, leaves them out).
 #
 # **Instructors:** every widget takes `preset="large"` (bigger labels and arrows, for a
 # projector), e.g. `OneRingViewer(bunny, vertex=100, preset="large")`.
@@ -201,10 +203,10 @@ spot = hx.sample("spot")
 #
 # **Next:** chapter 01 starts where every mesh starts: a file of triangles.
 
-# %% [markdown]
+# %% [markdown] tags=["solution"]
 # ## Answers
 
-# %%
+# %% tags=["solution"]
 print(spot, "| closed:", spot.is_closed)
 busiest = max(spot.vertices, key=lambda v: v.degree)
 print("vertex", busiest.index, "has", busiest.degree, "neighbours:", [u.index for u in busiest.neighbors()])

@@ -386,28 +386,22 @@ except hx.MeshInputError as error:
 
 # %% [markdown]
 # **2. Your own fan.** Write `fan(corners)` that cuts one polygon (a list of 0-based
-# vertex indices) into triangles the way the reader does. The cell below compares your
+# vertex indices) into triangles the way the reader does. The check below compares your
 # triangles with the reader's for polygons of 3 to 8 corners.
 
 # %%
 def fan(corners):
     """[(a, b, c), (a, c, d), ...] for the polygon a, b, c, d, ..."""
-    return []  # your code here
+    ### BEGIN SOLUTION
+    return [(corners[0], corners[k], corners[k + 1]) for k in range(1, len(corners) - 1)]
+    ### END SOLUTION
 
+# %%
+from halfedge_edu.exercises.chapter_checks import check_fan
 
-def check_fan(fan):
-    for n in range(3, 9):
-        text = "v 0 0 0\n" * n + "f " + " ".join(str(i) for i in range(1, n + 1)) + "\n"
-        expected = hx.read_obj(io.StringIO(text)).faces.tolist()
-        mine = [list(t) for t in fan(list(range(n)))]
-        if mine != expected:
-            return f"Not yet: for {n} corners the reader makes {expected}, yours makes {mine}."
-    return "All good: your fan matches the reader for 3 to 8 corners."
+check_fan(fan)
 
-
-print(check_fan(fan))
-
-# %% [markdown]
+# %% [markdown] tags=["solution"]
 # ### Answers
 #
 # **1.** One consistent choice (each face counter-clockwise seen from outside):
@@ -419,14 +413,9 @@ print(check_fan(fan))
 # f 2 3 4
 # ```
 #
-# **2.** Every triangle shares the first corner:
+# **2.** The answer is in the exercise cell: every triangle shares the first corner.
 
-# %%
-def fan_answer(corners):
-    return [(corners[0], corners[k], corners[k + 1]) for k in range(1, len(corners) - 1)]
-
-
-print(check_fan(fan_answer))
+# %% tags=["solution"]
 data = hx.read_obj(io.StringIO(my_tetrahedron_obj + "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"))
 print(hx.HalfedgeMesh.from_faces(data.vertices, data.faces))
 

@@ -300,23 +300,33 @@ def build(faces):
             key = (min(a, b), max(a, b))
             if key not in edge_of:
                 edge_of[key] = len(edge_of)
-                h = ...                # 1. first sighting of the edge: which halfedge?
+                ### BEGIN SOLUTION
+                h = 2 * edge_of[key]   # 1. first sighting of the edge: which halfedge?
+                ### END SOLUTION
             else:
-                h = ...                # 2. second sighting: which halfedge?
+                ### BEGIN SOLUTION
+                h = 2 * edge_of[key] + 1   # 2. second sighting: which halfedge?
+                ### END SOLUTION
             vertex[h] = a
             face[h] = f
             made.append(h)
         for n in range(3):
-            next_[made[n]] = ...       # 3. the next halfedge around this face
+            ### BEGIN SOLUTION
+            next_[made[n]] = made[(n + 1) % 3]   # 3. the next halfedge around this face
+            ### END SOLUTION
 
     n_halfedges = 2 * len(edge_of)
     boundary = [h for h in range(n_halfedges) if h not in vertex]   # no face made these
     for h in boundary:
-        vertex[h] = ...                # 4. where does it start? (hint: where its twin ends)
+        ### BEGIN SOLUTION
+        vertex[h] = vertex[next_[h ^ 1]]   # 4. where does it start? (hint: where its twin ends)
+        ### END SOLUTION
         face[h] = -1
     leaving = {vertex[h]: h for h in boundary}   # boundary vertex -> its outgoing boundary halfedge
     for h in boundary:
-        next_[h] = ...                 # 5. the boundary halfedge leaving the vertex where h ends
+        ### BEGIN SOLUTION
+        next_[h] = leaving[vertex[h ^ 1]]   # 5. the boundary halfedge leaving the vertex where h ends
+        ### END SOLUTION
 
     return {
         "vertex": [vertex[h] for h in range(n_halfedges)],
@@ -369,10 +379,10 @@ buggy.show()
 # **Next:** chapter 03 walks on what we built: around faces, around vertices, and along
 # the boundary.
 
-# %% [markdown]
+# %% [markdown] tags=["solution"]
 # ## Answer
 #
-# Try the exercise before you read this. The five blanks:
+# The answers are in the exercise cell above. The five blanks:
 #
 # 1. `2 * edge_of[key]`: the first sighting is the even halfedge of the new edge;
 # 2. `2 * edge_of[key] + 1`: the second sighting is its twin;
@@ -380,40 +390,3 @@ buggy.show()
 # 4. `vertex[next_[h ^ 1]]`: the twin `h ^ 1` runs `a -> b` inside its face, so `h`
 #    starts at `b`, which is where the twin's `next` starts;
 # 5. `leaving[vertex[h ^ 1]]`: `h` ends where its twin starts.
-
-# %%
-def build_answer(faces):
-    edge_of = {}
-    vertex, face, next_ = {}, {}, {}
-    for f, (i, j, k) in enumerate(faces):
-        made = []
-        for a, b in ((i, j), (j, k), (k, i)):
-            key = (min(a, b), max(a, b))
-            if key not in edge_of:
-                edge_of[key] = len(edge_of)
-                h = 2 * edge_of[key]
-            else:
-                h = 2 * edge_of[key] + 1
-            vertex[h] = a
-            face[h] = f
-            made.append(h)
-        for n in range(3):
-            next_[made[n]] = made[(n + 1) % 3]
-
-    n_halfedges = 2 * len(edge_of)
-    boundary = [h for h in range(n_halfedges) if h not in vertex]
-    for h in boundary:
-        vertex[h] = vertex[next_[h ^ 1]]
-        face[h] = -1
-    leaving = {vertex[h]: h for h in boundary}
-    for h in boundary:
-        next_[h] = leaving[vertex[h ^ 1]]
-
-    return {
-        "vertex": [vertex[h] for h in range(n_halfedges)],
-        "face": [face[h] for h in range(n_halfedges)],
-        "next": [next_[h] for h in range(n_halfedges)],
-    }
-
-
-check_build(build_answer)

@@ -288,8 +288,11 @@ def one_ring(mesh, v):
     ring = []
     h = start
     while True:
-        ring.append(...)   # 1. the neighbour this halfedge points to
-        h = ...            # 2. turn counter-clockwise to the next halfedge leaving v
+        ### BEGIN SOLUTION
+        neighbour = h.tip.index   # 1. the neighbour this halfedge points to
+        h = h.prev.twin           # 2. turn counter-clockwise to the next halfedge leaving v
+        ### END SOLUTION
+        ring.append(neighbour)
         if h == start:
             return ring
 
@@ -338,22 +341,8 @@ wrong_way.show()
 #
 # **Next:** chapter 04 asks what the halfedge structure *cannot* hold, and why.
 
-# %% [markdown]
+# %% [markdown] tags=["solution"]
 # ## Answer
 #
-# Try the exercise first. The two blanks are `h.tip.index` (or `h.tip`; vertex handles
-# are accepted) and `h.prev.twin`.
-
-# %%
-def one_ring_answer(mesh, v):
-    start = v.halfedge
-    ring = []
-    h = start
-    while True:
-        ring.append(h.tip.index)
-        h = h.prev.twin
-        if h == start:
-            return ring
-
-
-check_one_ring(one_ring_answer)
+# The answer is in the exercise cell above: the two blanks are `h.tip.index` (or
+# `h.tip`; vertex handles are accepted) and `h.prev.twin`.

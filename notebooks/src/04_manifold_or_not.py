@@ -285,7 +285,7 @@ print("pages repaired:", repaired_pages)
 #
 # **1. Predict, then check.** For each face list below, decide: manifold, a
 # non-manifold edge, a non-manifold vertex, or faces that disagree about direction?
-# Write your guesses down, then run the answer cell further below.
+# Write your guesses down, then check each with `hx.manifold_report(soups[name])`.
 #
 # - `bowtie`: two triangles that share only vertex 0;
 # - `book`: four triangles on the edge `(0, 1)`;
@@ -302,30 +302,25 @@ soups = {
 
 # %% [markdown]
 # **2. Cut the bowtie by hand.** Give the second triangle its own copy of vertex 0, so
-# that the bowtie becomes two separate triangles. Fill in `cut_faces` (one new vertex,
-# number 5, at the position of vertex 0, is already added) and run the cell: it builds
-# your mesh and compares it with what `repair_faces` does.
+# that the bowtie becomes two separate triangles. Fill in `cut_bowtie`: one new vertex,
+# number 5, at the position of vertex 0, is already added; change the faces so that
+# the second triangle uses it. `check_cut` builds your mesh and compares it with what
+# `repair_faces` does.
 
 # %%
-bowtie_vertices = np.array([[0, 0, 0], [1, -0.5, 0], [1, 0.5, 0], [-1, 0.5, 0], [-1, -0.5, 0]], dtype=float)
-cut_vertices = np.vstack([bowtie_vertices, bowtie_vertices[0]])    # vertex 5: a copy of vertex 0
-cut_faces = [[0, 1, 2], [0, 3, 4]]                                 # change one number here
+from halfedge_edu.exercises.chapter_checks import check_cut
 
 
-def check_cut(cut_vertices, cut_faces):
-    try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", hx.MeshWarning)   # vertex 5 unused: dropped
-            mesh = hx.HalfedgeMesh.from_faces(cut_vertices, cut_faces)
-    except hx.MeshInputError as error:
-        return f"Not yet: {error}"
-    _, repaired, _ = hx.repair_faces(bowtie_vertices, np.array(soups["bowtie"]))
-    if np.array_equal(np.array(cut_faces), repaired):
-        return f"All good: {mesh}, the same faces as repair_faces."
-    return f"It builds ({mesh}), but repair_faces gives {repaired.tolist()}; compare the two."
+def cut_bowtie(vertices, faces):
+    """The bowtie with its second fan on a copy of vertex 0: (vertices, faces)."""
+    cut_vertices = np.vstack([vertices, vertices[0]])    # vertex 5: a copy of vertex 0 (done for you)
+    ### BEGIN SOLUTION
+    cut_faces = [[0, 1, 2], [5, 3, 4]]
+    ### END SOLUTION
+    return cut_vertices, cut_faces
 
 
-print(check_cut(cut_vertices, cut_faces))
+check_cut(cut_bowtie)
 
 # %% [markdown]
 # ## Summary
@@ -343,7 +338,7 @@ print(check_cut(cut_vertices, cut_faces))
 #
 # **Next:** chapter 05 puts geometry on the mesh: normals, areas and smoothing.
 
-# %% [markdown]
+# %% [markdown] tags=["solution"]
 # ## Answers
 #
 # **1.** The bowtie has a non-manifold vertex (0: two fans, each with its own piece of
@@ -351,13 +346,11 @@ print(check_cut(cut_vertices, cut_faces))
 # two faces running the same way along `(2, 0)` (turn one round and it is fine); the
 # square is manifold.
 
-# %%
+# %% tags=["solution"]
 for name, soup_faces in soups.items():
     print(f"--- {name}")
     print(hx.manifold_report(soup_faces))
 
-# %% [markdown]
-# **2.** The second triangle uses the copy: `cut_faces = [[0, 1, 2], [5, 3, 4]]`.
-
-# %%
-print(check_cut(cut_vertices, [[0, 1, 2], [5, 3, 4]]))
+# %% [markdown] tags=["solution"]
+# **2.** The answer is in the exercise cell: the second triangle uses the copy,
+# `[[0, 1, 2], [5, 3, 4]]`.

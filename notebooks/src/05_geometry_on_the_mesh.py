@@ -451,43 +451,29 @@ print("V - E + F before and after:", patch.euler_characteristic, after.euler_cha
 # %%
 def laplacian_step(mesh):
     positions = mesh.positions.copy()
-    # your code here: move every interior vertex to the mean of its neighbours
-    raise NotImplementedError("write laplacian_step")
+    # move every interior vertex to the mean of its neighbours' old positions
+    ### BEGIN SOLUTION
+    old = mesh.positions                     # only read
+    for v in mesh.vertices:
+        if not v.is_boundary:
+            positions[v.index] = old[[u.index for u in v.neighbors()]].mean(axis=0)
+    return positions
+    ### END SOLUTION
 
 # %% [markdown]
-# The check (you may read it, but you need not):
+# The check is `halfedge_edu.exercises.chapter_checks.check_laplacian_step` (you may
+# read it, but you need not):
 
 # %%
-def check_laplacian_step(step):
-    patch = hx.sample("open_patch")
-    patch.vertex(5).position = [1.0, 1.0, 0.5]        # something to smooth
-    meshes = {"cube": hx.sample("cube"), "open_patch": patch, "icosphere": hx.sample("icosphere", subdivisions=1)}
-    for name, mesh in meshes.items():
-        before = mesh.positions.copy()
-        try:
-            yours = np.asarray(step(mesh), dtype=float)
-        except NotImplementedError:
-            return "Not yet: laplacian_step still raises NotImplementedError. Replace the raise with your loop."
-        if not np.array_equal(mesh.positions, before):
-            return f"On {name}: your function changed mesh.positions. Return a new array instead; the mesh should stay as it was."
-        if yours.shape != before.shape:
-            return f"On {name}: expected an array of shape {before.shape}, got {yours.shape}."
-        wanted = smooth(mesh, 1).positions
-        wrong = np.flatnonzero(~np.isclose(yours, wanted).all(axis=1))
-        if len(wrong) == 0:
-            continue
-        v = mesh.vertex(int(wrong[0]))
-        if v.is_boundary:
-            return f"On {name}: vertex {v.index} is on the boundary and should stay at {before[v.index].round(4)}, but yours moved it."
-        if np.allclose(yours, smooth_once_in_place(mesh, range(mesh.n_vertices))):
-            return (f"On {name}: vertex {v.index} should be at {wanted[v.index].round(4)}, yours is at {yours[v.index].round(4)}. "
-                    "Your result matches updating the positions in place (Gauss-Seidel): read every neighbour from a copy of the old positions.")
-        return (f"On {name}: vertex {v.index} should move to the mean of its neighbours {[u.index for u in v.neighbors()]}, "
-                f"{wanted[v.index].round(4)}, but yours is at {yours[v.index].round(4)}.")
-    return "All good! Your laplacian_step agrees with smooth(mesh, 1) on cube, open_patch and icosphere."
+from halfedge_edu.exercises.chapter_checks import check_laplacian_step
 
+check_laplacian_step(laplacian_step)
 
-print(check_laplacian_step(laplacian_step))
+# %% [markdown]
+# Here is what it says about the in-place (Gauss-Seidel) version from above:
+
+# %%
+check_laplacian_step(lambda mesh: smooth_once_in_place(mesh, range(mesh.n_vertices)))
 
 # %% [markdown]
 # **2. Think about it.** Smoothing Spot 125 times halved its volume. Which part of the
@@ -499,26 +485,11 @@ print(check_laplacian_step(laplacian_step))
 # two (around its centre). Which of the cube's vertex normals change with area
 # weighting? Which with angle weighting?
 
-# %% [markdown]
+# %% [markdown] tags=["solution"]
 # ### Answers
 #
-# **1.** One way, with handles. Note the two arrays: `old` is only read, `new` only written.
-
-# %%
-def laplacian_step_answer(mesh):
-    old = mesh.positions
-    new = old.copy()
-    for v in mesh.vertices:
-        if not v.is_boundary:
-            new[v.index] = old[[u.index for u in v.neighbors()]].mean(axis=0)
-    return new
-
-
-print(check_laplacian_step(laplacian_step_answer))
-print(check_laplacian_step(lambda mesh: smooth_once_in_place(mesh, range(mesh.n_vertices))))
-
-# %% [markdown]
-# The second line shows what the check says about the in-place (Gauss-Seidel) version.
+# **1.** The answer is in the exercise cell. Note the two arrays: `old` is only read,
+# `positions` only written.
 #
 # **2.** On a sphere every vertex's neighbours lie on the sphere around it, so their
 # mean lies slightly *inside* the sphere, below the vertex. Each iteration pulls every

@@ -316,7 +316,17 @@ def my_flip(mesh, e):
     # 2. relink: f0 = (h0, h3, h4) and f1 = (h1, h5, h2); set next AND prev
     # 3. h4 now lies in f0, h2 in f1; let f0 and f1 point at h0 and h1
     # 4. if v0's halfedge was h0 (or v1's was h1), give it another outgoing halfedge
-    raise NotImplementedError("fill in steps 1 to 4, then delete this line")
+    ### BEGIN SOLUTION
+    origin[h0], origin[h1] = v3, v2                                         # 1
+    for a, b in ((h0, h3), (h3, h4), (h4, h0), (h1, h5), (h5, h2), (h2, h1)):
+        nxt[a], prv[b] = b, a                                               # 2
+    face[h4], face[h2] = f0, f1                                             # 3
+    mesh.face_halfedge[f0], mesh.face_halfedge[f1] = h0, h1
+    if mesh.vertex_halfedge[v0] == h0:                                      # 4
+        mesh.vertex_halfedge[v0] = h4
+    if mesh.vertex_halfedge[v1] == h1:
+        mesh.vertex_halfedge[v1] = h2
+    ### END SOLUTION
 
 # %%
 from halfedge_edu.exercises import check_flip
@@ -393,38 +403,12 @@ side_by_side([wrong_pointer_picture(learner, reference_log, ("vertex", vertex), 
 # **Next:** chapter 07 does the opposite of a split, the edge collapse, and meets its
 # two cases.
 
-# %% [markdown]
+# %% [markdown] tags=["solution"]
 # ## Answer
 #
-# Try the exercise before you read this.
-
-# %%
-def flip_answer(mesh, e):
-    nxt, prv = mesh.halfedge_next, mesh.halfedge_prev
-    origin, face = mesh.halfedge_vertex, mesh.halfedge_face
-
-    h0, h1 = 2 * e, 2 * e + 1
-    h2, h3 = nxt[h0], prv[h0]
-    h4, h5 = nxt[h1], prv[h1]
-    v0, v1, v2, v3 = origin[h0], origin[h1], origin[h3], origin[h5]
-    f0, f1 = face[h0], face[h1]
-
-    origin[h0], origin[h1] = v3, v2                                         # 1
-    for a, b in ((h0, h3), (h3, h4), (h4, h0), (h1, h5), (h5, h2), (h2, h1)):
-        nxt[a], prv[b] = b, a                                               # 2
-    face[h4], face[h2] = f0, f1                                             # 3
-    mesh.face_halfedge[f0], mesh.face_halfedge[f1] = h0, h1
-    if mesh.vertex_halfedge[v0] == h0:                                      # 4
-        mesh.vertex_halfedge[v0] = h4
-    if mesh.vertex_halfedge[v1] == h1:
-        mesh.vertex_halfedge[v1] = h2
-
-
-check_flip(flip_answer)
-
-# %% [markdown]
-# Step 4 picks `h4` for `v0` because after the flip `h4` still leaves `v0` (it runs
-# `v0 → v3`), and `h2` for `v1` for the same reason. Any other halfedge leaving the
-# vertex would do, except at the boundary, where a vertex must keep its outgoing
-# boundary halfedge; since `h0` and `h1` are interior, a boundary vertex never points
-# at them, so step 4 never moves a boundary vertex's halfedge.
+# The answer is in the exercise cell above. Step 4 picks `h4` for `v0` because after
+# the flip `h4` still leaves `v0` (it runs `v0 → v3`), and `h2` for `v1` for the same
+# reason. Any other halfedge leaving the vertex would do, except at the boundary, where
+# a vertex must keep its outgoing boundary halfedge; since `h0` and `h1` are interior, a
+# boundary vertex never points at them, so step 4 never moves a boundary vertex's
+# halfedge.

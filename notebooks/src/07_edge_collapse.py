@@ -344,7 +344,30 @@ def my_collapse(mesh, h):
     # 4. the same on the right: h_R_A takes the place of h_R_B
     # 5. vL's halfedge may have been h_L_B, vR's h_R_B, vA's h_AB: point them at live ones
     # 6. delete fL, fR, the edges of h_BA, h_L_B and h_B_R, and vB
-    raise NotImplementedError("fill in steps 1 to 6, then delete this line")
+    ### BEGIN SOLUTION
+    mesh.positions[vA] = 0.5 * (mesh.positions[vA] + mesh.positions[vB])       # 1
+    for g in ring_B:                                                           # 2
+        if g not in (h_BA, h_B_L, h_B_R):
+            origin[g] = vA
+    for old, new in ((h_B_L, h_A_L), (h_R_B, h_R_A)):                          # 3 and 4
+        before, after, f = prv[old], nxt[old], face[old]                       # read now
+        nxt[before], prv[new] = new, before
+        nxt[new], prv[after] = after, new
+        face[new] = f
+        if mesh.face_halfedge[f] == old:
+            mesh.face_halfedge[f] = new
+    if mesh.vertex_halfedge[vL] == h_L_B:                                      # 5
+        mesh.vertex_halfedge[vL] = h_A_L ^ 1         # h_L_A
+    if mesh.vertex_halfedge[vR] == h_R_B:
+        mesh.vertex_halfedge[vR] = h_R_A
+    if mesh.vertex_halfedge[vA] == h_AB:
+        mesh.vertex_halfedge[vA] = h_R_A ^ 1         # h_A_R
+    mesh.delete_face(fL)                                                       # 6
+    mesh.delete_face(fR)
+    for g in (h_BA, h_L_B, h_B_R):
+        mesh.delete_edge(g >> 1)
+    mesh.delete_vertex(vB)
+    ### END SOLUTION
 
 # %%
 from halfedge_edu.exercises import check_collapse
@@ -442,51 +465,11 @@ grid([[wrong_pointer_picture(cube, cube_log, ("halfedge", halfedge), learner.hal
 #   the numbering; deleted slots stay until `garbage_collect()`.
 # - Not every edge may collapse: chapter 08 says exactly which.
 
-# %% [markdown]
+# %% [markdown] tags=["solution"]
 # ## Answer
 #
-# Try the exercise before you read this.
-
-# %%
-def collapse_answer(mesh, h):
-    nxt, prv = mesh.halfedge_next, mesh.halfedge_prev
-    origin, face = mesh.halfedge_vertex, mesh.halfedge_face
-
-    h_BA, h_AB = h, h ^ 1
-    vB, vA = origin[h_BA], origin[h_AB]
-    h_A_L, h_L_B = nxt[h_BA], prv[h_BA]
-    h_B_R, h_R_A = nxt[h_AB], prv[h_AB]
-    h_B_L, h_R_B = h_L_B ^ 1, h_B_R ^ 1
-    vL, vR = origin[h_L_B], origin[h_R_A]
-    fL, fR = face[h_BA], face[h_AB]
-    ring_B = [h_BA]
-    g = prv[h_BA] ^ 1
-    while g != h_BA:
-        ring_B.append(g)
-        g = prv[g] ^ 1
-
-    mesh.positions[vA] = 0.5 * (mesh.positions[vA] + mesh.positions[vB])       # 1
-    for g in ring_B:                                                           # 2
-        if g not in (h_BA, h_B_L, h_B_R):
-            origin[g] = vA
-    for old, new in ((h_B_L, h_A_L), (h_R_B, h_R_A)):                          # 3 and 4
-        before, after, f = prv[old], nxt[old], face[old]                       # read now
-        nxt[before], prv[new] = new, before
-        nxt[new], prv[after] = after, new
-        face[new] = f
-        if mesh.face_halfedge[f] == old:
-            mesh.face_halfedge[f] = new
-    if mesh.vertex_halfedge[vL] == h_L_B:                                      # 5
-        mesh.vertex_halfedge[vL] = h_A_L ^ 1         # h_L_A
-    if mesh.vertex_halfedge[vR] == h_R_B:
-        mesh.vertex_halfedge[vR] = h_R_A
-    if mesh.vertex_halfedge[vA] == h_AB:
-        mesh.vertex_halfedge[vA] = h_R_A ^ 1         # h_A_R
-    mesh.delete_face(fL)                                                       # 6
-    mesh.delete_face(fR)
-    for g in (h_BA, h_L_B, h_B_R):
-        mesh.delete_edge(g >> 1)
-    mesh.delete_vertex(vB)
-
-
-check_collapse(collapse_answer)
+# The answer is in the exercise cell above. Steps 3 and 4 read the neighbours of
+# `h_B_L` (and then of `h_R_B`) just before relinking that side: when `vB` has degree
+# 3, the face beyond both is the same face, and the left side's relinking changes what
+# the right side must read. Step 5 hands `vL`, `vR` and `vA` a halfedge that survives:
+# `h_L_A`, `h_R_A` and `h_A_R` all still leave them after the collapse.

@@ -361,45 +361,24 @@ print("cube, their ends:   ", [sorted(int(v) for v in cube.edge(e).vertices) for
 def collapse_is_safe(mesh, e):
     edge = mesh.edge(e)
     a, b = edge.vertices
-    # your code here
-    raise NotImplementedError("write collapse_is_safe")
+    ### BEGIN SOLUTION
+    l, r = edge.halfedge.prev.vertex, edge.halfedge.twin.prev.vertex
+    shared = {v.index for v in a.neighbors()} & {v.index for v in b.neighbors()}
+    if shared != {l.index, r.index}:
+        return False
+    return not (a.degree == 3 and b.degree == 3)       # the tetrahedron: l - r is in both links
+    ### END SOLUTION
 
 # %% [markdown]
-# The check runs your function on every edge of the tetrahedron, the cube, the
-# octahedron and an icosphere after 25 random collapses (which leaves vertices of low
-# degree, where the interesting cases live), and compares with `link_condition`:
+# The check (`halfedge_edu.exercises.chapter_checks.check_collapse_is_safe`) runs your
+# function on every edge of the tetrahedron, the cube, the octahedron and an icosphere
+# after 25 random collapses (which leaves vertices of low degree, where the interesting
+# cases live), and compares with `link_condition`:
 
 # %%
-def check_collapse_is_safe(is_safe):
-    sphere = hx.sample("icosphere", subdivisions=1)
-    rng = np.random.default_rng(8)
-    for _ in range(25):
-        allowed = [e.index for e in sphere.edges if can_collapse(sphere, e)]
-        collapse(sphere, int(rng.choice(allowed)))
-    meshes = {"tetrahedron": hx.sample("tetrahedron"), "cube": hx.sample("cube"),
-              "octahedron": hx.sample("octahedron"), "icosphere after 25 collapses": sphere}
-    for name, mesh in meshes.items():
-        for edge in mesh.edges:
-            try:
-                yours = bool(is_safe(mesh, edge.index))
-            except NotImplementedError:
-                return "Not yet: collapse_is_safe still raises NotImplementedError."
-            lc = link_condition(mesh, edge.index)
-            if yours == bool(lc):
-                continue
-            words = (f"On {name}, edge {edge.index} (a = {lc.a}, b = {lc.b}): the rings share {show(lc.shared.vertices)}, "
-                     f"the opposite vertices are {show(lc.link_ab.vertices)}")
-            if lc.extra.edges and not lc.extra.vertices:
-                return (words + f", so the vertex part holds; but the edge {show_edges(lc.extra.edges)} lies in "
-                        "both links (both a and b make a triangle with it), so the collapse is NOT safe. "
-                        "Also test whether the two opposite vertices are joined by an edge whose triangles "
-                        "reach both a and b.")
-            verdict = "safe" if lc else "NOT safe"
-            return words + f", so the collapse is {verdict}; yours says {'safe' if yours else 'not safe'}."
-    return f"All good! Your collapse_is_safe agrees with link_condition on every edge of {len(meshes)} meshes."
+from halfedge_edu.exercises.chapter_checks import check_collapse_is_safe
 
-
-print(check_collapse_is_safe(collapse_is_safe))
+check_collapse_is_safe(collapse_is_safe)
 
 # %% [markdown]
 # ### The vertex part alone
@@ -416,7 +395,7 @@ def rings_only(mesh, e):
     return shared == opposite
 
 
-print(check_collapse_is_safe(rings_only))
+check_collapse_is_safe(rings_only)
 
 # %% [markdown]
 # ## Summary
@@ -433,24 +412,11 @@ print(check_collapse_is_safe(rings_only))
 # - The test walks two one-rings: constant work, so simplification can afford it before
 #   every collapse.
 
-# %% [markdown]
+# %% [markdown] tags=["solution"]
 # ## Answer
 #
-# Try the exercise before you read this. The second part: the links of `a` and `b`
+# The answer is in the exercise cell above. The second part: the links of `a` and `b`
 # share an edge exactly when the two opposite vertices `l` and `r` are joined and the
 # triangles `(a, l, r)` and `(b, l, r)` both exist, which happens when `a`, `b`, `l`
 # and `r` make a tetrahedron; on a closed mesh, that means `a` and `b` both have
 # degree 3.
-
-# %%
-def collapse_is_safe_answer(mesh, e):
-    edge = mesh.edge(e)
-    a, b = edge.vertices
-    l, r = edge.halfedge.prev.vertex, edge.halfedge.twin.prev.vertex
-    shared = {v.index for v in a.neighbors()} & {v.index for v in b.neighbors()}
-    if shared != {l.index, r.index}:
-        return False
-    return not (a.degree == 3 and b.degree == 3)       # the tetrahedron: l - r is in both links
-
-
-print(check_collapse_is_safe(collapse_is_safe_answer))

@@ -369,10 +369,14 @@ def edge_point(mesh, edge):
     h = edge.halfedge
     a, b = h.vertex.position, h.tip.position
     if edge.is_boundary:
-        return ...                         # 1. the boundary rule
+        ### BEGIN SOLUTION
+        return 0.5 * (a + b)               # 1. the boundary rule
+        ### END SOLUTION
     c = h.prev.vertex.position             # the corner opposite the edge in h's triangle
-    d = ...                                # 2. the corner opposite the edge in the twin's triangle
-    return ...                             # 3. 3/8 of each end, 1/8 of each opposite corner
+    ### BEGIN SOLUTION
+    d = h.twin.prev.vertex.position        # 2. the corner opposite the edge in the twin's triangle
+    return 0.375 * (a + b) + 0.125 * (c + d)   # 3. 3/8 of each end, 1/8 of each opposite corner
+    ### END SOLUTION
 
 
 def vertex_point(mesh, vertex):
@@ -380,11 +384,15 @@ def vertex_point(mesh, vertex):
     if vertex.is_boundary:
         h = vertex.halfedge                # a boundary vertex's halfedge runs along the boundary
         after, before = h.tip.position, h.prev.vertex.position
-        return ...                         # 4. 3/4 of itself, 1/8 of each boundary neighbour
+        ### BEGIN SOLUTION
+        return 0.75 * v + 0.125 * (after + before)   # 4. 3/4 of itself, 1/8 of each boundary neighbour
+        ### END SOLUTION
     ring = [u.position for u in vertex.neighbors()]
     n = len(ring)
-    beta = ...                             # 5. Warren's beta
-    return ...                             # 6. (1 - n beta) v + beta * (the sum of the ring)
+    ### BEGIN SOLUTION
+    beta = 3 / 16 if n == 3 else 3 / (8 * n)   # 5. Warren's beta
+    return (1 - n * beta) * v + beta * np.sum(ring, axis=0)   # 6. (1 - n beta) v + beta * (the sum of the ring)
+    ### END SOLUTION
 
 # %%
 from halfedge_edu.exercises.algorithm_checks import check_loop_rules
@@ -423,39 +431,15 @@ print(check_loop_rules(vertex_point=no_special_case))
 # vertices after three levels, if it has genus 0? (Hint: on a closed triangle mesh
 # `2E = 3F`.)
 
-# %% [markdown]
+# %% [markdown] tags=["solution"]
 # ### Answers
 #
-# **1.** The blanks are `0.5 * (a + b)`, `h.twin.prev.vertex.position`,
-# `0.375 * (a + b) + 0.125 * (c + d)`, `0.75 * v + 0.125 * (after + before)`,
-# `3 / 16 if n == 3 else 3 / (8 * n)` and `(1 - n * beta) * v + beta * np.sum(ring, axis=0)`:
+# **1.** The answers are in the exercise cell: the blanks are `0.5 * (a + b)`,
+# `h.twin.prev.vertex.position`, `0.375 * (a + b) + 0.125 * (c + d)`,
+# `0.75 * v + 0.125 * (after + before)`, `3 / 16 if n == 3 else 3 / (8 * n)` and
+# `(1 - n * beta) * v + beta * np.sum(ring, axis=0)`.
 
-# %%
-def edge_point_answer(mesh, edge):
-    h = edge.halfedge
-    a, b = h.vertex.position, h.tip.position
-    if edge.is_boundary:
-        return 0.5 * (a + b)
-    c = h.prev.vertex.position
-    d = h.twin.prev.vertex.position
-    return 0.375 * (a + b) + 0.125 * (c + d)
-
-
-def vertex_point_answer(mesh, vertex):
-    v = vertex.position
-    if vertex.is_boundary:
-        h = vertex.halfedge
-        after, before = h.tip.position, h.prev.vertex.position
-        return 0.75 * v + 0.125 * (after + before)
-    ring = [u.position for u in vertex.neighbors()]
-    n = len(ring)
-    beta = 3 / 16 if n == 3 else 3 / (8 * n)
-    return (1 - n * beta) * v + beta * np.sum(ring, axis=0)
-
-
-check_loop_rules(edge_point_answer, vertex_point_answer)
-
-# %% [markdown]
+# %% [markdown] tags=["solution"]
 # **2.** No. A vertex moves towards the weighted average of its ring. On a convex
 # bump that average lies inside, so the surface shrinks there; on a saddle the ring
 # curves up on two sides and down on the other two, the average lies close to the

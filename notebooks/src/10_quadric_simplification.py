@@ -396,9 +396,11 @@ print("faces after asking for 201:", simplify_sequential(small, 201).n_faces)
 
 # %%
 def plane_quadric(a, b, c):
-    n = ...                                  # 1. the normal, by the right-hand rule
-    n = ...                                  # 2. ... scaled to length 1
-    d = ...                                  # 3. so that n . a + d = 0
+    ### BEGIN SOLUTION
+    n = np.cross(b - a, c - a)               # 1. the normal, by the right-hand rule
+    n = n / np.linalg.norm(n)                # 2. ... scaled to length 1
+    d = -n @ a                               # 3. so that n . a + d = 0
+    ### END SOLUTION
     p = np.append(n, d)
     return np.outer(p, p)
 
@@ -418,9 +420,16 @@ check_plane_quadric(plane_quadric)
 def optimal_point(Q, a, b):
     A = Q[:3, :3]
     q = Q[:3, 3]
-    if ...:                                  # 4. when is A singular?
-        return ...                           # 5. the fallback
-    return ...                               # 6. the solution of A x = -q
+    ### BEGIN SOLUTION
+    singular = abs(np.linalg.det(A)) < 1e-9  # 4. when is A singular?
+    ### END SOLUTION
+    if singular:
+        ### BEGIN SOLUTION
+        return 0.5 * (a + b)                 # 5. the fallback
+        ### END SOLUTION
+    ### BEGIN SOLUTION
+    return np.linalg.solve(A, -q)            # 6. the solution of A x = -q
+    ### END SOLUTION
 
 # %%
 check_optimal_point(optimal_point)
@@ -449,33 +458,12 @@ print(check_optimal_point(lambda Q, a, b: np.linalg.solve(Q[:3, :3], -Q[:3, 3]))
 # in another. Without area weights, how would the vertex quadrics of the two meshes
 # differ, and why would that be a problem?
 
-# %% [markdown]
+# %% [markdown] tags=["solution"]
 # ### Answers
 #
-# **1 and 2.**
+# **1 and 2.** The answers are in the exercise cells.
 
-# %%
-def plane_quadric_answer(a, b, c):
-    n = np.cross(b - a, c - a)
-    n = n / np.linalg.norm(n)
-    d = -n @ a
-    p = np.append(n, d)
-    return np.outer(p, p)
-
-
-def optimal_point_answer(Q, a, b):
-    A = Q[:3, :3]
-    q = Q[:3, 3]
-    if abs(np.linalg.det(A)) < 1e-9:
-        return 0.5 * (a + b)
-    return np.linalg.solve(A, -q)
-
-
-print(check_plane_quadric(plane_quadric_answer))
-print()
-print(check_optimal_point(optimal_point_answer))
-
-# %% [markdown]
+# %% [markdown] tags=["solution"]
 # (A fixed `1e-9` is fine for these small cases. The library needs no threshold at all:
 # its pull `eps` is a fraction of `A`'s trace, so a mesh measured in millimetres is
 # treated like the same mesh in metres, and `A + eps I` can always be solved.)

@@ -397,14 +397,20 @@ def my_tangential_smoothing(mesh):
     normals = hx.vertex_normals(mesh)
     centroids = np.zeros_like(P)
     for v in mesh.vertices:
-        centroids[v.index] = ...          # the mean of v's neighbours' positions
+        ### BEGIN SOLUTION
+        centroids[v.index] = np.mean([P[u.index] for u in v.neighbors()], axis=0)   # the mean of v's neighbours' positions
+        ### END SOLUTION
     new = P.copy()
     for v in mesh.vertices:
         if v.is_boundary:
             continue
-        s = ...                           # the step from v to its centroid
+        ### BEGIN SOLUTION
+        s = centroids[v.index] - P[v.index]   # the step from v to its centroid
+        ### END SOLUTION
         n = normals[v.index]
-        new[v.index] = ...                # the step without its normal part
+        ### BEGIN SOLUTION
+        new[v.index] = P[v.index] + s - (s @ n) * n   # the step without its normal part
+        ### END SOLUTION
     return new
 
 # %%
@@ -460,26 +466,9 @@ buggy.show(window_size=(420, 320))
 # - The histograms say it all: lengths gather around L, degrees at 6, smallest angles
 #   near 60°.
 
-# %% [markdown]
+# %% [markdown] tags=["solution"]
 # ## Answer
 #
-# Try the exercise before you read this.
-
-# %%
-def tangential_smoothing_answer(mesh):
-    P = mesh.positions
-    normals = hx.vertex_normals(mesh)
-    centroids = np.zeros_like(P)
-    for v in mesh.vertices:                                   # every centroid first, from the old positions
-        centroids[v.index] = np.mean([P[u.index] for u in v.neighbors()], axis=0)
-    new = P.copy()
-    for v in mesh.vertices:
-        if v.is_boundary:
-            continue
-        s = centroids[v.index] - P[v.index]
-        n = normals[v.index]
-        new[v.index] = P[v.index] + s - (s @ n) * n          # drop the normal part
-    return new
-
-
-check_tangential_smoothing(tangential_smoothing_answer)
+# The answer is in the exercise cell above: every centroid first, from the old
+# positions, then each interior vertex takes the step to its centroid without its
+# normal part, `s - (s @ n) * n`.

@@ -315,7 +315,9 @@ def my_de_casteljau(points, t):
     levels = [np.asarray(points, dtype=float)]
     while len(levels[-1]) > 1:
         previous = levels[-1]
-        level = ...                      # 1. lerp each neighbouring pair of previous, a fraction t of the way
+        ### BEGIN SOLUTION
+        level = (1 - t) * previous[:-1] + t * previous[1:]   # 1. lerp each neighbouring pair of previous, a fraction t of the way
+        ### END SOLUTION
         levels.append(level)
     return levels
 
@@ -348,25 +350,15 @@ check_de_casteljau(backwards)
 # **3. Surfaces.** On the 4 x 4 patch above, you lift the corner control point `P[0][0]`
 # by 1. Which of the four boundary curves of the patch change?
 
-# %% [markdown]
+# %% [markdown] tags=["solution"]
 # ### Answers
 #
-# **1.** The blank is `(1 - t) * previous[:-1] + t * previous[1:]`: `previous[:-1]` holds the
-# first point of every pair and `previous[1:]` the second, so one line does the whole
-# level. (A loop over `i` with `lerp(previous[i], previous[i + 1], t)` is just as right.)
+# **1.** The answer is in the exercise cell: `(1 - t) * previous[:-1] + t * previous[1:]`;
+# `previous[:-1]` holds the first point of every pair and `previous[1:]` the second, so
+# one line does the whole level. (A loop over `i` with `lerp(previous[i], previous[i + 1], t)`
+# is just as right.)
 
-# %%
-def de_casteljau_answer(points, t):
-    levels = [np.asarray(points, dtype=float)]
-    while len(levels[-1]) > 1:
-        previous = levels[-1]
-        levels.append((1 - t) * previous[:-1] + t * previous[1:])
-    return levels
-
-
-check_de_casteljau(de_casteljau_answer)
-
-# %% [markdown]
+# %% [markdown] tags=["solution"]
 # **2.** A straight segment from `(0, 0)` to `(3, 3)`: every lerp of points on a line stays
 # on the line. Because the control points are evenly spaced, the curve also runs at
 # constant speed, so `C(1/3) = (1, 1)`. (Space them unevenly and the curve is the same

@@ -355,14 +355,14 @@ print(f"{mine.n_faces} faces, within 5% of 2,000: {abs(mine.n_faces - 2000) <= 1
 # - For a target size with good triangles, let one operation find the size and the
 #   remesher fix the triangles.
 
-# %% [markdown]
+# %% [markdown] tags=["solution"]
 # ## Answer
 #
 # Try the project before you read this. The answer runs the three pipelines and one
 # more, D (subdivide once, then simplify to 2,000), with `L` corrected once for the
 # face count.
 
-# %%
+# %% tags=["solution"]
 def remesh_to(mesh, faces, iterations=4):
     """Remesh ``mesh`` to about ``faces`` faces: one run, one correction of L by the face count."""
     L = length_for(mesh, faces)
@@ -385,10 +385,10 @@ print(header)
 for name, mesh in answers.items():
     print(report(name, mesh, L_B, distance_both_ways(spot, mesh)))
 
-# %%
+# %% tags=["solution"]
 Image(histograms(list(answers.values()), list(answers), L_B))
 
-# %% [markdown]
+# %% [markdown] tags=["solution"]
 # **B** (remesh alone) and **C** (simplify, then remesh) give near-equilateral
 # triangles: no face below 30°, degrees near 6, lengths near L. Simplification alone
 # (**A**) and **D** keep the shape best, but leave close to 40% of the faces below 30°.

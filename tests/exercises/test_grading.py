@@ -1,8 +1,8 @@
 """The grader: points per exercise with reasons, and never a crash on a bad submission.
 
 Submissions here are small notebooks made on the spot (a real chapter would take
-longer to run); the right answer is taken from chapter 06's own answer cell, so these
-tests follow the chapter.
+longer to run); the right answer is taken from chapter 06's own exercise cell (the
+solution edition's), so these tests follow the chapter.
 """
 
 from __future__ import annotations
@@ -15,22 +15,23 @@ from pathlib import Path
 import nbformat
 import pytest
 
-from halfedge_edu.exercises.grading import EXERCISES, GradingError, chapter_of, exercises_for, grade_notebook
+from halfedge_edu.exercises.grading import (
+    EXERCISES, GradingError, chapter_of, check_function, exercises_for, grade_notebook,
+)
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def _answer(chapter_source: str, name: str, rename_to: str) -> str:
-    """The source of function ``name`` in a chapter source, renamed to ``rename_to``."""
+def _exercise_function(chapter_source: str, name: str) -> str:
+    """The source of function ``name`` as the solution edition of a chapter defines it (comments dropped)."""
     text = (ROOT / "notebooks" / "src" / chapter_source).read_text()
     for node in ast.parse(text).body:
         if isinstance(node, ast.FunctionDef) and node.name == name:
-            node.name = rename_to
             return ast.unparse(node)
     raise AssertionError(f"{chapter_source} has no function {name}")
 
 
-RIGHT_FLIP = _answer("06_flip_and_split.py", "flip_answer", "my_flip")
+RIGHT_FLIP = _exercise_function("06_flip_and_split.py", "my_flip")
 
 
 def submission(tmp_path: Path, *cells: str, name: str = "06_flip_and_split.ipynb") -> Path:
@@ -141,7 +142,111 @@ def test_a_chapter_without_exercises_is_refused_by_name():
 
 
 def test_every_exercise_names_a_check_the_package_has():
-    from halfedge_edu import exercises
-
     for exercise in EXERCISES:
-        assert callable(getattr(exercises, exercise.check)), exercise
+        assert check_function(exercise).__name__ == exercise.check, exercise
+
+
+# --------------------------------------------------------------------------------------
+# Real editions of a chapter, submissions made of the debugging lab's bugs, the command
+# --------------------------------------------------------------------------------------
+
+def _edition(tmp_path: Path, chapter_source: str, edition: str) -> Path:
+    """Chapter ``chapter_source`` in ``edition``, as the builder makes it (unexecuted: the grader runs it)."""
+    import sys
+
+    sys.path.insert(0, str(ROOT / "tools"))
+    from build_notebooks import chapter_id, new_notebook, parse_source
+
+    source = ROOT / "notebooks" / "src" / chapter_source
+    chapter = chapter_id(source)
+    notebook = new_notebook(parse_source(source.read_text(encoding="utf-8"), chapter, edition), chapter, edition)
+    path = tmp_path / edition / f"{source.stem}.ipynb"
+    path.parent.mkdir()
+    nbformat.write(notebook, path)
+    return path
+
+
+def test_the_solution_edition_of_a_chapter_earns_full_points(tmp_path):
+    path = _edition(tmp_path, "06_flip_and_split.py", "solution")
+    grade = grade_notebook(path)
+    assert grade.max_score > 0 and grade.score == grade.max_score, grade.to_json()
+    assert grade.problem is None
+    cells = nbformat.read(path, as_version=4).cells
+    raised = [int(line.split(":")[0].split()[1]) for line in grade.cell_errors]
+    assert all("raises-exception" in cells[n].metadata.get("tags", []) for n in raised), grade.cell_errors
+
+
+def test_the_student_edition_of_a_chapter_earns_nothing_because_it_is_not_implemented(tmp_path):
+    grade = grade_notebook(_edition(tmp_path, "06_flip_and_split.py", "student"))
+    assert grade.score == 0.0 and grade.max_score > 0
+    for exercise in grade.exercises:
+        assert exercise.output.startswith("Not yet.") and "raised NotImplementedError" in exercise.output
+
+
+def _lab_submission(tmp_path: Path, name: str, flip: str, collapse: str, one_ring: str) -> Path:
+    """A chapter 08b submission whose three fixed_* functions are the named classic_bugs functions."""
+    return submission(tmp_path, (
+        "from halfedge_edu.exercises import classic_bugs\n"
+        f"fixed_flip = classic_bugs.{flip}\n"
+        f"fixed_collapse = classic_bugs.{collapse}\n"
+        f"fixed_one_ring = classic_bugs.{one_ring}\n"), name=name)
+
+
+@pytest.mark.parametrize(("flip", "collapse", "one_ring", "score", "rules"), [
+    ("flip_forgetting_vertex_halfedge", "collapse_right", "one_ring_right", 2.0,
+     {"fixed_flip": "vertex-halfedge-origin"}),
+    ("flip_right", "collapse_reading_neighbours_too_early", "one_ring_endless_at_the_boundary", 1.0,
+     {"fixed_collapse": "deleted-reference", "fixed_one_ring": "never comes back to its start halfedge"}),
+])
+def test_a_submission_made_of_lab_bugs_gets_a_partial_grade_naming_each_rule(tmp_path, flip, collapse, one_ring,
+                                                                             score, rules):
+    grade = grade_notebook(_lab_submission(tmp_path, "08b_debugging_lab.ipynb", flip, collapse, one_ring))
+    assert (grade.score, grade.max_score) == (score, 3.0)
+    lost = {exercise.name: exercise.output for exercise in grade.exercises if not exercise.passed}
+    assert set(lost) == set(rules)
+    for name, rule in rules.items():
+        assert rule in lost[name], lost[name]
+
+
+def test_the_grade_command_writes_both_reports_and_a_summary_line(tmp_path, capsys):
+    from halfedge_edu import cli
+
+    path = submission(tmp_path, RIGHT_FLIP, name="alice.ipynb")
+    out = tmp_path / "reports"
+    assert cli.main(["grade", str(path), "--out", str(out), "--chapter", "06", "--cell-timeout", "30"]) == 0
+    report = json.loads((out / "alice.json").read_text())
+    assert (report["score"], report["max_score"]) == (1.0, 1.0)
+    assert ElementTree.fromstring((out / "alice.xml").read_text()).find("testsuite").get("failures") == "0"
+    assert capsys.readouterr().out == "alice.ipynb  chapter 06  1/1\n"
+
+
+def test_the_grade_command_exits_0_whatever_the_score(tmp_path, capsys):
+    from halfedge_edu import cli
+
+    path = submission(tmp_path, "def my_flip(mesh, e):\n    raise NotImplementedError")
+    assert cli.main(["grade", str(path), "--out", str(tmp_path / "reports")]) == 0
+    assert "chapter 06  0/1" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(("arguments", "said"), [
+    (["missing.ipynb", "--out", "{tmp}/r"], "missing.ipynb: no such file"),
+    (["{nb}", "--out", "{nb}"], "exists and is not a folder"),
+    (["{nb}", "--out", "{tmp}/r", "--chapter", "00"], "chapter '00' has no graded exercises"),
+    (["{tmp}/alice.ipynb", "--out", "{tmp}/r"], "cannot tell the chapter"),
+    (["{nb}", "--out", "{tmp}/r", "--timeout", "-1"], "must be a positive number of seconds"),
+    (["{nb}"], "--out"),
+])
+def test_bad_grade_arguments_are_one_line_and_exit_2(tmp_path, capsys, arguments, said):
+    from halfedge_edu import cli
+
+    notebook = submission(tmp_path, "x = 1")
+    submission(tmp_path, "x = 1", name="alice.ipynb")
+    filled = [a.format(tmp=tmp_path, nb=notebook) for a in arguments]
+    try:
+        status = cli.main(["grade", *filled])
+    except SystemExit as usage_error:  # argparse's own errors end the same way, through exit()
+        status = usage_error.code
+    assert status == 2
+    err = capsys.readouterr().err
+    assert err.startswith("halfedge-edu: error: ") and said in err and err.count("\n") == 1, err
+    assert not (tmp_path / "r").exists()

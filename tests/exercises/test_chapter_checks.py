@@ -1,0 +1,92 @@
+"""The checks of chapters 01, 04, 05 and 08, moved from the chapters into the package."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from halfedge_edu.exercises.chapter_checks import (
+    check_collapse_is_safe, check_cut, check_fan, check_laplacian_step, smooth_once_in_place,
+)
+
+
+def right_fan(corners):
+    return [(corners[0], corners[k], corners[k + 1]) for k in range(1, len(corners) - 1)]
+
+
+def right_cut(vertices, faces):
+    return np.vstack([vertices, vertices[0]]), [[0, 1, 2], [5, 3, 4]]
+
+
+def right_laplacian_step(mesh):
+    old, new = mesh.positions, mesh.positions.copy()
+    for v in mesh.vertices:
+        if not v.is_boundary:
+            new[v.index] = old[[u.index for u in v.neighbors()]].mean(axis=0)
+    return new
+
+
+def right_collapse_is_safe(mesh, e):
+    edge = mesh.edge(e)
+    a, b = edge.vertices
+    l, r = edge.halfedge.prev.vertex, edge.halfedge.twin.prev.vertex
+    shared = {v.index for v in a.neighbors()} & {v.index for v in b.neighbors()}
+    return shared == {l.index, r.index} and not (a.degree == 3 and b.degree == 3)
+
+
+def stub(*arguments):
+    raise NotImplementedError("write it")
+
+
+CHECKS = [(check_fan, right_fan), (check_cut, right_cut), (check_laplacian_step, right_laplacian_step),
+          (check_collapse_is_safe, right_collapse_is_safe)]
+
+
+@pytest.mark.parametrize(("check", "right"), CHECKS, ids=[check.__name__ for check, _ in CHECKS])
+def test_a_right_answer_passes(check, right):
+    result = check(right)
+    assert result and result.message.startswith("All good!")
+
+
+@pytest.mark.parametrize(("check", "right"), CHECKS, ids=[check.__name__ for check, _ in CHECKS])
+def test_a_stub_is_not_finished_yet_and_never_raises(check, right):
+    result = check(stub)
+    assert not result and "not finished yet" in result.message and "NotImplementedError" in result.message
+
+
+def test_check_fan_names_the_polygon_that_differs():
+    result = check_fan(lambda corners: [tuple(corners[:3])])
+    assert not result and "4 corners" in result.message
+
+
+def test_check_cut_says_what_repair_faces_gives():
+    result = check_cut(lambda vertices, faces: (vertices, faces))
+    assert not result and "non-manifold" in result.message
+
+
+def test_check_laplacian_step_recognises_gauss_seidel():
+    result = check_laplacian_step(lambda mesh: smooth_once_in_place(mesh, range(mesh.n_vertices)))
+    assert not result and "Gauss-Seidel" in result.message and result.element[0] == "vertex"
+
+
+def test_check_laplacian_step_refuses_a_function_that_moves_the_mesh():
+    def in_place(mesh):
+        mesh.positions[:] = right_laplacian_step(mesh)
+        return mesh.positions
+
+    result = check_laplacian_step(in_place)
+    assert not result and "changed mesh.positions" in result.message
+
+
+def test_check_collapse_is_safe_explains_the_tetrahedron():
+    result = check_collapse_is_safe(lambda mesh, e: True)
+    assert not result and "tetrahedron" in result.message and "lies in both links" in result.message
+
+
+def blank_fan(corners):
+    return ...
+
+
+def test_a_blank_left_in_the_function_is_named_before_it_runs():
+    result = check_fan(blank_fan)
+    assert not result and "still has blanks (...)" in result.message
