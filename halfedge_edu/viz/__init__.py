@@ -5,6 +5,7 @@
     from halfedge_edu.viz import LoopStepper, QEMStepper, RemeshStepper
     from halfedge_edu.viz import DeCasteljauViewer, BezierSurfaceEditor
     from halfedge_edu.viz import side_by_side, grid, scene_picture, surface_png, plotter_png
+    from halfedge_edu.viz import on_main_thread
 
 - :class:`HalfedgeScene`: draw a mesh with its halfedges as arrows inside their faces,
   highlight elements by role (current, twin, next, prev, origin, tip, face, one-ring),
@@ -33,6 +34,9 @@ The modules, one concern each (as pyvista splits its plotting package), from the
 - ``camera``: where the camera stands: the whole mesh, some vertices, following the highlight.
 - ``scene``: :class:`HalfedgeScene`, which owns the surface and decides what is redrawn when.
 - ``painted_scene``: a mesh with coloured layers (Loop, QEM, remeshing, Bezier widgets).
+- ``main_thread``: :func:`on_main_thread`, which runs a widget callback (a click, a slider
+  move) on the kernel's main thread, where VTK's OpenGL context lives; every button and
+  observer of these widgets goes through it, and so should a chapter's own widget.
 - ``widgets``, ``steppers``, ``loop_stepper``, ``qem_stepper``, ``remesh_stepper``,
   ``bezier_widgets``: the notebook widgets.
 
@@ -49,6 +53,7 @@ package itself (``import halfedge_edu``) never imports this module.
 
 from .bezier_widgets import BezierSurfaceEditor, DeCasteljauViewer
 from .loop_stepper import LoopStepper
+from .main_thread import on_main_thread
 from .palette import PRESETS, ROLES
 from .pictures import grid, plotter_png, side_by_side, surface_png
 from .qem_stepper import QEMStepper
@@ -62,5 +67,5 @@ __all__ = [
     "PRESETS", "ROLES", "choose_mode", "HalfedgeScene", "HalfedgeExplorer", "OneRingViewer",
     "FlipStepper", "SplitStepper", "CollapseStepper", "CollapseAtlas", "LoopStepper",
     "QEMStepper", "RemeshStepper", "DeCasteljauViewer", "BezierSurfaceEditor", "side_by_side", "grid",
-    "plotter_png", "surface_png", "scene_picture",
+    "plotter_png", "surface_png", "scene_picture", "on_main_thread",
 ]

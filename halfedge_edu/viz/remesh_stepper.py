@@ -281,11 +281,25 @@ class RemeshStepper(StepperWidget):
     _moves_help = "a step number, (iteration, phase), a phase name"
 
     def _named_moves(self) -> dict[str, int]:
-        """Also "iteration": the same phase one iteration on."""
-        same_phase_next = [k for k, s in enumerate(self.snapshots)
-                           if s.phase == self.phase and s.iteration == self.iteration + 1]
-        return {**super()._named_moves(),
-                "iteration": same_phase_next[0] if same_phase_next else self.n_steps}
+        """Also "iteration": the same phase one iteration on. From the input (the end of
+        iteration 0, so to speak) that is the end of iteration 1; in the last iteration
+        it stays where it is (:meth:`go` says why)."""
+        if self._step == 0:
+            iteration_on = max(k for k, s in enumerate(self.snapshots) if s.iteration == 1)
+        else:
+            same_phase_next = [k for k, s in enumerate(self.snapshots)
+                               if s.phase == self.phase and s.iteration == self.iteration + 1]
+            iteration_on = same_phase_next[0] if same_phase_next else self._step
+        return {**super()._named_moves(), "iteration": iteration_on}
+
+    def go(self, target) -> int:
+        """Go to a step: a number, ``(iteration, phase)``, a phase name, or a named move
+        ("start", "back", "step", "iteration", "end"). Returns the step shown."""
+        last_iteration = self._step > 0 and self.iteration == self.iterations
+        shown = super().go(target)
+        if last_iteration and isinstance(target, str) and target.strip().lower() == "iteration":
+            self._say(f"iteration {self.iterations} is the last one: there is no iteration after it")
+        return shown
 
     def _resolve(self, target) -> int | None:
         """``(iteration, phase)``, or a phase name: its next occurrence (else its first)."""

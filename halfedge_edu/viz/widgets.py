@@ -23,6 +23,7 @@ import base64
 import html
 from collections.abc import Callable
 
+from .main_thread import on_main_thread
 from .palette import ROLES, Preset, panel_css, preset as _preset
 from .renderer import View, choose_mode, make_plotter
 from .scene import HalfedgeScene
@@ -34,6 +35,8 @@ def panel_button(look: Preset, label: str, tooltip: str, action: Callable[[], ob
 
     ``on_error`` receives an ``IndexError`` or ``ValueError`` the action raises (a widget
     shows it in its status line: callbacks must not print); without it the error propagates.
+    A click runs the action on the kernel's main thread (see :mod:`.main_thread`), so
+    its redraw cannot break the view's OpenGL context.
     """
     import ipywidgets as widgets
 
@@ -52,7 +55,7 @@ def panel_button(look: Preset, label: str, tooltip: str, action: Callable[[], ob
         except (IndexError, ValueError) as error:
             on_error(error)
 
-    button.on_click(clicked)
+    button.on_click(on_main_thread(clicked))
     return button
 
 
@@ -219,8 +222,8 @@ class StepperWidget(SceneWidget):
 
     def _named_moves(self) -> dict[str, int]:
         """Move name -> step. Subclasses extend it (e.g. with :meth:`_phase_moves`)."""
-        return {"next": self._step + 1, "step": self._step + 1, "back": self._step - 1,
-                "start": 0, "end": self.n_steps}
+        forward, backward = min(self._step + 1, self.n_steps), max(self._step - 1, 0)
+        return {"next": forward, "step": forward, "back": backward, "start": 0, "end": self.n_steps}
 
     def _phase_moves(self, starts: list[int]) -> dict[str, int]:
         """"phase" and "phase back": the next / previous of the given phase starts."""
@@ -249,10 +252,18 @@ class StepperWidget(SceneWidget):
         target = int(target)
         if not 0 <= target <= self.n_steps:
             raise IndexError(f"there is no step {target}: steps run from 0 to {self.n_steps}")
-        self._step = target
-        self._show_step(target)
+        shown = self._step
+        try:
+            self._step = target
+            self._show_step(target)
+            self._changed()
+        except Exception:
+            # A failed step leaves the widget where it was: the step shown, its picture, its panel.
+            self._step = shown
+            self._show_step(shown)
+            self._changed()
+            raise
         self._say("")
-        self._changed()
         return self._step
 
     def step(self) -> int:

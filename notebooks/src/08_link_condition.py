@@ -250,6 +250,8 @@ for name in ("figure8", "lone_triangle"):
 # %%
 import ipywidgets as widgets
 
+from halfedge_edu.viz import on_main_thread
+
 
 class LinkViewer:
     """A mesh and an edge: the link picture and the sets of the link condition."""
@@ -262,8 +264,10 @@ class LinkViewer:
         self.edge_choice = widgets.IntSlider(value=edge, min=0, max=edge, description="edge")
         self.image = widgets.Image(format="png")
         self.text = widgets.HTML()
-        self.mesh_choice.observe(self._new_mesh, names="value")
-        self.edge_choice.observe(self.redraw, names="value")
+        # Changes from the browser arrive on another thread; redraws run on the main one
+        # (a render from another thread breaks the plotter's OpenGL context).
+        self.mesh_choice.observe(on_main_thread(self._new_mesh), names="value")
+        self.edge_choice.observe(on_main_thread(self.redraw), names="value")
         self.panel = widgets.HBox([self.image, widgets.VBox([self.mesh_choice, self.edge_choice, self.text])])
         self._new_mesh()
 
