@@ -41,8 +41,10 @@ def panel_button(look: Preset, label: str, tooltip: str, action: Callable[[], ob
     import ipywidgets as widgets
 
     css = panel_css(look)
+    # At least the preset's width, wider for a longer label: a label is never cut to "st…".
     button = widgets.Button(description=label, tooltip=tooltip,
-                            layout=widgets.Layout(height=css["button_height"], width=css["button_width"]))
+                            layout=widgets.Layout(height=css["button_height"], width="auto",
+                                                  min_width=css["button_width"], flex="0 0 auto"))
     button.style.font_size = css["font"]
     button.style.font_weight = "bold"
 
@@ -73,7 +75,7 @@ def legend_html(entries, look: Preset) -> str:
 def table_html(rows, look: Preset, *, header=None, mark_row: int | None = None) -> str:
     """An HTML table; a row is ``(cells, role_or_None)``, the role colouring its left edge."""
     css = panel_css(look)
-    cell = f"padding:{css['cell']};border-bottom:1px solid #ddd;text-align:left"
+    cell = f"padding:{css['cell']};border-bottom:1px solid #ddd;text-align:left;white-space:nowrap"
     lines = [f'<table style="border-collapse:collapse;font-size:{css["font"]};'
              f'font-family:monospace">']
     if header:
@@ -115,8 +117,11 @@ class SceneWidget:
         self._show()
         self.view = View(self.scene, self.mode)
         side = widgets.VBox([heading, *self._controls(), self._status, self._info, self._legend],
-                            layout=widgets.Layout(padding="0 0 0 16px", overflow="auto"))
-        self.widget = widgets.HBox([self.view.widget, side], layout=widgets.Layout(align_items="flex-start"))
+                            layout=widgets.Layout(padding="0 0 0 16px", flex="1 1 auto"))
+        # Where the notebook is too narrow for both, the panel goes below the view instead
+        # of being cut off on the right.
+        self.widget = widgets.HBox([self.view.widget, side],
+                                   layout=widgets.Layout(align_items="flex-start", flex_flow="row wrap"))
         self._refresh_panel()
 
     @property
@@ -152,7 +157,8 @@ class SceneWidget:
         returns the row as a list of controls."""
         import ipywidgets as widgets
 
-        row = widgets.HBox([self._button(label, tooltip, action) for label, tooltip, action in buttons])
+        row = widgets.HBox([self._button(label, tooltip, action) for label, tooltip, action in buttons],
+                           layout=widgets.Layout(flex_flow="row wrap"))
         self.buttons = {button.description: button for button in row.children}
         return [row]
 
@@ -288,6 +294,10 @@ class HalfedgeExplorer(SceneWidget):
     ``w.go("next")`` (or "prev", "twin", a chain like "next.twin", or an index),
     ``w.step()`` (the same as next), ``w.back()``; ``w.halfedge`` is the current
     halfedge, ``w.trail`` the visited ones.
+
+    The explorer holds its own copy of the mesh (``w.mesh``): a later cell that edits
+    the mesh passed in does not change what the explorer shows (make a new explorer to
+    walk the edited mesh).
     """
 
     title = "Halfedge explorer"
@@ -297,7 +307,7 @@ class HalfedgeExplorer(SceneWidget):
                  labels="auto", rings: int = 2, window_size=None):
         start = mesh.halfedge(int(halfedge)).index
         self._trail: list[tuple[str, int]] = [("start", start)]
-        super().__init__(mesh, mode=mode, preset=preset, labels=labels, rings=rings, window_size=window_size)
+        super().__init__(mesh.copy(), mode=mode, preset=preset, labels=labels, rings=rings, window_size=window_size)
 
     @property
     def halfedge(self):
@@ -415,6 +425,10 @@ class OneRingViewer(SceneWidget):
     (``h = h.prev.twin``), ``w.go("cw")`` clockwise (``h = h.twin.next``),
     ``w.go("tip")`` moves to the neighbour the current halfedge points at, and
     ``w.pick(v)`` to any vertex; ``w.step()`` is one CCW turn.
+
+    The viewer holds its own copy of the mesh (``w.mesh``): a later cell that edits the
+    mesh passed in (a collapse, say) does not change what the viewer shows (make a new
+    viewer to look at the edited mesh).
     """
 
     title = "One-ring viewer"
@@ -425,7 +439,7 @@ class OneRingViewer(SceneWidget):
         v = mesh.vertex(int(vertex))
         self._vertex = v.index
         self._current = v.halfedge.index
-        super().__init__(mesh, mode=mode, preset=preset, labels=labels, rings=rings, window_size=window_size)
+        super().__init__(mesh.copy(), mode=mode, preset=preset, labels=labels, rings=rings, window_size=window_size)
 
     @property
     def vertex(self):
