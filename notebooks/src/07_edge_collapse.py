@@ -182,9 +182,14 @@ for _ in range(3):
     stepper.go("phase")
 stepper
 
+# %% [markdown]
+# One step on (a second stepper, so the one above stays at the start of the phase):
+
 # %%
-stepper.step()
-print(stepper.describe())
+one_on = CollapseStepper(cube, cube.halfedge(0))
+one_on.go(stepper.step_index + 1)
+print(one_on.describe())
+one_on.close()
 
 # %% [markdown]
 # ### Both cases side by side
@@ -204,12 +209,14 @@ atlas
 # and V − E + F does not change even then.
 
 # %%
+driven_atlas = CollapseAtlas()              # a second atlas: the one above stays where you leave it
 for _ in range(2):
-    atlas.step()
-print(atlas.describe().split("\nrefused")[0])
+    driven_atlas.step()
+print(driven_atlas.describe().split("\nrefused")[0])
 print()
-atlas.go("end")
-print(atlas.describe())
+driven_atlas.go("end")
+print(driven_atlas.describe())
+driven_atlas.close()
 
 # %% [markdown]
 # ## 4. Which end, which edge: the result does not depend on it

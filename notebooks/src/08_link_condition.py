@@ -309,17 +309,21 @@ viewer = LinkViewer("cube", 1)
 viewer
 
 # %% [markdown]
-# Driven from code: the cube's edge 3 (a side, not a diagonal), then the open patch's
-# edge 11, which cuts off the corner at vertex 3. Its picture draws the boundary loop in
-# vermillion: the extra shared "vertex" is `∂`.
+# Driven from code (a second viewer, so the one above stays where you leave it): the
+# cube's edge 3 (a side, not a diagonal), then the open patch's edge 11, which cuts off
+# the corner at vertex 3. Its picture draws the boundary loop in vermillion: the extra
+# shared "vertex" is `∂`.
 
 # %%
-viewer.edge_choice.value = 3
-print(viewer.describe())
+driven = LinkViewer("cube", 1)
+driven.edge_choice.value = 3
+print(driven.describe())
 print()
-viewer.mesh_choice.value = "open_patch"
-viewer.edge_choice.value = 11
-print(viewer.describe())
+driven.mesh_choice.value = "open_patch"
+driven.edge_choice.value = 11
+print(driven.describe())
+driven.panel.close()
+driven.plotter.close()
 
 # %% [markdown]
 # ## Check yourself
