@@ -232,6 +232,15 @@ class OperationStepper(StepperWidget):
         A, B = positions[origin], positions[tip]
         third = np.where((opposite < 0)[:, None], A, positions[np.maximum(opposite, 0)])
         third = np.where(((face < 0) & (opposite >= 0))[:, None], A + B - third, third)
+        # Half way through its change an arrow may get the same ends and side as another
+        # one (the flip's h0 lies on h5 at step 1) and hide under it: the one half way
+        # through is drawn further inside its face, so the change stays in sight.
+        between = ~after_match & ~before_match
+        key = np.stack([origin, tip, opposite], axis=1)                   # (k, 3)
+        _, group, count = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+        hidden = between & (count[group.ravel()] > 1) & (opposite >= 0)
+        A = np.where(hidden[:, None], A + OVERLAP_INSET * (third - A), A)
+        B = np.where(hidden[:, None], B + OVERLAP_INSET * (third - B), B)
         return A, B, third
 
     def _face_corners(self, faces):
@@ -461,6 +470,8 @@ class OperationStepper(StepperWidget):
 
 #: Rows of the change table shown at once (see OperationStepper._table_window).
 TABLE_WINDOW = 12
+#: How far toward its face's third corner an arrow is moved when it would lie on another.
+OVERLAP_INSET = 0.3
 
 
 class FlipStepper(OperationStepper):

@@ -231,3 +231,16 @@ def test_a_step_that_fails_to_draw_leaves_the_widget_where_it_was(flip_stepper, 
     assert "step 3 of 17" in flip_stepper.describe()
     assert calls == [4, 3]                  # the redraw of step 4 failed; step 3 was drawn again
     assert flip_stepper.screenshot() == picture
+
+
+def test_an_arrow_half_way_through_its_change_does_not_hide_under_another(closing):
+    widget = FlipStepper(sample("strip"), 1, mode="static")
+    closing(widget)
+    widget.go(1)                              # halfedge 2 (h0) now leaves v3: it runs along h5
+    assert widget.scene.roles["changed"].tolist() == [2]
+    halfedges = np.asarray(widget.scene.drawn_halfedges)
+    A, B, _ = widget._arrow_corners(widget.state, halfedges)
+    k = int(np.flatnonzero(halfedges == 2)[0])
+    on_top = [int(h) for j, h in enumerate(halfedges)
+              if j != k and np.allclose(A[j], A[k]) and np.allclose(B[j], B[k])]
+    assert on_top == []
