@@ -111,7 +111,7 @@ viewer
 # the one above stays where you left it:
 
 # %%
-scripted = OneRingViewer(bunny, vertex=100)
+scripted = OneRingViewer(bunny, vertex=100, mode="static")   # never shown: no live view
 scripted.go("ccw")
 scripted.go("tip")
 print(scripted.describe())

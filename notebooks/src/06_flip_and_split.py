@@ -125,7 +125,7 @@ stepper
 # twice, then jump to the start of the next phase:
 
 # %%
-driven = FlipStepper(strip, 1)
+driven = FlipStepper(strip, 1, mode="static")   # never shown: no live view
 driven.step()
 driven.step()
 print(driven.describe())

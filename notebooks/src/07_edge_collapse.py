@@ -186,7 +186,7 @@ stepper
 # One step on (a second stepper, so the one above stays at the start of the phase):
 
 # %%
-one_on = CollapseStepper(cube, cube.halfedge(0))
+one_on = CollapseStepper(cube, cube.halfedge(0), mode="static")   # never shown: no live view
 one_on.go(stepper.step_index + 1)
 print(one_on.describe())
 one_on.close()
@@ -209,7 +209,7 @@ atlas
 # and V − E + F does not change even then.
 
 # %%
-driven_atlas = CollapseAtlas()              # a second atlas: the one above stays where you leave it
+driven_atlas = CollapseAtlas(mode="static")  # a second atlas, never shown: the one above stays put
 for _ in range(2):
     driven_atlas.step()
 print(driven_atlas.describe().split("\nrefused")[0])

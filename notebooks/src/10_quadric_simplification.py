@@ -296,7 +296,7 @@ stepper
 # it): two single collapses, then jumps.
 
 # %%
-driven = QEMStepper(small, 100, view_direction=(-1.8, 0.9, 2.4))
+driven = QEMStepper(small, 100, view_direction=(-1.8, 0.9, 2.4), mode="static")   # shown as a picture only
 driven.step()
 driven.step()
 print(driven.describe())

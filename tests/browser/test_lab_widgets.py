@@ -40,6 +40,7 @@ RAPID_CLICKS = 12           # per widget with buttons: clicks in a burst, 80 ms 
 DROPDOWN_CHANGES = 50       # chapter 08's mesh dropdown
 SLIDER_MOVES = 50           # chapter 02's step slider (arrow keys, up and down)
 SETTLE_TIMEOUT = 20.0       # seconds for a panel and its picture to settle after a click
+BURST_TIMEOUT = 90.0        # seconds after a burst: the kernel works through every click in turn
 QUIET = 0.6                 # seconds a no-op click is given to show a change
 # A picture "changed" when this share of its pixels moved by more than CHANGED_LEVEL.
 CHANGED_LEVEL = 40
@@ -174,13 +175,13 @@ class WidgetInLab:
         hidden = self.output.evaluate(ROWS_OUT_OF_VIEW)
         assert not hidden, f"{self.name}, {what}: highlighted table rows out of view: {hidden}"
 
-    def settle(self, before, what: str):
+    def settle(self, before, what: str, timeout: float = SETTLE_TIMEOUT):
         """Wait until the text and the pictures stop changing; if a table changed since
         ``before`` (a :meth:`state`), the pictures must change too: a step whose picture
         does not follow its table fails. With ``before`` None, only wait for them to stop
         changing."""
         text0, tables0, pictures0 = before if before is not None else self.state()
-        deadline = time.monotonic() + SETTLE_TIMEOUT
+        deadline = time.monotonic() + timeout
         started = time.monotonic()
         previous = None
         while True:
@@ -197,8 +198,8 @@ class WidgetInLab:
             if time.monotonic() > deadline:
                 if table_moved and not picture_moved:
                     pytest.fail(f"{self.name}, {what}: the table changed but the picture did not "
-                                f"within {SETTLE_TIMEOUT:.0f} s")
-                pytest.fail(f"{self.name}, {what}: the widget did not settle within {SETTLE_TIMEOUT:.0f} s")
+                                f"within {timeout:.0f} s")
+                pytest.fail(f"{self.name}, {what}: the widget did not settle within {timeout:.0f} s")
             previous = now
             time.sleep(0.25)
 
@@ -225,7 +226,7 @@ class WidgetInLab:
             buttons[k].click(timeout=30_000)
             record.count(f"{self.name} '{labels[k]}' (rapid)")
             time.sleep(0.08)
-        self.settle(state, "after a burst of clicks")
+        self.settle(state, "after a burst of clicks", timeout=BURST_TIMEOUT)
         self.check("after a burst of clicks")
         self.save("burst")
 
