@@ -5,6 +5,7 @@
     from halfedge_edu.viz import LoopStepper, QEMStepper, RemeshStepper
     from halfedge_edu.viz import DeCasteljauViewer, BezierSurfaceEditor
     from halfedge_edu.viz import side_by_side, grid, scene_picture, surface_png, plotter_png
+    from halfedge_edu.viz import on_main_thread
 
 - :class:`HalfedgeScene`: draw a mesh with its halfedges as arrows inside their faces,
   highlight elements by role (current, twin, next, prev, origin, tip, face, one-ring),
@@ -35,6 +36,9 @@ The modules, one concern each (as pyvista splits its plotting package), from the
 - ``painted_scene``: a mesh with coloured layers (Loop, QEM, remeshing, Bezier widgets).
 - ``editor``: :class:`MeshEditor`, edit a mesh by hand (select, flip/split/collapse/smooth,
   drag a vertex, undo, the pointer diff of the last edit).
+- ``main_thread``: :func:`on_main_thread`, which runs a widget callback (a click, a slider
+  move) on the kernel's main thread, where VTK's OpenGL context lives; every button and
+  observer of these widgets goes through it, and so should a chapter's own widget.
 - ``widgets``, ``steppers``, ``loop_stepper``, ``qem_stepper``, ``remesh_stepper``,
   ``bezier_widgets``: the notebook widgets.
 
@@ -56,6 +60,7 @@ require("notebooks", "halfedge_edu.viz")
 from .bezier_widgets import BezierSurfaceEditor, DeCasteljauViewer
 from .editor import MeshEditor
 from .loop_stepper import LoopStepper
+from .main_thread import on_main_thread
 from .palette import PRESETS, ROLES
 from .pictures import grid, plotter_png, side_by_side, surface_png
 from .qem_stepper import QEMStepper
@@ -69,5 +74,5 @@ __all__ = [
     "PRESETS", "ROLES", "choose_mode", "HalfedgeScene", "HalfedgeExplorer", "OneRingViewer",
     "FlipStepper", "SplitStepper", "CollapseStepper", "CollapseAtlas", "LoopStepper",
     "QEMStepper", "RemeshStepper", "DeCasteljauViewer", "BezierSurfaceEditor", "side_by_side", "grid",
-    "plotter_png", "surface_png", "scene_picture", "MeshEditor",
+    "plotter_png", "surface_png", "scene_picture", "MeshEditor", "on_main_thread",
 ]

@@ -30,6 +30,7 @@ import io
 import numpy as np
 
 from ..algorithms.bezier import bezier_curve, bezier_surface, bezier_surface_points, de_casteljau
+from .main_thread import on_main_thread
 from .painted_scene import Layer, PaintedScene, legend_html
 from .palette import BLACK, BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, SKY_BLUE, VERMILLION, panel_css
 from .widgets import SceneWidget
@@ -77,8 +78,8 @@ class DeCasteljauViewer:
                                               max=self.degree, description="levels")
         self.image = widgets.Image(format="png")
         self.status = widgets.HTML()
-        self.t_slider.observe(lambda change: self._redraw(), names="value")
-        self.level_slider.observe(lambda change: self._redraw(), names="value")
+        self.t_slider.observe(on_main_thread(lambda change: self._redraw()), names="value")
+        self.level_slider.observe(on_main_thread(lambda change: self._redraw()), names="value")
         self.widget = widgets.VBox([widgets.HBox([self.t_slider, self.level_slider]), self.image, self.status])
         self._redraw()
 
@@ -343,10 +344,10 @@ class BezierSurfaceEditor(SceneWidget):
                                 readout_format=".2f")
             for axis, name in enumerate("xyz")
         ]
-        self.row_slider.observe(lambda change: self._picked(), names="value")
-        self.column_slider.observe(lambda change: self._picked(), names="value")
+        self.row_slider.observe(on_main_thread(lambda change: self._picked()), names="value")
+        self.column_slider.observe(on_main_thread(lambda change: self._picked()), names="value")
         for slider in self.position_sliders:
-            slider.observe(lambda change: self._slid(), names="value")
+            slider.observe(on_main_thread(lambda change: self._slid()), names="value")
         reset = self._button("reset", "every control point back where it started", self.reset)
         return [self.row_slider, self.column_slider, *self.position_sliders, reset]
 

@@ -47,7 +47,7 @@ it with ``hx.save(editor.mesh, "p7.custom.obj")``).
 
 Attention: in a live JupyterLab, widget callbacks arrive on a kernel subshell thread,
 while VTK may only be touched on the kernel's main thread (issue 11). Every callback
-here goes through :func:`on_main_thread` first.
+here goes through :func:`.main_thread.call_on_main_thread` first.
 """
 
 from __future__ import annotations
@@ -59,6 +59,7 @@ from contextlib import contextmanager
 
 import numpy as np
 
+from .main_thread import call_on_main_thread
 from ..algorithms.smoothing import smooth
 from ..core.errors import MeshInvariantError
 from ..core.ops import OpCheck, OperationLog, PointerChange, collapse, flip, split
@@ -75,21 +76,6 @@ HANDLE_COLOUR = "#CC79A7"
 PANEL_DIFF_ROWS = 40
 
 _CHANGED_ROLE = {"halfedge": "changed", "vertex": "changed_vertex", "face": "changed_face"}
-
-
-def on_main_thread(fn: Callable, *args) -> None:
-    """Run ``fn(*args)`` on the kernel's main thread: now if this is it, else queued there.
-
-    ipykernel 7 delivers widget messages on a subshell thread, and a VTK render window
-    belongs to the thread that made it (issue 11). Tornado's ``add_callback`` is
-    thread-safe and keeps the order of the callbacks.
-    """
-    if threading.current_thread() is threading.main_thread():
-        fn(*args)
-        return
-    from ipykernel.kernelbase import Kernel
-
-    Kernel.instance().io_loop.add_callback(fn, *args)
 
 
 class MeshEditor(SceneWidget):
@@ -130,7 +116,7 @@ class MeshEditor(SceneWidget):
         super().__init__(working.copy(), mode=mode, preset=preset, labels=labels, rings=rings, window_size=window_size)
         if self.mode == "live":
             self.scene.plotter.enable_surface_point_picking(
-                callback=lambda point: on_main_thread(self._picked, point),
+                callback=lambda point: call_on_main_thread(self._picked, point),
                 show_message=False, show_point=False, left_clicking=False, picker="cell")
 
     # -- public ----------------------------------------------------------------------------
@@ -427,7 +413,7 @@ class MeshEditor(SceneWidget):
         if kind != "vertex":
             return
         low, high = _slider_range(self.mesh)
-        ball = plotter.add_sphere_widget(lambda centre: on_main_thread(self._dragged, index, centre),
+        ball = plotter.add_sphere_widget(lambda centre: call_on_main_thread(self._dragged, index, centre),
                                          center=tuple(self.mesh.positions[index]),
                                          radius=float((high - low).max()) / 40, color=HANDLE_COLOUR,
                                          selected_color=HANDLE_COLOUR, test_callback=False,
@@ -488,7 +474,7 @@ class MeshEditor(SceneWidget):
                                 layout=widgets.Layout(height=css["button_height"], width=css["button_width"]))
         button.style.font_size = css["font"]
         button.style.font_weight = "bold"
-        button.on_click(lambda _: on_main_thread(self._guarded, action))
+        button.on_click(lambda _: call_on_main_thread(self._guarded, action))
         self.buttons[label] = button
         return button
 
@@ -504,7 +490,7 @@ class MeshEditor(SceneWidget):
             return
         self._keys.value = ""
         for key in text:
-            on_main_thread(self._guarded, self.key, key)
+            call_on_main_thread(self._guarded, self.key, key)
 
     def _slid(self, change) -> None:
         if self._syncing or self._selection[0] != "vertex":
@@ -513,7 +499,7 @@ class MeshEditor(SceneWidget):
         v = self._selection[1]
         if np.allclose(position, self.mesh.positions[v]):
             return
-        on_main_thread(self._guarded, self.move_vertex, v, position)
+        call_on_main_thread(self._guarded, self.move_vertex, v, position)
 
     def _picked(self, point) -> None:
         """A right-click in the live view: the element of the kind chosen in the dropdown."""

@@ -289,7 +289,7 @@ class LoopStepper(StepperWidget):
         rows = [("vertices", before.n_vertices, mesh.n_vertices, f"V + E = {before.n_vertices + before.n_edges}"),
                 ("edges", before.n_edges, mesh.n_edges, f"2E + 3F = {2 * before.n_edges + 3 * before.n_faces}"),
                 ("faces", before.n_faces, mesh.n_faces, f"4F = {4 * before.n_faces}")]
-        cell = "padding:2px 8px;border-bottom:1px solid #ddd;text-align:left"
+        cell = "padding:2px 8px;border-bottom:1px solid #ddd;text-align:left;white-space:nowrap"
         table = "".join(f'<tr><td style="{cell}">{name}</td><td style="{cell}">{old}</td>'
                         f'<td style="{cell}"><b>{now}</b></td><td style="{cell}">{goal}</td></tr>'
                         for name, old, now, goal in rows)

@@ -268,7 +268,7 @@ class QEMStepper(StepperWidget):
 
     def _panel_html(self) -> str:
         size = panel_css(self.look)["font"]
-        cell = "padding:2px 8px;border-bottom:1px solid #ddd;text-align:left"
+        cell = "padding:2px 8px;border-bottom:1px solid #ddd;text-align:left;white-space:nowrap"
         coming = self.steps[self._step].edge if self._step < self.n_steps else None
         rows, seen_next = [], coming is None
         for rank, (cost, e) in enumerate(self.candidates, start=1):

@@ -281,11 +281,25 @@ class RemeshStepper(StepperWidget):
     _moves_help = "a step number, (iteration, phase), a phase name"
 
     def _named_moves(self) -> dict[str, int]:
-        """Also "iteration": the same phase one iteration on."""
-        same_phase_next = [k for k, s in enumerate(self.snapshots)
-                           if s.phase == self.phase and s.iteration == self.iteration + 1]
-        return {**super()._named_moves(),
-                "iteration": same_phase_next[0] if same_phase_next else self.n_steps}
+        """Also "iteration": the same phase one iteration on. From the input (the end of
+        iteration 0, so to speak) that is the end of iteration 1; in the last iteration
+        it stays where it is (:meth:`go` says why)."""
+        if self._step == 0:
+            iteration_on = max(k for k, s in enumerate(self.snapshots) if s.iteration == 1)
+        else:
+            same_phase_next = [k for k, s in enumerate(self.snapshots)
+                               if s.phase == self.phase and s.iteration == self.iteration + 1]
+            iteration_on = same_phase_next[0] if same_phase_next else self._step
+        return {**super()._named_moves(), "iteration": iteration_on}
+
+    def go(self, target) -> int:
+        """Go to a step: a number, ``(iteration, phase)``, a phase name, or a named move
+        ("start", "back", "step", "iteration", "end"). Returns the step shown."""
+        last_iteration = self._step > 0 and self.iteration == self.iterations
+        shown = super().go(target)
+        if last_iteration and isinstance(target, str) and target.strip().lower() == "iteration":
+            self._say(f"iteration {self.iterations} is the last one: there is no iteration after it")
+        return shown
 
     def _resolve(self, target) -> int | None:
         """``(iteration, phase)``, or a phase name: its next occurrence (else its first)."""
@@ -297,23 +311,31 @@ class RemeshStepper(StepperWidget):
                 return next((k for k in later if k > self._step), later[0])
         return None
 
-    def describe(self) -> str:
-        """The current phase in words and numbers (deterministic, for nbval and for reading)."""
-        snapshot = self.snapshots[self._step]
+    def describe(self, step: int | None = None) -> str:
+        """A phase in words and numbers (deterministic, for nbval and for reading): the
+        one shown, or that of ``step`` (read without moving the widget).
+
+        Raises:
+            IndexError: ``step`` is not one of 0 .. ``n_steps``.
+        """
+        step = self._step if step is None else int(step)
+        if not 0 <= step <= self.n_steps:
+            raise IndexError(f"there is no step {step}: steps run from 0 to {self.n_steps}")
+        snapshot = self.snapshots[step]
         where = "input" if snapshot.phase == "input" else f"iteration {snapshot.iteration}, {snapshot.phase}"
         lines = [f"Isotropic remeshing of {self.before.n_faces} faces, L = {self.target_length:.4g}, "
-                 f"{self.iterations} iterations: step {self._step} of {self.n_steps}, {where}",
+                 f"{self.iterations} iterations: step {step} of {self.n_steps}, {where}",
                  f"phase: {PHASE_TEXT[snapshot.phase]}"]
-        if self._step:
-            lines.append(f"did: {self._change_text()}")
+        if step:
+            lines.append(f"did: {self._change_text(step)}")
         lines.append(f"now: {snapshot.quality.summary()}")
         return "\n".join(lines)
 
     # -- text ----------------------------------------------------------------------------
 
-    def _change_text(self) -> str:
-        """What the current phase changed, measured against the snapshot before it."""
-        old, new = self.snapshots[self._step - 1], self.snapshots[self._step]
+    def _change_text(self, step: int) -> str:
+        """What the phase of ``step`` changed, measured against the snapshot before it."""
+        old, new = self.snapshots[step - 1], self.snapshots[step]
         phase, L = new.phase, self.target_length
         dv, df = new.mesh.n_vertices - old.mesh.n_vertices, new.mesh.n_faces - old.mesh.n_faces
         if phase == "split":
@@ -388,7 +410,7 @@ class RemeshStepper(StepperWidget):
 
     def _panel_html(self) -> str:
         size = panel_css(self.look)["font"]
-        cell = "padding:2px 6px;border-bottom:1px solid #ddd;text-align:right"
+        cell = "padding:2px 6px;border-bottom:1px solid #ddd;text-align:right;white-space:nowrap"
         header = "".join(f'<th style="{cell}">{h}</th>'
                          for h in ("", "phase", "V", "F", "short", "long", "|deg - ideal|", "min angle"))
         rows = []

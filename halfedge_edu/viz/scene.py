@@ -332,9 +332,10 @@ class HalfedgeScene:
         import pyvista as pv
 
         mesh = self.mesh
-        focus = self._highlight.focus_vertices(mesh, self._geometry)
         if self._geometry_dirty:
+            # First: the focus below reads the local faces' corners as drawn for this mesh.
             self._draw_local_faces()
+        focus = self._highlight.focus_vertices(mesh, self._geometry)
         if self.windowed:
             if self._window is not None:
                 window = drawable(mesh, self._window)

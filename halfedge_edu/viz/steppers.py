@@ -233,6 +233,15 @@ class OperationStepper(StepperWidget):
         A, B = positions[origin], positions[tip]
         third = np.where((opposite < 0)[:, None], A, positions[np.maximum(opposite, 0)])
         third = np.where(((face < 0) & (opposite >= 0))[:, None], A + B - third, third)
+        # Half way through its change an arrow may get the same ends and side as another
+        # one (the flip's h0 lies on h5 at step 1) and hide under it: the one half way
+        # through is drawn further inside its face, so the change stays in sight.
+        between = ~after_match & ~before_match
+        key = np.stack([origin, tip, opposite], axis=1)                   # (k, 3)
+        _, group, count = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+        hidden = between & (count[group.ravel()] > 1) & (opposite >= 0)
+        A = np.where(hidden[:, None], A + OVERLAP_INSET * (third - A), A)
+        B = np.where(hidden[:, None], B + OVERLAP_INSET * (third - B), B)
         return A, B, third
 
     def _face_corners(self, faces):
@@ -414,6 +423,7 @@ class OperationStepper(StepperWidget):
         if self._step == 0:
             rows = [([name, f"{kind} {index}"], _NAMED[kind] if kind in _NAMED else None)
                     for name, (kind, index) in self.log.named.items()]
+            rows += [(["", ""], None)] * (self._window_rows() - len(rows) - len(self.log.notes))
             notes = "".join(f'<div style="font-size:{size}">{html.escape(n)}</div>' for n in self.log.notes)
             body = notes + table_html(rows, self.look, header=("name", "element"))
         else:
@@ -429,12 +439,40 @@ class OperationStepper(StepperWidget):
                     rows.append(([k, text], role))
                     if (start, stop) == current and mark is None:
                         mark = len(rows) - 1
-            body = table_html(rows, self.look, header=("step", "change (old -> new)"), mark_row=mark)
-            body = (f'<div style="max-height:{"420px" if self.look.name == "large" else "300px"};'
-                    f'overflow:auto">{body}</div>')
+            body = self._table_window(rows, mark, size)
         counts = (f'<div style="font-size:{size};margin-top:6px">before: {self._counts(self.before)}<br>'
                   f"now: {self._counts(self.scene.mesh)}<br>after: {self._counts(self.after)}</div>")
         return top + body + counts
+
+
+    def _window_rows(self) -> int:
+        """How many rows the panel's table shows at every step: enough for the named
+        elements at step 0, and for a window of the change table later. One number for
+        all steps keeps the panel's height from jumping as the learner steps."""
+        return max(TABLE_WINDOW, len(self.log.named) + len(self.log.notes))
+
+    def _table_window(self, rows, mark: int, size: str) -> str:
+        """The change table cut to :meth:`_window_rows` rows around the marked one (so the
+        current change is always in sight), with a line above and below saying how many
+        rows are left out."""
+        shown = self._window_rows() - 2                      # the two "more" lines count as rows
+        first = min(max(mark - 2, 0), max(len(rows) - shown, 0))
+        window = rows[first:first + shown]
+        window += [(["", ""], None)] * (shown - len(window))
+        later = max(len(rows) - first - shown, 0)
+
+        def more(count: int, where: str) -> str:
+            text = f"... {count} {where} row{'s' if count != 1 else ''}" if count else "&nbsp;"
+            return f'<div style="font-size:{size};color:#666666">{text}</div>'
+
+        return (more(first, "earlier") + table_html(window, self.look, header=("step", "change (old -> new)"),
+                                                    mark_row=mark - first) + more(later, "later"))
+
+
+#: Rows of the change table shown at once (see OperationStepper._table_window).
+TABLE_WINDOW = 12
+#: How far toward its face's third corner an arrow is moved when it would lie on another.
+OVERLAP_INSET = 0.3
 
 
 class FlipStepper(OperationStepper):

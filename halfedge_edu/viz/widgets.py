@@ -23,6 +23,7 @@ import base64
 import html
 from collections.abc import Callable
 
+from .main_thread import on_main_thread
 from .palette import ROLES, Preset, panel_css, preset as _preset
 from .renderer import View, choose_mode, make_plotter
 from .scene import HalfedgeScene
@@ -34,12 +35,16 @@ def panel_button(look: Preset, label: str, tooltip: str, action: Callable[[], ob
 
     ``on_error`` receives an ``IndexError`` or ``ValueError`` the action raises (a widget
     shows it in its status line: callbacks must not print); without it the error propagates.
+    A click runs the action on the kernel's main thread (see :mod:`.main_thread`), so
+    its redraw cannot break the view's OpenGL context.
     """
     import ipywidgets as widgets
 
     css = panel_css(look)
+    # At least the preset's width, wider for a longer label: a label is never cut to "st…".
     button = widgets.Button(description=label, tooltip=tooltip,
-                            layout=widgets.Layout(height=css["button_height"], width=css["button_width"]))
+                            layout=widgets.Layout(height=css["button_height"], width="auto",
+                                                  min_width=css["button_width"], flex="0 0 auto"))
     button.style.font_size = css["font"]
     button.style.font_weight = "bold"
 
@@ -52,7 +57,7 @@ def panel_button(look: Preset, label: str, tooltip: str, action: Callable[[], ob
         except (IndexError, ValueError) as error:
             on_error(error)
 
-    button.on_click(clicked)
+    button.on_click(on_main_thread(clicked))
     return button
 
 
@@ -70,7 +75,7 @@ def legend_html(entries, look: Preset) -> str:
 def table_html(rows, look: Preset, *, header=None, mark_row: int | None = None) -> str:
     """An HTML table; a row is ``(cells, role_or_None)``, the role colouring its left edge."""
     css = panel_css(look)
-    cell = f"padding:{css['cell']};border-bottom:1px solid #ddd;text-align:left"
+    cell = f"padding:{css['cell']};border-bottom:1px solid #ddd;text-align:left;white-space:nowrap"
     lines = [f'<table style="border-collapse:collapse;font-size:{css["font"]};'
              f'font-family:monospace">']
     if header:
@@ -112,8 +117,11 @@ class SceneWidget:
         self._show()
         self.view = View(self.scene, self.mode)
         side = widgets.VBox([heading, *self._controls(), self._status, self._info, self._legend],
-                            layout=widgets.Layout(padding="0 0 0 16px", overflow="auto"))
-        self.widget = widgets.HBox([self.view.widget, side], layout=widgets.Layout(align_items="flex-start"))
+                            layout=widgets.Layout(padding="0 0 0 16px", flex="1 1 auto"))
+        # Where the notebook is too narrow for both, the panel goes below the view instead
+        # of being cut off on the right.
+        self.widget = widgets.HBox([self.view.widget, side],
+                                   layout=widgets.Layout(align_items="flex-start", flex_flow="row wrap"))
         self._refresh_panel()
 
     @property
@@ -149,7 +157,8 @@ class SceneWidget:
         returns the row as a list of controls."""
         import ipywidgets as widgets
 
-        row = widgets.HBox([self._button(label, tooltip, action) for label, tooltip, action in buttons])
+        row = widgets.HBox([self._button(label, tooltip, action) for label, tooltip, action in buttons],
+                           layout=widgets.Layout(flex_flow="row wrap"))
         self.buttons = {button.description: button for button in row.children}
         return [row]
 
@@ -219,8 +228,8 @@ class StepperWidget(SceneWidget):
 
     def _named_moves(self) -> dict[str, int]:
         """Move name -> step. Subclasses extend it (e.g. with :meth:`_phase_moves`)."""
-        return {"next": self._step + 1, "step": self._step + 1, "back": self._step - 1,
-                "start": 0, "end": self.n_steps}
+        forward, backward = min(self._step + 1, self.n_steps), max(self._step - 1, 0)
+        return {"next": forward, "step": forward, "back": backward, "start": 0, "end": self.n_steps}
 
     def _phase_moves(self, starts: list[int]) -> dict[str, int]:
         """"phase" and "phase back": the next / previous of the given phase starts."""
@@ -249,10 +258,18 @@ class StepperWidget(SceneWidget):
         target = int(target)
         if not 0 <= target <= self.n_steps:
             raise IndexError(f"there is no step {target}: steps run from 0 to {self.n_steps}")
-        self._step = target
-        self._show_step(target)
+        shown = self._step
+        try:
+            self._step = target
+            self._show_step(target)
+            self._changed()
+        except Exception:
+            # A failed step leaves the widget where it was: the step shown, its picture, its panel.
+            self._step = shown
+            self._show_step(shown)
+            self._changed()
+            raise
         self._say("")
-        self._changed()
         return self._step
 
     def step(self) -> int:
@@ -277,6 +294,10 @@ class HalfedgeExplorer(SceneWidget):
     ``w.go("next")`` (or "prev", "twin", a chain like "next.twin", or an index),
     ``w.step()`` (the same as next), ``w.back()``; ``w.halfedge`` is the current
     halfedge, ``w.trail`` the visited ones.
+
+    The explorer holds its own copy of the mesh (``w.mesh``): a later cell that edits
+    the mesh passed in does not change what the explorer shows (make a new explorer to
+    walk the edited mesh).
     """
 
     title = "Halfedge explorer"
@@ -286,7 +307,7 @@ class HalfedgeExplorer(SceneWidget):
                  labels="auto", rings: int = 2, window_size=None):
         start = mesh.halfedge(int(halfedge)).index
         self._trail: list[tuple[str, int]] = [("start", start)]
-        super().__init__(mesh, mode=mode, preset=preset, labels=labels, rings=rings, window_size=window_size)
+        super().__init__(mesh.copy(), mode=mode, preset=preset, labels=labels, rings=rings, window_size=window_size)
 
     @property
     def halfedge(self):
@@ -404,6 +425,10 @@ class OneRingViewer(SceneWidget):
     (``h = h.prev.twin``), ``w.go("cw")`` clockwise (``h = h.twin.next``),
     ``w.go("tip")`` moves to the neighbour the current halfedge points at, and
     ``w.pick(v)`` to any vertex; ``w.step()`` is one CCW turn.
+
+    The viewer holds its own copy of the mesh (``w.mesh``): a later cell that edits the
+    mesh passed in (a collapse, say) does not change what the viewer shows (make a new
+    viewer to look at the edited mesh).
     """
 
     title = "One-ring viewer"
@@ -414,7 +439,7 @@ class OneRingViewer(SceneWidget):
         v = mesh.vertex(int(vertex))
         self._vertex = v.index
         self._current = v.halfedge.index
-        super().__init__(mesh, mode=mode, preset=preset, labels=labels, rings=rings, window_size=window_size)
+        super().__init__(mesh.copy(), mode=mode, preset=preset, labels=labels, rings=rings, window_size=window_size)
 
     @property
     def vertex(self):

@@ -16,6 +16,7 @@
 #   and why that is the reason for the halfedge structure of chapter 02.
 
 # %%
+import html
 import io
 import warnings
 
@@ -237,49 +238,64 @@ hx.HalfedgeMesh.from_faces(flipped.vertices, flipped.faces, face_lines=flipped.f
 # %%
 import ipywidgets as widgets
 
-from halfedge_edu.viz import plotter_png
+from halfedge_edu.viz import on_main_thread, plotter_png
 
 editor = widgets.Textarea(value=pyramid_obj, rows=13, continuous_update=False,
                           layout=widgets.Layout(width="460px"))
-verdict = widgets.Textarea(rows=3, disabled=True, layout=widgets.Layout(width="360px"))
-picture = widgets.Image(format="png", width=360)
+verdict = widgets.HTML(layout=widgets.Layout(width="360px", min_height="4.5em"))
+picture = widgets.Image(format="png", width=360, height=270)
 playground_plotter = pv.Plotter(off_screen=True, window_size=(360, 270))
+SEEN_FROM = (1.0, -1.6, 1.1)   # front right, above: no face is seen edge-on
 
 
-def read_editor(change=None):
-    """Parse the text box, build a mesh, and show the result (or the error)."""
+def show_verdict(text: str, color: str) -> None:
+    """Write the verdict in the box, line by line (nothing cut off)."""
+    lines = "<br>".join(html.escape(line) for line in text.splitlines())
+    verdict.value = f'<div style="color:{color};line-height:1.35">{lines}</div>'
+
+
+def judge(obj_text: str):
+    """What the reader and the builder make of ``obj_text``: ``(verdict, mesh or None)``."""
     try:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
-            data = hx.read_obj(io.StringIO(editor.value))
+            data = hx.read_obj(io.StringIO(obj_text))
             mesh = hx.HalfedgeMesh.from_faces(data.vertices, data.faces, face_lines=data.face_lines)
     except hx.MeshInputError as error:
-        verdict.value = f"Not a mesh yet. {error}"
-        return
+        return f"Not a mesh yet. {error}", None
     notes = "".join(f"\nNote: {w.message}" for w in caught)
-    verdict.value = (f"A mesh. {mesh.n_vertices} vertices, {mesh.n_edges} edges, {mesh.n_faces} "
-                     f"triangles, {mesh.n_boundary_loops} boundary loop(s).{notes}")
+    return (f"A mesh. {mesh.n_vertices} vertices, {mesh.n_edges} edges, {mesh.n_faces} "
+            f"triangles, {mesh.n_boundary_loops} boundary loop(s).{notes}"), mesh
+
+
+def read_editor(change=None):
+    """Judge the text box and show the verdict with the mesh (or the error, and no mesh)."""
+    text, mesh = judge(editor.value)
     playground_plotter.clear()
-    playground_plotter.add_mesh(mesh.to_pyvista(), color="#E9E6DF", show_edges=True, edge_color="#555555")
-    playground_plotter.reset_camera()
+    if mesh is None:
+        show_verdict(text, "#B00020")
+        playground_plotter.add_text("no mesh to draw", position="upper_left", font_size=12, color="#B00020")
+    else:
+        show_verdict(text, "#333333")
+        playground_plotter.add_mesh(mesh.to_pyvista(), color="#E9E6DF", show_edges=True, edge_color="#555555")
+        playground_plotter.view_vector(SEEN_FROM, viewup=(0, 0, 1))
+        playground_plotter.reset_camera()
     picture.value = plotter_png(playground_plotter)
 
 
-editor.observe(read_editor, names="value")
+# A text box change from the browser arrives on another thread; the redraw runs on the main one.
+editor.observe(on_main_thread(read_editor), names="value")
 read_editor()
 playground = widgets.HBox([editor, widgets.VBox([verdict, picture])])
 playground
 
 # %% [markdown]
-# The playground can be driven from code too. Here we break the file on purpose and
-# read what the playground says:
+# The playground's verdict comes from `judge`, a plain function. Here we break the
+# file on purpose and read what it says:
 
 # %%
-editor.value = pyramid_obj.replace("v 0 1 0", "v 0 one 0")
-print(verdict.value)
-editor.value = pyramid_obj + "v 9 9 9\n"
-print(verdict.value)
-editor.value = pyramid_obj
+print(judge(pyramid_obj.replace("v 0 1 0", "v 0 one 0"))[0])
+print(judge(pyramid_obj + "v 9 9 9\n")[0])
 
 # %% [markdown]
 # ## Soup versus connectivity

@@ -127,6 +127,8 @@ for step, (h, sentence) in enumerate(story, start=1):
 # %%
 import ipywidgets as widgets
 
+from halfedge_edu.viz import on_main_thread
+
 step_scene = HalfedgeScene(two, window_size=(560, 400))
 step_slider = widgets.IntSlider(value=1, min=1, max=len(story), description="step",
                                 layout=widgets.Layout(width="560px"))
@@ -144,7 +146,8 @@ def show_step(change=None):
     step_picture.value = step_scene.screenshot()
 
 
-step_slider.observe(show_step, names="value")
+# A slider move from the browser arrives on another thread; the redraw runs on the main one.
+step_slider.observe(on_main_thread(show_step), names="value")
 show_step()
 widgets.VBox([step_slider, step_text, step_picture])
 

@@ -345,7 +345,7 @@ import base64
 
 import ipywidgets as widgets
 
-from halfedge_edu.viz import plotter_png
+from halfedge_edu.viz import on_main_thread, plotter_png
 
 
 class SmoothingViewer:
@@ -361,8 +361,9 @@ class SmoothingViewer:
         self.shading = widgets.ToggleButtons(options=["flat", "smooth"], value="flat")
         self.image = widgets.Image(format="png")
         self.status = widgets.Label()
-        self.iterations.observe(self.redraw, names="value")
-        self.shading.observe(self.redraw, names="value")
+        # Changes from the browser arrive on another thread; redraws run on the main one.
+        self.iterations.observe(on_main_thread(self.redraw), names="value")
+        self.shading.observe(on_main_thread(self.redraw), names="value")
         self.panel = widgets.VBox([widgets.HBox([self.iterations, self.shading]), self.image, self.status])
         self.redraw()
 

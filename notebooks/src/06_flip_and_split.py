@@ -124,15 +124,18 @@ stepper
 
 # %% [markdown]
 # Every widget here can also be driven from code, which is how this notebook checks
-# itself. Step twice, then jump to the start of the next phase:
+# itself. A second stepper of the same flip (so the one above stays at step 0): step
+# twice, then jump to the start of the next phase:
 
 # %%
-stepper.step()
-stepper.step()
-print(stepper.describe())
+driven = FlipStepper(strip, 1, mode="static")   # never shown: no live view
+driven.step()
+driven.step()
+print(driven.describe())
 print()
-stepper.go("phase")
-print(stepper.describe())
+driven.go("phase")
+print(driven.describe())
+driven.close()
 
 # %% [markdown]
 # ## 2. When a flip is refused

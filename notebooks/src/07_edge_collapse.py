@@ -190,9 +190,14 @@ for _ in range(3):
     stepper.go("phase")
 stepper
 
+# %% [markdown]
+# One step on (a second stepper, so the one above stays at the start of the phase):
+
 # %%
-stepper.step()
-print(stepper.describe())
+one_on = CollapseStepper(cube, cube.halfedge(0), mode="static")   # never shown: no live view
+one_on.go(stepper.step_index + 1)
+print(one_on.describe())
+one_on.close()
 
 # %% [markdown]
 # ### Both cases side by side
@@ -212,12 +217,14 @@ atlas
 # and V − E + F does not change even then.
 
 # %%
+driven_atlas = CollapseAtlas(mode="static")  # a second atlas, never shown: the one above stays put
 for _ in range(2):
-    atlas.step()
-print(atlas.describe().split("\nrefused")[0])
+    driven_atlas.step()
+print(driven_atlas.describe().split("\nrefused")[0])
 print()
-atlas.go("end")
-print(atlas.describe())
+driven_atlas.go("end")
+print(driven_atlas.describe())
+driven_atlas.close()
 
 # %% [markdown]
 # ## 4. Which end, which edge: the result does not depend on it

@@ -254,6 +254,8 @@ for name in ("figure8", "lone_triangle"):
 # %%
 import ipywidgets as widgets
 
+from halfedge_edu.viz import on_main_thread
+
 
 class LinkViewer:
     """A mesh and an edge: the link picture and the sets of the link condition."""
@@ -266,8 +268,10 @@ class LinkViewer:
         self.edge_choice = widgets.IntSlider(value=edge, min=0, max=edge, description="edge")
         self.image = widgets.Image(format="png")
         self.text = widgets.HTML()
-        self.mesh_choice.observe(self._new_mesh, names="value")
-        self.edge_choice.observe(self.redraw, names="value")
+        # Changes from the browser arrive on another thread; redraws run on the main one
+        # (a render from another thread breaks the plotter's OpenGL context).
+        self.mesh_choice.observe(on_main_thread(self._new_mesh), names="value")
+        self.edge_choice.observe(on_main_thread(self.redraw), names="value")
         self.panel = widgets.HBox([self.image, widgets.VBox([self.mesh_choice, self.edge_choice, self.text])])
         self._new_mesh()
 
@@ -309,17 +313,21 @@ viewer = LinkViewer("cube", 1)
 viewer
 
 # %% [markdown]
-# Driven from code: the cube's edge 3 (a side, not a diagonal), then the open patch's
-# edge 11, which cuts off the corner at vertex 3. Its picture draws the boundary loop in
-# vermillion: the extra shared "vertex" is `∂`.
+# Driven from code (a second viewer, so the one above stays where you leave it): the
+# cube's edge 3 (a side, not a diagonal), then the open patch's edge 11, which cuts off
+# the corner at vertex 3. Its picture draws the boundary loop in vermillion: the extra
+# shared "vertex" is `∂`.
 
 # %%
-viewer.edge_choice.value = 3
-print(viewer.describe())
+driven = LinkViewer("cube", 1)
+driven.edge_choice.value = 3
+print(driven.describe())
 print()
-viewer.mesh_choice.value = "open_patch"
-viewer.edge_choice.value = 11
-print(viewer.describe())
+driven.mesh_choice.value = "open_patch"
+driven.edge_choice.value = 11
+print(driven.describe())
+driven.panel.close()
+driven.plotter.close()
 
 # %% [markdown]
 # ## Check yourself

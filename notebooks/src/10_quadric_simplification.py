@@ -292,20 +292,22 @@ stepper = QEMStepper(small, 100, view_direction=(-1.8, 0.9, 2.4))   # from behin
 stepper
 
 # %% [markdown]
-# From code: two single collapses, then jumps.
+# From code, on a second stepper of the same run (the one above stays where you leave
+# it): two single collapses, then jumps.
 
 # %%
-stepper.step()
-stepper.step()
-print(stepper.describe())
+driven = QEMStepper(small, 100, view_direction=(-1.8, 0.9, 2.4), mode="static")   # shown as a picture only
+driven.step()
+driven.step()
+print(driven.describe())
 print()
-stepper.jump(100)
-print(stepper.describe())
+driven.jump(100)
+print(driven.describe())
 
 # %%
-stepper.go("end")
-print(stepper.describe())
-Image(stepper.screenshot())
+driven.go("end")
+print(driven.describe())
+Image(driven.screenshot())
 
 # %% [markdown]
 # Read the costs down the run: the first collapse costs less than `1e-7`, the last ones
@@ -317,10 +319,10 @@ Image(stepper.screenshot())
 # Sometimes the head of the queue is *skipped*. `skipped_steps()` lists where:
 
 # %%
-skipped = stepper.skipped_steps()
+skipped = driven.skipped_steps()
 print("the queue's cheapest edge is skipped after collapse", ", ".join(str(k) for k in skipped))
-stepper.go(skipped[0])
-print(stepper.describe())
+driven.go(skipped[0])
+print(driven.describe())
 
 # %% [markdown]
 # The cheapest edge would turn a face over: its best point lies beyond the fan of
@@ -330,10 +332,10 @@ print(stepper.describe())
 
 # %%
 for k in skipped:                          # the first skip that the link condition causes
-    stepper.go(k)
-    if "not allowed" in stepper.describe():
+    driven.go(k)
+    if "not allowed" in driven.describe():
         break
-print(stepper.describe())
+print(driven.describe())
 
 # %% [markdown]
 # Here the ends of the cheapest edge share a third neighbour, so collapsing it would

@@ -280,9 +280,8 @@ stepper
 
 # %%
 print(stepper.describe())
-stepper.step()
 print()
-print(stepper.describe())
+print(stepper.describe(stepper.step_index + 1))   # the next step, read without moving the stepper
 
 # %% [markdown]
 # ## 8. Quality before and after

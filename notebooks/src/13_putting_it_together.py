@@ -192,8 +192,8 @@ stepper
 
 # %%
 print(stepper.describe())
-stepper.go("end")
-print(stepper.describe())
+print()
+print(stepper.describe(stepper.n_steps))           # the end, read without moving the stepper
 
 # %% [markdown]
 # ## 4. Round trips on Spot

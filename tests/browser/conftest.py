@@ -5,10 +5,13 @@ Chromium"): Debian's chromium (never `playwright install`), the flags below, a f
 profile, the Lab app exposed to the page so a test can run its commands, and the news
 pop-up turned off in a settings folder of our own.
 
-The Lab runs in a temporary folder holding a COPY of the notebook under test, so the
-state JupyterLab saves never touches the repository. Its environment is that of
-`make lab`, not that of the headless notebook tests: no PYVISTA_JUPYTER_BACKEND=static
-(which the root conftest.py sets for nbval), so the widgets choose the live trame view.
+The Lab runs in a temporary folder holding each chapter as a notebook written from its
+source (notebooks/src/NN_*.py, unexecuted: the tests run every cell themselves), so the
+state JupyterLab saves never touches the repository and a test always drives the cells
+the sources say. Its environment is that of `make lab`, not that of the headless
+notebook tests: no PYVISTA_JUPYTER_BACKEND=static (which the root conftest.py sets for
+nbval), so the widgets choose the live trame view; and an empty VTK.wasm folder, so
+trame-vtklocal never tries the network.
 """
 
 from __future__ import annotations
@@ -30,7 +33,6 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-NOTEBOOKS = ROOT / "notebooks"
 
 SKIP_REASON = "Chromium not installed: apt-get install chromium (see README)"
 CHROMIUM_FLAGS = [
@@ -93,6 +95,9 @@ def lab_environment(base: Path) -> dict[str, str]:
     # The notebook tests force PNG output; the Lab must choose the live view itself.
     env.pop("PYVISTA_JUPYTER_BACKEND", None)
     env.pop("HALFEDGE_EDU_VIZ", None)
+    wasm = base / "vtk-wasm-empty"         # as `make lab` sets it: nothing to download
+    wasm.mkdir(exist_ok=True)
+    env["VTK_WASM_DIR_OVERRIDE"] = str(wasm)
     if sys.platform.startswith("linux"):
         env["VTK_DEFAULT_OPENGL_WINDOW"] = "vtkEGLRenderWindow"  # no X server here
     settings = base / "lab-settings"
@@ -115,12 +120,18 @@ def lab_environment(base: Path) -> dict[str, str]:
 
 @pytest.fixture(scope="module")
 def lab(chromium_executable, tmp_path_factory) -> Lab:
-    """A JupyterLab on 127.0.0.1 (free port, random token) serving copies of the notebooks."""
+    """A JupyterLab on 127.0.0.1 (free port, random token) serving the chapters, each
+    written from its source."""
+    import nbformat
+
+    from tools.build_notebooks import chapter_sources, new_notebook, parse_source
+
     base = tmp_path_factory.mktemp("lab")
     root = base / "notebooks"
     root.mkdir()
-    for notebook in NOTEBOOKS.glob("*.ipynb"):
-        shutil.copy2(notebook, root / notebook.name)
+    for source in chapter_sources([]):
+        notebook = new_notebook(parse_source(source.read_text(encoding="utf-8")))
+        nbformat.write(notebook, root / (source.stem + ".ipynb"))
     port, token = _free_port(), secrets.token_hex(16)
     log = base / "jupyter-lab.log"
     command = [

@@ -130,3 +130,15 @@ def test_quality_counts_edges_against_the_target(sphere):
 def test_histogram_png_draws_any_number_of_meshes(sphere):
     png = histogram_png([sphere, sample("icosphere", subdivisions=1)], ["a", "b"], 0.3)
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_iteration_from_the_input_ends_iteration_one(stepper):
+    stepper.go("start")
+    assert stepper.go("iteration") == stepper.index_of(1, "project")
+
+
+def test_iteration_in_the_last_iteration_stays_and_says_why(stepper):
+    split_two = stepper.index_of(2, "split")
+    stepper.go(split_two)
+    assert stepper.go("iteration") == split_two
+    assert "iteration 2 is the last one" in stepper._status.value

@@ -191,3 +191,56 @@ def test_atlas_lists_each_refusal_with_its_rule(atlas):
 def test_atlas_picture_holds_every_case(atlas):
     picture = Image.open(io.BytesIO(atlas.screenshot()))
     assert picture.width >= 2 * 440
+
+
+@pytest.mark.parametrize("mesh_name, boundary", [("cube", False), ("open_patch", True)])
+def test_split_stepper_goes_to_any_step_from_any_step(closing, mesh_name, boundary):
+    mesh = sample(mesh_name)
+    edge = int(np.flatnonzero(mesh.halfedge_face < 0)[0]) >> 1 if boundary else 0
+    widget = SplitStepper(mesh, edge, mode="static")
+    closing(widget)
+    for k in [widget.n_steps, 0, *range(7, widget.n_steps + 1), *range(widget.n_steps, -1, -1)]:
+        assert widget.go(k) == k
+        assert widget.screenshot().startswith(b"\x89PNG")
+    widget.go("end")
+    widget.buttons["start"].click()
+    assert widget.step_index == 0 and widget._status.value.count("#B00020") == 0
+
+
+def test_named_moves_stay_inside_the_steps(flip_stepper):
+    flip_stepper.go("end")
+    assert flip_stepper.go("step") == flip_stepper.n_steps
+    flip_stepper.go("start")
+    assert flip_stepper.go("back") == 0
+
+
+def test_a_step_that_fails_to_draw_leaves_the_widget_where_it_was(flip_stepper, monkeypatch):
+    flip_stepper.go(3)
+    picture = flip_stepper.screenshot()
+    calls = []
+
+    def fail_once():
+        calls.append(flip_stepper.step_index)
+        if len(calls) == 1:
+            raise ValueError("cannot draw")
+
+    monkeypatch.setattr(flip_stepper.view, "update", fail_once)
+    flip_stepper.buttons["step"].click()
+    assert flip_stepper.step_index == 3
+    assert "cannot draw" in flip_stepper._status.value
+    assert "step 3 of 17" in flip_stepper.describe()
+    assert calls == [4, 3]                  # the redraw of step 4 failed; step 3 was drawn again
+    assert flip_stepper.screenshot() == picture
+
+
+def test_an_arrow_half_way_through_its_change_does_not_hide_under_another(closing):
+    widget = FlipStepper(sample("strip"), 1, mode="static")
+    closing(widget)
+    widget.go(1)                              # halfedge 2 (h0) now leaves v3: it runs along h5
+    assert widget.scene.roles["changed"].tolist() == [2]
+    halfedges = np.asarray(widget.scene.drawn_halfedges)
+    A, B, _ = widget._arrow_corners(widget.state, halfedges)
+    k = int(np.flatnonzero(halfedges == 2)[0])
+    on_top = [int(h) for j, h in enumerate(halfedges)
+              if j != k and np.allclose(A[j], A[k]) and np.allclose(B[j], B[k])]
+    assert on_top == []

@@ -107,7 +107,20 @@ def test_explorer_on_the_bunny(bunny, closing):
     widget = HalfedgeExplorer(bunny, 1000, mode="static")
     closing(widget)
     widget.go("next.twin")
-    assert widget.halfedge == bunny.halfedge(1000).next.twin
+    assert widget.halfedge.index == bunny.halfedge(1000).next.twin.index
+
+
+@pytest.mark.parametrize("make", [lambda mesh: HalfedgeExplorer(mesh, 0, mode="static"),
+                                  lambda mesh: OneRingViewer(mesh, 0, mode="static")])
+def test_a_widget_keeps_its_own_copy_when_a_later_cell_edits_the_mesh(closing, make):
+    mesh = sample("open_patch")
+    widget = make(mesh)
+    closing(widget)
+    text = widget.describe()
+    mesh.collapse(mesh.vertex(0).halfedge.edge)            # vertex 0 or its neighbour goes
+    assert widget.describe() == text
+    assert widget.mesh.n_vertices == mesh.n_vertices + 1
+    widget.go("cw" if isinstance(widget, OneRingViewer) else "next")
 
 
 @pytest.fixture

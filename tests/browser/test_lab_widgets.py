@@ -1,0 +1,368 @@
+"""Every widget of every chapter survives a student's clicks in a live JupyterLab (issue 11).
+
+For each chapter with a widget: open it in the Lab as `make lab` starts it, run all
+cells, then drive every widget from the state the notebook leaves it in, the way a
+student does:
+
+- buttons: clicked in a random order (fixed seed), each click checked (the panel and
+  the picture settle; if the panel's text changed, the picture must have changed too),
+  then a burst of rapid clicks without waiting, then checked again;
+- dropdowns: every option and back; sliders: every value up and back down by keyboard;
+- chapter 08's mesh dropdown 50 times and chapter 02's step slider 50 moves, after
+  which the picture must still be a drawn picture (not blank, not stripes).
+
+It fails on a kernel death (a restart or "dead" status of the notebook's kernel, or
+the server log saying so), an error anywhere (a red status line in a widget, an error or
+stderr output in a cell, a traceback or a shader error in the server log), a step whose
+picture does not change when its table does, or a highlighted table row out of view.
+Screenshots of each widget at a few states go to $HALFEDGE_EDU_SCREENSHOTS (or pytest's
+temporary folder); the clicks made are printed per chapter.
+"""
+
+from __future__ import annotations
+
+import random
+import re
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from tests.browser.test_lab_chapter03 import as_array, changed_share, drawn, open_and_run_all
+
+pytestmark = pytest.mark.browser
+
+SEED = 11
+CHECKED_CLICKS = 6          # per widget with buttons: clicks each waited for and checked
+RAPID_CLICKS = 12           # per widget with buttons: clicks in a burst, 80 ms apart
+DROPDOWN_CHANGES = 50       # chapter 08's mesh dropdown
+SLIDER_MOVES = 50           # chapter 02's step slider (arrow keys, up and down)
+SETTLE_TIMEOUT = 20.0       # seconds for a panel and its picture to settle after a click
+BURST_TIMEOUT = 90.0        # seconds after a burst: the kernel works through every click in turn
+QUIET = 0.6                 # seconds a no-op click is given to show a change
+# A picture "changed" when this share of its pixels moved by more than CHANGED_LEVEL.
+CHANGED_LEVEL = 40
+MIN_PICTURE_CHANGE = 0.0005
+MIN_STD, MIN_COLOURS = 8.0, 48   # a drawn picture, not a blank one
+KERNEL_DEATH = re.compile(r"KernelRestarter: restarting|Kernel restarted|kernel .* died|Segmentation fault",
+                          re.IGNORECASE)
+LOG_ERROR = re.compile(r"Traceback|Error setting '\w+' in shader|Exception in callback|Task exception")
+ERROR_RED = "#B00020"       # the widgets' status line colour for an error (viz.widgets)
+MARKED_ROW = "#FFF3D6"      # the background of a table's highlighted row (viz.widgets.table_html)
+
+# Chapter notebook -> the least number of widgets it shows. Every chapter whose cells
+# display a widget is listed.
+CHAPTERS = {
+    "00_setup_and_tour.ipynb": 1,
+    "01_polygon_soup_and_obj.ipynb": 1,
+    "02_building_halfedges.ipynb": 2,
+    "03_navigating.ipynb": 1,
+    "05_geometry_on_the_mesh.ipynb": 1,
+    "06_flip_and_split.ipynb": 2,
+    "07_edge_collapse.ipynb": 1,
+    "08_link_condition.ipynb": 1,
+    "09_loop_subdivision.ipynb": 1,
+    "10_quadric_simplification.ipynb": 1,
+    "11_isotropic_remeshing.ipynb": 1,
+    "12_bezier.ipynb": 1,
+    "13_putting_it_together.ipynb": 1,
+}
+
+# JavaScript run in the page.
+WATCH_KERNEL = """() => {
+    const panel = window.jupyterapp.shell.currentWidget;
+    window.__kernelStates = [];
+    panel.sessionContext.statusChanged.connect((_, status) => window.__kernelStates.push(status));
+    panel.sessionContext.connectionStatusChanged.connect((_, status) => window.__kernelStates.push('connection-' + status));
+}"""
+# Errors in cell outputs (not in the cells tagged "raises-exception", which show one on
+# purpose) and tracebacks written to stderr, e.g. by a widget callback.
+CELL_PROBLEMS = """() => window.jupyterapp.shell.currentWidget.content.widgets
+    .filter(c => c.model.type === 'code')
+    .filter(c => !(c.model.getMetadata('tags') || []).includes('raises-exception'))
+    .flatMap(c => c.model.outputs.toJSON())
+    .filter(o => o.output_type === 'error'
+                 || (o.output_type === 'stream' && o.name === 'stderr' && /Traceback|Error/.test(String(o.text))))
+    .map(o => o.output_type === 'error' ? o.ename + ': ' + o.evalue : 'stderr: ' + String(o.text).slice(0, 300))"""
+SHUT_DOWN_KERNEL = "() => window.jupyterapp.shell.currentWidget.sessionContext.shutdown()"
+# Marked rows of an output's tables that are not inside their scrolling box's view.
+ROWS_OUT_OF_VIEW = """(output) => {
+    const out = [];
+    for (const cell of output.querySelectorAll('td[style*="%s"]')) {
+        const row = cell.getBoundingClientRect();
+        for (let box = cell.parentElement; box && box !== output; box = box.parentElement) {
+            const style = getComputedStyle(box);
+            if (!/(auto|scroll|hidden)/.test(style.overflowY) || box.scrollHeight <= box.clientHeight + 1) continue;
+            const view = box.getBoundingClientRect();
+            if (row.top < view.top - 1 || row.bottom > view.bottom + 1) out.push(cell.innerText.slice(0, 60));
+            break;
+        }
+    }
+    return [...new Set(out)];
+}""" % MARKED_ROW
+
+
+def striped(picture: np.ndarray) -> bool:
+    """Full-frame vertical stripes, the broken-context picture: every column nearly one
+    colour from top to bottom, while the columns differ from each other."""
+    grey = picture.mean(axis=2)
+    # Even the most varied columns (an object's, in a drawn picture) are flat.
+    return float(np.percentile(grey.std(axis=0), 90)) < 2.0 and float(grey.std()) > MIN_STD
+
+
+@dataclass
+class Record:
+    """What was done to one chapter's widgets, for the report and the failure message."""
+
+    chapter: str
+    clicks: dict[str, int] = field(default_factory=dict)
+
+    def count(self, what: str, n: int = 1) -> None:
+        self.clicks[what] = self.clicks.get(what, 0) + n
+
+    def line(self) -> str:
+        return f"{self.chapter}: " + ", ".join(f"{what} x{n}" for what, n in sorted(self.clicks.items()))
+
+
+class WidgetInLab:
+    """One output area holding a widget: its controls, its text and its pictures."""
+
+    def __init__(self, page, output, name: str, shots: Path):
+        self.page, self.output, self.name, self.shots = page, output, name, shots
+
+    # -- reading ---------------------------------------------------------------------
+
+    def text(self) -> str:
+        return self.output.inner_text(timeout=30_000)
+
+    def tables(self) -> list[str]:
+        """The text of the widget's tables (pointer values, changes, queue, quality)."""
+        return self.output.locator("table").all_inner_texts()
+
+    def views(self) -> list:
+        """The pictures: live views (trame iframes) and static images, largest first."""
+        found = self.output.locator("iframe, img").all()
+        sizes = [(box["width"] * box["height"] if (box := v.bounding_box()) else 0.0) for v in found]
+        return [v for size, v in sorted(zip(sizes, found), key=lambda p: -p[0]) if size >= 100 * 80]
+
+    def pictures(self) -> list[np.ndarray]:
+        return [as_array(v.screenshot(animations="disabled", timeout=30_000)) for v in self.views()]
+
+    def state(self) -> tuple[str, list[str], list[np.ndarray]]:
+        """The widget's whole text, its tables' text and its pictures."""
+        return self.text(), self.tables(), self.pictures()
+
+    def save(self, label: str) -> None:
+        self.output.scroll_into_view_if_needed(timeout=30_000)
+        self.output.screenshot(path=str(self.shots / f"{self.name}-{label}.png"), timeout=30_000)
+
+    # -- checking --------------------------------------------------------------------
+
+    def check(self, what: str) -> None:
+        """No red status line, every picture drawn (not blank, not stripes), the marked
+        table rows in view."""
+        html = self.output.inner_html(timeout=30_000)
+        if ERROR_RED in html:
+            red = self.output.locator(f'[style*="{ERROR_RED}"]').all_inner_texts()
+            pytest.fail(f"{self.name}, {what}: the widget shows an error: {red}")
+        for k, picture in enumerate(self.pictures()):
+            std, colours = drawn(picture)
+            assert std >= MIN_STD and colours >= MIN_COLOURS, (
+                f"{self.name}, {what}: picture {k} is blank (std {std:.1f}, {colours} colours)")
+            assert not striped(picture), f"{self.name}, {what}: picture {k} is vertical stripes"
+        hidden = self.output.evaluate(ROWS_OUT_OF_VIEW)
+        assert not hidden, f"{self.name}, {what}: highlighted table rows out of view: {hidden}"
+
+    def settle(self, before, what: str, timeout: float = SETTLE_TIMEOUT):
+        """Wait until the text and the pictures stop changing; if a table changed since
+        ``before`` (a :meth:`state`), the pictures must change too: a step whose picture
+        does not follow its table fails. With ``before`` None, only wait for them to stop
+        changing."""
+        text0, tables0, pictures0 = before if before is not None else self.state()
+        deadline = time.monotonic() + timeout
+        started = time.monotonic()
+        previous = None
+        while True:
+            now = self.state()
+            text, tables, pictures = now
+            table_moved = tables != tables0
+            picture_moved = len(pictures) != len(pictures0) or any(
+                changed_share(a, b) >= MIN_PICTURE_CHANGE for a, b in zip(pictures0, pictures))
+            stable = previous is not None and previous[0] == text and all(
+                changed_share(a, b) < MIN_PICTURE_CHANGE / 2 for a, b in zip(previous[2], pictures))
+            quiet = time.monotonic() - started > QUIET
+            if stable and (before is None or picture_moved or (not table_moved and quiet)):
+                return now
+            if time.monotonic() > deadline:
+                if table_moved and not picture_moved:
+                    pytest.fail(f"{self.name}, {what}: the table changed but the picture did not "
+                                f"within {timeout:.0f} s")
+                pytest.fail(f"{self.name}, {what}: the widget did not settle within {timeout:.0f} s")
+            previous = now
+            time.sleep(0.25)
+
+    # -- driving ---------------------------------------------------------------------
+
+    def buttons(self) -> list:
+        return [b for b in self.output.locator("button.jupyter-button").all() if b.is_enabled()]
+
+    def drive_buttons(self, rng: random.Random, record: Record) -> None:
+        """Checked clicks in random order, then a rapid burst, then a last check."""
+        buttons = self.buttons()
+        labels = [b.inner_text().strip() or b.get_attribute("title") or "?" for b in buttons]
+        order = list(range(len(buttons))) + [rng.randrange(len(buttons)) for _ in range(CHECKED_CLICKS)]
+        rng.shuffle(order)
+        state = self.state()
+        for k in order:
+            buttons[k].click(timeout=30_000)
+            record.count(f"{self.name} '{labels[k]}'")
+            state = self.settle(state, f"after '{labels[k]}'")
+            self.check(f"after '{labels[k]}'")
+        self.save("checked")
+        for _ in range(RAPID_CLICKS):
+            k = rng.randrange(len(buttons))
+            buttons[k].click(timeout=30_000)
+            record.count(f"{self.name} '{labels[k]}' (rapid)")
+            time.sleep(0.08)
+        self.settle(state, "after a burst of clicks", timeout=BURST_TIMEOUT)
+        self.check("after a burst of clicks")
+        self.save("burst")
+
+    def drive_dropdowns(self, record: Record, changes: int | None = None) -> None:
+        """Every option and back (or ``changes`` changes, cycling through the options)."""
+        for select in self.output.locator(".widget-dropdown select").all():
+            options = select.locator("option").all_text_contents()
+            first = select.input_value()
+            sequence = options[1:] + options[::-1] if changes is None else [
+                options[(k + 1) % len(options)] for k in range(changes)]
+            state = self.state()
+            for k, option in enumerate(sequence):
+                select.select_option(label=option, timeout=30_000)
+                record.count(f"{self.name} dropdown")
+                if changes is None or k % 10 == 9:
+                    state = self.settle(state, f"after choosing {option!r}")
+                    self.check(f"after choosing {option!r}")
+                else:
+                    time.sleep(0.3)
+            select.select_option(value=first, timeout=30_000)
+            self.settle(state, "after the dropdown's first option again")
+            self.check("after the dropdown's first option again")
+
+    def drive_sliders(self, record: Record, moves: int | None = None) -> None:
+        """Each slider by keyboard through all its values up and back down (or ``moves``
+        key presses, up and down), checking every few moves."""
+        for handle in self.output.locator(".widget-slider .noUi-handle").all():
+            low = int(float(handle.get_attribute("aria-valuemin")))
+            high = int(float(handle.get_attribute("aria-valuemax")))
+            value = int(float(handle.get_attribute("aria-valuenow")))
+            span = high - low
+            if span <= 0:
+                continue
+            count = 2 * span if moves is None else moves
+            keys = []
+            for _ in range(count):
+                # Up to the top, then down to the bottom, then up again: every value, both ways.
+                key = "ArrowRight" if (not keys or keys[-1] == "ArrowRight") and value < high else (
+                    "ArrowLeft" if value > low else "ArrowRight")
+                value += 1 if key == "ArrowRight" else -1
+                keys.append(key)
+            handle.focus()
+            state = self.state()
+            for k, key in enumerate(keys):
+                handle.press(key)
+                record.count(f"{self.name} slider")
+                if k % 10 == 9 or k == len(keys) - 1:
+                    state = self.settle(state, f"after {k + 1} slider moves")
+                    self.check(f"after {k + 1} slider moves")
+                else:
+                    time.sleep(0.15)
+
+    def drive_text(self, record: Record) -> None:
+        """A text box (chapter 01's OBJ file): break it, then put it back."""
+        for box in self.output.locator(".widget-textarea textarea:not([disabled])").all():
+            good = box.input_value()
+            state = self.state()
+            box.fill(good.replace("v 0 1 0", "v 0 one 0"))
+            box.blur()
+            record.count(f"{self.name} text edit")
+            broken = self.settle(state, "after breaking the file")
+            assert "Not a mesh" in broken[0], f"{self.name}: a broken file is not reported"
+            self.save("broken-file")
+            box.fill(good)
+            box.blur()
+            record.count(f"{self.name} text edit")
+            self.settle(broken, "after mending the file")
+            self.check("after mending the file")
+
+
+def kernel_problems(page, lab, log_start: int) -> list[str]:
+    states = page.evaluate("() => window.__kernelStates || []")
+    found = [f"kernel status {s}" for s in states if s in ("restarting", "autorestarting", "dead", "terminating")]
+    log = lab.log.read_text(errors="replace")[log_start:]
+    found += [f"server log: {line.strip()}" for line in log.splitlines()
+              if KERNEL_DEATH.search(line) or LOG_ERROR.search(line)]
+    return found
+
+
+def widget_outputs(page) -> list:
+    """The output areas that hold a widget someone can operate."""
+    controls = ("button.jupyter-button, .widget-dropdown select, .widget-slider .noUi-handle, "
+                ".widget-textarea textarea:not([disabled])")
+    return [o for o in page.locator(".jp-OutputArea-output").all() if o.locator(controls).count()]
+
+
+@pytest.mark.parametrize("notebook", sorted(CHAPTERS))
+def test_every_widget_survives_a_students_clicks(notebook, lab, browser_context, screenshot_dir):
+    page = browser_context.new_page()
+    page.set_default_timeout(60_000)
+    record = Record(notebook[:2])
+    log_start = len(lab.log.read_text(errors="replace"))
+    shots = screenshot_dir / notebook[:2]
+    shots.mkdir(exist_ok=True)
+    started = time.monotonic()
+    try:
+        open_and_run_all(page, lab, notebook)
+        page.evaluate(WATCH_KERNEL)
+        ran = time.monotonic() - started
+        assert not (problems := page.evaluate(CELL_PROBLEMS)), f"cells wrote errors: {problems}"
+        outputs = widget_outputs(page)
+        assert len(outputs) >= CHAPTERS[notebook], (
+            f"{notebook}: {len(outputs)} widgets found, expected at least {CHAPTERS[notebook]}")
+        rng = random.Random(f"{SEED}-{notebook}")
+        for k, output in enumerate(outputs):
+            widget = WidgetInLab(page, output, f"w{k}", shots)
+            output.scroll_into_view_if_needed(timeout=30_000)
+            widget.settle(None, "as the notebook left it")
+            widget.check("as the notebook left it")
+            widget.save("0-as-left")
+            if notebook.startswith("08"):
+                widget.drive_dropdowns(record, changes=DROPDOWN_CHANGES)
+            else:
+                widget.drive_dropdowns(record)
+            is_step_slider = notebook.startswith("02") and "step" in widget.text().lower() and \
+                output.locator(".widget-slider").count() and not output.locator("button.jupyter-button").count()
+            widget.drive_sliders(record, moves=SLIDER_MOVES if is_step_slider else None)
+            widget.drive_text(record)
+            if widget.buttons():
+                widget.drive_buttons(rng, record)
+            widget.save("9-end")
+            assert not (problems := kernel_problems(page, lab, log_start)), f"after {widget.name}: {problems}"
+        assert not (problems := page.evaluate(CELL_PROBLEMS)), f"cells wrote errors while driven: {problems}"
+        print(f"{record.line()}\n  widgets: {len(outputs)}; run all {ran:.0f} s, "
+              f"driving {time.monotonic() - started - ran:.0f} s; screenshots in {shots}")
+    except BaseException:
+        try:
+            page.screenshot(path=str(shots / "failure-page.png"))
+        except Exception:  # noqa: BLE001 - the original failure matters more
+            pass
+        print(f"clicks so far: {record.line()}")
+        print("JupyterLab log:\n" + lab.log_tail())
+        raise
+    finally:
+        try:
+            page.evaluate(SHUT_DOWN_KERNEL)  # the next chapter gets the machine's cores
+        except Exception:  # noqa: BLE001 - closing the page ends the session anyway
+            pass
+        page.close()
