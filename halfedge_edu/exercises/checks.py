@@ -28,7 +28,9 @@ The contracts (also stated in the chapters):
   None`` says at once that ``v`` is on the boundary.
 * ``one_ring(mesh, v) -> list`` of the neighbours of vertex ``v`` (given as a
   :class:`~halfedge_edu.Vertex` handle, which also works wherever an index does),
-  counter-clockwise, starting with the tip of ``v.halfedge``. Vertex handles or ints.
+  starting with the tip of ``v.halfedge``, counter-clockwise (the chapter's walk) or
+  clockwise (CMU's ``h.twin.next``; the congratulation then says why the chapter turns
+  the other way). Vertex handles or ints.
 
 A learner's function runs in :func:`~halfedge_edu.exercises.harness.run`, which stops
 one that loops forever after ``TIME_LIMIT`` seconds where the platform allows it.
@@ -508,10 +510,17 @@ def _ring_as_ints(answer) -> tuple[list[int] | None, str | None]:
         return None, f"one_ring should return vertex indices (or Vertex handles), but yours returned {items!r:.80}."
 
 
+def _is_clockwise(want: list[int], ring: list[int]) -> bool:
+    """Whether ``ring`` is ``want`` walked the other way round from the same start (the CMU
+    notes' ``h = h.twin.next`` walk), on a vertex with at least three neighbours (with
+    fewer, both ways round are the same list)."""
+    return len(want) > 2 and ring == want[:1] + want[1:][::-1]
+
+
 def _compare_ring(mesh: HalfedgeMesh, v: int, ring: list[int]) -> str | None:
     vertex = mesh.vertex(v)
     want = [int(u) for u in vertex.neighbors()]
-    if ring == want:
+    if ring == want or _is_clockwise(want, ring):
         return None
     start = vertex.halfedge
     where = (f"vertex {v} lies on the boundary (its halfedge {start.index} is the boundary halfedge "
@@ -523,17 +532,14 @@ def _compare_ring(mesh: HalfedgeMesh, v: int, ring: list[int]) -> str | None:
     if len(ring) > 1 and len(set(ring)) == 1 and len(want) > 1:
         return head + (f" Every entry is vertex {ring[0]}: the walk circles around that vertex instead of "
                        f"around v (h.next.twin does that). Step with h = h.prev.twin to stay at v.")
-    if len(ring) == len(want) and ring[:1] == want[:1] and ring[1:] == want[1:][::-1]:
-        return head + (" You walked clockwise. h.twin.next turns clockwise around v; to turn "
-                       "counter-clockwise, step h = h.prev.twin.")
     if len(ring) == len(want) and any(ring == want[k:] + want[:k] for k in range(len(want))):
         return head + f" Right order, wrong start: begin with the tip of v.halfedge, vertex {int(start.tip)}."
     reversed_ring = want[::-1]
     if len(ring) == len(want) and any(ring == reversed_ring[k:] + reversed_ring[:k] for k in range(len(want))):
-        return head + (" That is the clockwise order; turn counter-clockwise with h = h.prev.twin, "
-                       "starting at v.halfedge.")
+        return head + (f" That is the clockwise order (CMU's h.twin.next walk, fine too) but from another start: "
+                       f"begin with the tip of v.halfedge, vertex {int(start.tip)}.")
     if sorted(ring) == sorted(want):
-        return head + " Same neighbours, but not in counter-clockwise order around v."
+        return head + " Same neighbours, but not in order around v (either way round is fine, one step at a time)."
     extra = sorted(set(ring) - set(want))
     missing = [u for u in want if u not in ring]
     parts = []
@@ -551,13 +557,23 @@ def _compare_ring(mesh: HalfedgeMesh, v: int, ring: list[int]) -> str | None:
     return head + " " + found[:1].upper() + found[1:] + "." + hint
 
 
+_CLOCKWISE_PRAISE = (
+    "Your walk turns clockwise (h = h.twin.next, as in the CMU notes): the same neighbours from the same "
+    "start, the other way round, which is correct for that convention. This chapter and the library walk "
+    "counter-clockwise (h = h.prev.twin) because then v, r[i], r[i + 1] is always one of the mesh's faces in "
+    "its own counter-clockwise order, so the cross products of chapter 05's normals point outwards without a "
+    "sign flip; reverse ring[1:] (or step with h.prev.twin) when you use the library's rings.")
+
+
 def check_one_ring(learner_one_ring: Callable) -> CheckResult:
     """Run ``learner_one_ring(mesh, v)`` on every vertex of several meshes.
 
     Args:
         learner_one_ring: a function ``(mesh, v) -> list`` of the neighbours of vertex
-            ``v`` (a Vertex handle; ``int(v)`` is its index), counter-clockwise, starting
-            with the tip of ``v.halfedge``. Vertex handles or ints in the list.
+            ``v`` (a Vertex handle; ``int(v)`` is its index), starting with the tip of
+            ``v.halfedge``, counter-clockwise (the chapter's ``h.prev.twin``) or clockwise
+            (the CMU notes' ``h.twin.next``), the same way at every vertex. Vertex
+            handles or ints in the list.
 
     Returns:
         A :class:`CheckResult` naming the first vertex whose ring differs and why
@@ -567,6 +583,7 @@ def check_one_ring(learner_one_ring: Callable) -> CheckResult:
     if unfinished:
         return harness.failed("one_ring", [], None, unfinished)
     checked: list[str] = []
+    turns: tuple[str, int] | None = None  # which way the learner's rings go, and where that was first seen
     for name, mesh in one_ring_cases():
         for vertex in mesh.vertices:
             status, answer = harness.run(learner_one_ring, mesh, vertex)
@@ -587,5 +604,18 @@ def check_one_ring(learner_one_ring: Callable) -> CheckResult:
             problem = _compare_ring(mesh, v, ring)
             if problem is not None:
                 return harness.failed("one_ring", checked, name, problem, ("vertex", v), mesh)
+            want = [int(u) for u in vertex.neighbors()]
+            if len(want) > 2:
+                turn = "clockwise" if _is_clockwise(want, ring) else "counter-clockwise"
+                if turns and turn not in turns:
+                    return harness.failed(
+                        "one_ring", checked, name,
+                        f"vertex {v}'s ring {ring} goes {turn}, but your rings before went {turns[0]} "
+                        f"(at vertex {turns[1]}): one walk turns one way at every vertex. Step with h.prev.twin "
+                        f"(counter-clockwise) or h.twin.next (clockwise), the same everywhere.", ("vertex", v), mesh)
+                turns = turns or (turn, v)
         checked.append(name)
+    if turns and turns[0] == "clockwise":
+        return CheckResult("one_ring", True, f"All good! Your one_ring finds the same neighbours as the library on "
+                           f"{len(checked)} meshes ({', '.join(checked)}). {_CLOCKWISE_PRAISE}", list(checked))
     return harness.passed("one_ring", checked, "You can walk around any vertex, inside or on the boundary.")

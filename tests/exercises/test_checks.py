@@ -347,11 +347,32 @@ def test_check_one_ring_accepts_vertex_handles():
     assert check_one_ring(lambda mesh, v: v.neighbors())
 
 
-def test_clockwise_walk_is_named():
+def test_the_cmu_clockwise_walk_is_accepted_and_the_chapters_direction_explained():
     result = check_one_ring(walk(lambda h: h.twin.next))
+    assert result.passed, result.message
+    assert "annulus (two boundary loops)" in result.checked
+    assert "Your walk turns clockwise (h = h.twin.next, as in the CMU notes)" in result.message
+    assert "counter-clockwise (h = h.prev.twin) because" in result.message
+
+
+def test_a_walk_that_changes_direction_between_vertices_is_named():
+    def sometimes_clockwise(mesh, v):
+        step = (lambda h: h.twin.next) if int(v) == 2 else (lambda h: h.prev.twin)
+        return walk(step)(mesh, v)
+
+    result = check_one_ring(sometimes_clockwise)
+    assert not result and result.mesh_name == "open patch" and result.element == ("vertex", 2)
+    assert "goes clockwise, but your rings before went counter-clockwise" in result.message
+
+
+def test_a_clockwise_walk_from_the_wrong_start_is_named():
+    def clockwise_from_the_next_one(mesh, v):
+        ring = walk(lambda h: h.twin.next)(mesh, v)
+        return ring[1:] + ring[:1]
+
+    result = check_one_ring(clockwise_from_the_next_one)
     assert result.mesh_name == "open patch" and result.element == ("vertex", 0)
-    assert "is [4, 1, 5], but yours is [4, 5, 1]" in result.message
-    assert "You walked clockwise" in result.message and "h = h.prev.twin" in result.message
+    assert "That is the clockwise order (CMU's h.twin.next walk, fine too) but from another start" in result.message
 
 
 def test_wrong_start_is_named():
@@ -428,7 +449,7 @@ def test_one_ring_with_blanks_is_not_run():
 # --------------------------------------------------------------------------------------
 
 def test_result_reads_as_its_message():
-    result = check_one_ring(walk(lambda h: h.twin.next))
+    result = check_one_ring(walk(lambda h: h.next.twin))
     assert isinstance(result, CheckResult)
     assert repr(result) == result.message and result.message.startswith("Not yet. On 'open patch': ")
     assert isinstance(result.mesh, hx.HalfedgeMesh)
