@@ -163,13 +163,12 @@ def test_info_reports_inconsistent_orientation(capsys, tmp_path):
     assert "edges used twice in the same direction: 1 (0->1)" in out
 
 
-def test_info_prints_dropped_vertices_as_a_one_line_warning(capsys, tmp_path):
+def test_info_keeps_an_unreferenced_vertex_at_its_index(capsys, tmp_path):
     path = write_obj(tmp_path / "extra.obj", TETRA_V + [(5, 5, 5)], TETRA_F)
     status, out, err = run(capsys, "info", path)
     assert status == 0
-    assert fields(out)["vertices"] == "4"
-    warnings = err.splitlines()
-    assert len(warnings) == 1 and warnings[0].startswith("halfedge-edu: warning: ")
+    assert fields(out)["vertices"] == "5"
+    assert err == ""
 
 
 # ---------------------------------------------------------------- check
