@@ -423,6 +423,27 @@ def test_subdivide_writes_what_loop_subdivide_returns(capsys, tmp_path):
     assert (written.faces == expected_faces).all()
 
 
+def test_subdivide_weights_loop_uses_loops_original_beta(capsys, tmp_path):
+    from halfedge_edu.algorithms.loop import loop_subdivide
+
+    source = sample_file(tmp_path, "octahedron")
+    out = tmp_path / "out.obj"
+    status, _, _ = run(capsys, "subdivide", source, out, 1, "--weights", "loop")
+    assert status == 0
+    expected_vertices, _ = loop_subdivide(hx.load(source), weights="loop").to_arrays()
+    warren_vertices, _ = loop_subdivide(hx.load(source)).to_arrays()
+    written = hx.read_obj(out)
+    assert (written.vertices == expected_vertices).all()
+    assert not np.allclose(written.vertices, warren_vertices)  # degree 4: the two betas differ
+
+
+def test_subdivide_help_names_both_weights(capsys):
+    with pytest.raises(SystemExit):
+        main(["subdivide", "--help"])
+    out = capsys.readouterr().out
+    assert "Warren's weights" in out and "--weights" in out and "Loop's original beta" in out
+
+
 def test_subdivide_n_and_levels_that_disagree(capsys, tmp_path, cube):
     status, _, err = run(capsys, "subdivide", cube, tmp_path / "out.obj", 2, "--levels", 3)
     assert_one_line_error(status, err)
