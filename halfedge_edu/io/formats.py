@@ -29,7 +29,7 @@ from halfedge_edu.io.obj import atomic_output, checked_arrays, read_obj, require
 __all__ = ["load", "load_arrays", "save", "SUFFIXES"]
 
 #: The file suffixes ``load`` and ``save`` understand.
-SUFFIXES = (".obj", ".ply", ".stl", ".off", ".glb", ".gltf")
+SUFFIXES = (".obj", ".ply", ".stl", ".off", ".glb", ".gltf", ".dae")
 
 #: The formats trimesh writes with float32 positions.
 FLOAT32_SUFFIXES = (".ply", ".stl", ".glb", ".gltf")
@@ -49,7 +49,10 @@ def load(path: str | os.PathLike, *, repair: bool = False, triangulate: bool = T
     """Read a mesh file into a ``HalfedgeMesh``.
 
     Args:
-        path: a ``.obj``, ``.ply``, ``.stl``, ``.off``, ``.glb`` or ``.gltf`` file.
+        path: a ``.obj``, ``.ply``, ``.stl``, ``.off``, ``.glb``, ``.gltf`` or ``.dae``
+            (COLLADA, the CMU and CS184 assignments' format; needs pycollada, in the
+            ``io`` extra) file. trimesh's COLLADA reader numbers vertices by their first
+            use in the triangle lists, so ``.dae`` vertex ids are not the file's.
         repair: first make the triangles loadable with ``repair_faces`` (drop degenerate
             and duplicate faces, orient consistently, split non-manifold edges and
             vertices). The mesh then has an attribute ``repair_report``, and if anything

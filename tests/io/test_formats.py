@@ -90,7 +90,7 @@ def test_unknown_suffix_is_refused_by_load_and_save(tmp_path, spot):
     with pytest.raises(MeshInputError, match="unknown file type '.xyz'"):
         load(tmp_path / "mesh.xyz")
     with pytest.raises(MeshInputError, match="unknown file type"):
-        save(spot, tmp_path / "out.dae")
+        save(spot, tmp_path / "out.abc")
     assert sorted(os.listdir(tmp_path)) == ["mesh.xyz"]
 
 
