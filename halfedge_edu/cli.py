@@ -192,6 +192,8 @@ def build_parser() -> argparse.ArgumentParser:
         help="Loop subdivision: every level splits each triangle into 4",
         description=(
             "Loop subdivision, N levels (each multiplies the faces by 4), written to OUT. "
+            "Old vertices move with Warren's weights (beta = 3/16 for degree 3, 3/(8n) "
+            "otherwise) unless --weights loop asks for Loop's original beta. "
             "Example: halfedge-edu subdivide in.obj out.obj 2"
         ),
     )
@@ -202,6 +204,11 @@ def build_parser() -> argparse.ArgumentParser:
     subdivide.add_argument(
         "--levels", dest="levels_option", type=_whole_number(0), metavar="N",
         help="the same as the positional N",
+    )
+    subdivide.add_argument(
+        "--weights", choices=("warren", "loop"), default="warren",
+        help="how an old vertex moves: 'warren' (default; beta = 3/16 for degree 3, 3/(8n) "
+             "otherwise) or 'loop' (Loop's original beta = (5/8 - (3/8 + cos(2 pi/n)/4)^2)/n)",
     )
     _add_max_faces(subdivide)
 
@@ -511,7 +518,7 @@ def run_subdivide(args: argparse.Namespace) -> int:
     def algorithm(mesh):
         from halfedge_edu.algorithms.loop import loop_subdivide
 
-        return loop_subdivide(mesh, levels, progress=_progress(args))
+        return loop_subdivide(mesh, levels, weights=args.weights, progress=_progress(args))
 
     def estimate(mesh) -> tuple[float, str]:
         # Beyond 500 levels 4.0**levels leaves float range: more than any limit.

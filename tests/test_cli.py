@@ -163,13 +163,12 @@ def test_info_reports_inconsistent_orientation(capsys, tmp_path):
     assert "edges used twice in the same direction: 1 (0->1)" in out
 
 
-def test_info_prints_dropped_vertices_as_a_one_line_warning(capsys, tmp_path):
+def test_info_keeps_an_unreferenced_vertex_at_its_index(capsys, tmp_path):
     path = write_obj(tmp_path / "extra.obj", TETRA_V + [(5, 5, 5)], TETRA_F)
     status, out, err = run(capsys, "info", path)
     assert status == 0
-    assert fields(out)["vertices"] == "4"
-    warnings = err.splitlines()
-    assert len(warnings) == 1 and warnings[0].startswith("halfedge-edu: warning: ")
+    assert fields(out)["vertices"] == "5"
+    assert err == ""
 
 
 # ---------------------------------------------------------------- check
@@ -422,6 +421,27 @@ def test_subdivide_writes_what_loop_subdivide_returns(capsys, tmp_path):
     written = hx.read_obj(out)
     assert (written.vertices == expected_vertices).all()  # OBJ keeps float64 exactly
     assert (written.faces == expected_faces).all()
+
+
+def test_subdivide_weights_loop_uses_loops_original_beta(capsys, tmp_path):
+    from halfedge_edu.algorithms.loop import loop_subdivide
+
+    source = sample_file(tmp_path, "octahedron")
+    out = tmp_path / "out.obj"
+    status, _, _ = run(capsys, "subdivide", source, out, 1, "--weights", "loop")
+    assert status == 0
+    expected_vertices, _ = loop_subdivide(hx.load(source), weights="loop").to_arrays()
+    warren_vertices, _ = loop_subdivide(hx.load(source)).to_arrays()
+    written = hx.read_obj(out)
+    assert (written.vertices == expected_vertices).all()
+    assert not np.allclose(written.vertices, warren_vertices)  # degree 4: the two betas differ
+
+
+def test_subdivide_help_names_both_weights(capsys):
+    with pytest.raises(SystemExit):
+        main(["subdivide", "--help"])
+    out = capsys.readouterr().out
+    assert "Warren's weights" in out and "--weights" in out and "Loop's original beta" in out
 
 
 def test_subdivide_n_and_levels_that_disagree(capsys, tmp_path, cube):

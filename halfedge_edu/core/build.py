@@ -246,7 +246,8 @@ def drop_unreferenced(positions: np.ndarray, faces: np.ndarray, *, warn: bool = 
     """Remove vertices no face uses, renumbering the faces to match.
 
     Returns ``(positions, faces, kept)`` where ``kept`` (n_kept,) lists the original
-    index of each vertex that stayed. Warns with :class:`MeshWarning` when it drops any.
+    index of each vertex that stayed. With ``warn``, a :class:`MeshWarning` names the
+    vertices it drops (``hx.load(path, drop_unreferenced=True)`` asks for this).
     """
     used = np.zeros(len(positions), dtype=bool)
     used[faces.ravel()] = True
@@ -262,6 +263,35 @@ def drop_unreferenced(positions: np.ndarray, faces: np.ndarray, *, warn: bool = 
         )
     positions, faces, kept = compact(positions, faces)
     return positions, faces.astype(INDEX), kept
+
+
+def restore_unreferenced(arrays: HalfedgeArrays, positions: np.ndarray, kept: np.ndarray) -> HalfedgeArrays:
+    """Put the vertices no face uses back at their input indices, as isolated vertices.
+
+    ``arrays`` was built from the compacted input (``positions[kept]``); the result
+    numbers every vertex as the input did: vertex ``i`` of the file is vertex ``i`` of
+    the mesh, as in pmp-library and OpenMesh, so ids can be compared with the file. An
+    isolated vertex has no halfedge (``vertex_halfedge`` -1). Halfedge, edge and face
+    numbers do not change.
+
+    Args:
+        arrays: built from ``positions[kept]`` and the renumbered faces.
+        positions: (n, 3) every input vertex.
+        kept: (n_kept,) the input index of each vertex of ``arrays``.
+    """
+    if len(kept) == len(positions):
+        return arrays
+    vertex_halfedge = np.full(len(positions), -1, dtype=INDEX)
+    vertex_halfedge[kept] = arrays.vertex_halfedge
+    return HalfedgeArrays(
+        positions=np.ascontiguousarray(positions, dtype=np.float64),
+        vertex_halfedge=vertex_halfedge,
+        halfedge_next=arrays.halfedge_next,
+        halfedge_prev=arrays.halfedge_prev,
+        halfedge_vertex=kept.astype(INDEX)[arrays.halfedge_vertex],
+        halfedge_face=arrays.halfedge_face,
+        face_halfedge=arrays.face_halfedge,
+    )
 
 
 # --------------------------------------------------------------------------------------

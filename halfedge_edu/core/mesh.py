@@ -31,7 +31,8 @@ from typing import Iterator, NamedTuple
 
 import numpy as np
 
-from .build import INDEX, HalfedgeArrays, build_arrays, check_input, drop_unreferenced
+from .build import INDEX, HalfedgeArrays, build_arrays, check_input, restore_unreferenced
+from .build import drop_unreferenced as _drop_unreferenced
 from . import ops
 from .elements import Edge, Face, Halfedge, Vertex
 from .ops.check import OpCheck
@@ -164,6 +165,7 @@ class HalfedgeMesh:
         *,
         face_lines=None,
         source: str | None = None,
+        drop_unreferenced: bool = False,
     ) -> "HalfedgeMesh":
         """Build a mesh from vertex positions and triangles.
 
@@ -172,18 +174,23 @@ class HalfedgeMesh:
             faces: (m, 3) vertex indices, 0-based, counter-clockwise seen from outside.
             face_lines: optional (m,) the file line each face came from, for messages.
             source: optional file name, for messages.
+            drop_unreferenced: False (the default) keeps every vertex at its input
+                index: vertex ``i`` of ``vertices`` is ``mesh.vertex(i)``, and a vertex no
+                face uses is an isolated vertex (no halfedge; ``validate`` accepts it), as
+                in pmp-library and OpenMesh. True drops those vertices with a
+                :class:`MeshWarning` and renumbers the rest in their order.
 
         Raises:
             MeshInputError: the input is not a manifold, consistently oriented triangle
                 mesh; the message names the face, edge or vertex (and the line).
-
-        Unreferenced vertices are dropped with a :class:`MeshWarning`; the remaining
-        vertices keep their order.
         """
-        positions, face_array = check_input(vertices, faces, face_lines, source)
-        positions, face_array, kept = drop_unreferenced(positions, face_array)
+        all_positions, face_array = check_input(vertices, faces, face_lines, source)
+        positions, face_array, kept = _drop_unreferenced(all_positions, face_array, warn=drop_unreferenced)
         # Errors name vertices by ``kept``: the caller's numbers, not the compacted ones.
-        return cls(build_arrays(positions, face_array, face_lines, source, vertex_ids=kept))
+        arrays = build_arrays(positions, face_array, face_lines, source, vertex_ids=kept)
+        if drop_unreferenced:
+            return cls(arrays)
+        return cls(restore_unreferenced(arrays, all_positions, kept))
 
     @classmethod
     def from_trimesh(cls, tm) -> "HalfedgeMesh":
@@ -458,12 +465,17 @@ class HalfedgeMesh:
     # Export
     # ----------------------------------------------------------------------------------
 
-    def to_arrays(self) -> tuple[np.ndarray, np.ndarray]:
-        """Compact copies ``(V (n, 3) float64, F (m, 3) int64)`` of the live mesh.
+    def to_arrays(self, *, compact: bool = False) -> tuple[np.ndarray, np.ndarray]:
+        """Copies ``(V (n, 3) float64, F (m, 3) int64)`` of the live mesh.
 
         Vertices and faces keep their relative order; deleted ones are left out.
+        Isolated vertices (no halfedge, e.g. a file's vertices that no face uses) stay,
+        so a mesh loaded from a file without deletions gives back the file's numbering;
+        ``compact=True`` leaves them out too.
         """
         live_vertices = ~self.vertex_deleted
+        if compact:
+            live_vertices &= self.vertex_halfedge >= 0
         new_index = np.full(self._n_vertex_slots, -1, dtype=np.int64)
         new_index[live_vertices] = np.arange(int(live_vertices.sum()))
         faces = self.face_vertices()[~self.face_deleted]

@@ -15,7 +15,7 @@ anything follows them.
 | next-cycle                | a face's halfedges form a loop of exactly 3, all in that face; boundary halfedges continue along the boundary |
 | face-halfedge             | face(halfedge(f)) == f                                      |
 | edge-halfedge             | every edge has a face on at least one side                  |
-| vertex-halfedge-origin    | every vertex has a halfedge and origin(halfedge(v)) == v    |
+| vertex-halfedge-origin    | origin(halfedge(v)) == v; only an isolated vertex has none  |
 | boundary-vertex-halfedge  | a boundary vertex's halfedge is its outgoing boundary halfedge |
 | vertex-manifold           | walking around a vertex meets all its edges (one fan, no hourglass) |
 | duplicate-edge            | no two edges join the same pair of vertices                 |
@@ -82,11 +82,19 @@ def validate(mesh: "HalfedgeMesh") -> None:
             )
     garbage = any(flagged.values())
 
-    # Which elements to check: every slot when nothing is deleted (no gather needed),
-    # otherwise the live ones, as index arrays.
-    if garbage:
+    # An isolated vertex (no halfedge, and no halfedge leaves it), as a file's vertex that
+    # no face uses stays when loading, is allowed, as in pmp-library and OpenMesh: the
+    # vertex rules below skip it. A vertex without a halfedge that some halfedge leaves
+    # is still refused (vertex-halfedge-origin).
+    isolated = (vertex_he == -1) & ~vertex_deleted
+    if isolated.any():
+        isolated[origin[~np.repeat(edge_deleted, 2)]] = False
+
+    # Which elements to check: every slot when nothing is deleted or isolated (no gather
+    # needed), otherwise the live ones, as index arrays.
+    if garbage or isolated.any():
         hs = np.flatnonzero(~np.repeat(edge_deleted, 2))
-        vs = np.flatnonzero(~vertex_deleted)
+        vs = np.flatnonzero(~vertex_deleted & ~isolated)
         fs = np.flatnonzero(~face_deleted)
         h_next, h_prev, h_origin, h_face = nxt[hs], prv[hs], origin[hs], face[hs]
         v_he, f_he = vertex_he[vs], face_he[fs]
@@ -127,8 +135,8 @@ def validate(mesh: "HalfedgeMesh") -> None:
     check_pointer(h_face, n_f, face_deleted, "halfedge", hs, "face", "face", allow_none=True)
     check_pointer(f_he, n_h, halfedge_deleted, "face", fs, "halfedge", "halfedge")
     _refuse(_first(v_he == -1, vs), "vertex-halfedge-origin", "vertex", lambda orphan: (
-        f"vertex {orphan} has no halfedge: no edge uses it (an orphan vertex). "
-        f"Delete it, or link it into the mesh."))
+        f"vertex {orphan} has no halfedge, but halfedge {int(np.argmax(origin == orphan))} leaves it; "
+        f"a vertex that edges use must point at one of its outgoing halfedges"))
     check_pointer(v_he, n_h, halfedge_deleted, "vertex", vs, "halfedge", "halfedge")
 
     # ---- next-prev-inverse ------------------------------------------------------------

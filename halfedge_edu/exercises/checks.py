@@ -14,13 +14,23 @@ The contracts (also stated in the chapters):
 * ``build(faces) -> dict`` with one entry per halfedge under each of the keys
   ``"vertex"`` (the vertex the halfedge leaves), ``"face"`` (its face, -1 on the
   boundary) and ``"next"``; optionally ``"prev"`` and ``"vertex_halfedge"`` (one entry per
-  vertex). The numbering must be the course's (see ``halfedge_edu.core.build``): faces in
-  row order, each face ``[i, j, k]`` making ``(i, j), (j, k), (k, i)``; edge ``e`` is
-  numbered in the order edges are first seen and owns halfedges ``2e`` (the first
-  sighting) and ``2e + 1`` (its twin, ``h ^ 1``). The twin is not returned: it is ``h ^ 1``.
+  vertex), and ``"twin"`` when the twin is not ``h ^ 1``. Any numbering passes: the
+  check judges by invariants (each face's three halfedges go round it by ``next`` in the
+  row's order, twins pair up and run the other way, boundary halfedges chain along the
+  boundary), so the same mesh is accepted whatever the halfedge ids. Two layouts the
+  courses use: this package's (see ``halfedge_edu.core.build``; edge ``e`` owns ``2e``,
+  its first sighting, and ``2e + 1``, its twin ``h ^ 1``, boundary halfedges included,
+  ``"twin"`` not returned), and UChicago's (three halfedges per face, ``3f``, ``3f + 1``,
+  ``3f + 2``, twins found afterwards and returned as ``"twin"``, ``-1`` or ``None`` on a
+  side with no neighbour, because that course has no boundary halfedges). A vertex's
+  halfedge may be any outgoing one (UChicago keeps the last one set), except that with
+  boundary halfedges a boundary vertex keeps its boundary one, so ``v.halfedge.face is
+  None`` says at once that ``v`` is on the boundary.
 * ``one_ring(mesh, v) -> list`` of the neighbours of vertex ``v`` (given as a
   :class:`~halfedge_edu.Vertex` handle, which also works wherever an index does),
-  counter-clockwise, starting with the tip of ``v.halfedge``. Vertex handles or ints.
+  starting with the tip of ``v.halfedge``, counter-clockwise (the chapter's walk) or
+  clockwise (CMU's ``h.twin.next``; the congratulation then says why the chapter turns
+  the other way). Vertex handles or ints.
 
 A learner's function runs in :func:`~halfedge_edu.exercises.harness.run`, which stops
 one that loops forever after ``TIME_LIMIT`` seconds where the platform allows it.
@@ -105,7 +115,7 @@ def build_cases() -> list[tuple[str, np.ndarray, np.ndarray]]:
 
 
 _BUILD_KEYS = ("vertex", "face", "next")
-_OPTIONAL_BUILD_KEYS = ("prev", "vertex_halfedge")
+_OPTIONAL_BUILD_KEYS = ("prev", "vertex_halfedge", "twin")
 
 
 def _as_index_array(value) -> np.ndarray | None:
@@ -156,43 +166,70 @@ def _learner_run(vertex: np.ndarray, h: int) -> str:
     return f"{vertex[h]} -> {tip}"
 
 
-def _compare_build(answer, faces: np.ndarray, n_vertices: int) -> tuple[str, tuple | None] | None:
-    """None if ``answer`` equals the reference build of ``faces``; else (words, element)."""
-    reference = build_reference(faces, n_vertices)
-    story = _BuildStory(faces, reference)
-    n_halfedges = len(reference.halfedge_next)
-    n_edges = n_halfedges // 2
-
+def _answer_arrays(answer) -> tuple[dict[str, np.ndarray] | None, str | None]:
+    """The learner's dict as int arrays, or (None, what is wrong with it)."""
     if not isinstance(answer, dict):
-        return (f"build(faces) should return a dict with the keys 'vertex', 'face' and 'next' "
-                f"(one entry per halfedge each), but yours returned {type(answer).__name__} {answer!r:.60}.", None)
+        return None, (f"build(faces) should return a dict with the keys 'vertex', 'face' and 'next' "
+                      f"(one entry per halfedge each), but yours returned {type(answer).__name__} {answer!r:.60}.")
     missing = [key for key in _BUILD_KEYS if key not in answer]
     if missing:
-        return (f"the dict your build returns has no {', '.join(repr(k) for k in missing)}; it needs "
-                f"'vertex', 'face' and 'next' (one entry per halfedge each).", None)
+        return None, (f"the dict your build returns has no {', '.join(repr(k) for k in missing)}; it needs "
+                      f"'vertex', 'face' and 'next' (one entry per halfedge each).")
     arrays = {}
     for key in _BUILD_KEYS + _OPTIONAL_BUILD_KEYS:
         if key not in answer:
             continue
         if _has_ellipsis(answer[key]):
-            return (f"your {key!r} still contains a blank (...): build is not finished yet. "
-                    f"Fill in the blanks and run the check again.", None)
-        array = _as_index_array(answer[key])
+            return None, (f"your {key!r} still contains a blank (...): build is not finished yet. "
+                          f"Fill in the blanks and run the check again.")
+        value = answer[key]
+        if key == "twin":  # UChicago's twin is None where a face's side has no neighbour
+            value = ({h: -1 if t is None else t for h, t in value.items()} if isinstance(value, dict)
+                     else [-1 if t is None else t for t in value])
+        array = _as_index_array(value)
         if array is None:
-            return (f"your {key!r} should be a list of whole numbers, one per "
-                    f"{'vertex' if key == 'vertex_halfedge' else 'halfedge'}, but it is {answer[key]!r:.80}.", None)
+            return None, (f"your {key!r} should be a list of whole numbers, one per "
+                          f"{'vertex' if key == 'vertex_halfedge' else 'halfedge'}, but it is {answer[key]!r:.80}.")
         arrays[key] = array
+    return arrays, None
 
+
+def _compare_build(answer, faces: np.ndarray, n_vertices: int) -> tuple[str, tuple | None] | None:
+    """None if ``answer`` is a correct build of ``faces`` in any course's numbering; else
+    (words, element).
+
+    Judged by invariants (:func:`_judge_structure`), so a correct build in another
+    numbering passes. When it fails and the answer is laid out as this package's (no
+    ``"twin"``: twin is ``h ^ 1``), the words compare it with the package's reference,
+    which names the exact halfedge; otherwise they name the broken invariant.
+    """
+    arrays, reason = _answer_arrays(answer)
+    if arrays is None:
+        return reason, None
+    if "vertex_halfedge" in arrays and len(arrays["vertex_halfedge"]) != n_vertices:
+        return (f"there are {n_vertices} vertices, so 'vertex_halfedge' should have {n_vertices} "
+                f"entries, but yours has {len(arrays['vertex_halfedge'])}.", None)
+    problem = _judge_structure(arrays, faces, n_vertices)
+    if problem is None or "twin" in arrays:
+        return problem
+    return _reference_problem(arrays, faces, n_vertices) or problem
+
+
+def _reference_problem(arrays: dict[str, np.ndarray], faces: np.ndarray,
+                       n_vertices: int) -> tuple[str, tuple | None] | None:
+    """The first difference from the package's own numbering (twin = h ^ 1), in words."""
+    reference = build_reference(faces, n_vertices)
+    story = _BuildStory(faces, reference)
+    n_halfedges = len(reference.halfedge_next)
+    n_edges = n_halfedges // 2
     for key, array in arrays.items():
-        wanted = n_vertices if key == "vertex_halfedge" else n_halfedges
-        if len(array) != wanted:
-            if key == "vertex_halfedge":
-                return (f"there are {n_vertices} vertices, so 'vertex_halfedge' should have {n_vertices} "
-                        f"entries, but yours has {len(array)}.", None)
+        if key != "vertex_halfedge" and len(array) != n_halfedges:
             hint = ""
             if len(array) == 3 * len(faces) and len(array) < n_halfedges:
                 hint = (" You have three per face: the boundary halfedges are missing. Every edge that only one "
-                        "face uses still gets a second halfedge, running the other way, with face -1.")
+                        "face uses still gets a second halfedge, running the other way, with face -1. (Three "
+                        "per face with no boundary halfedges, as UChicago's build allocates them, is fine too "
+                        "if you also return 'twin', -1 where a side has no neighbour.)")
             elif len(array) == 3 * len(faces):
                 hint = (" You have three per face, which is too many here: a shared edge's second sighting is "
                         "not a new halfedge, it is the twin 2e + 1 of the first.")
@@ -202,20 +239,11 @@ def _compare_build(answer, faces: np.ndarray, n_vertices: int) -> tuple[str, tup
     vertex = arrays["vertex"]
     for h in range(n_halfedges):
         if vertex[h] != story.origin[h] or vertex[h ^ 1] != story.origin[h ^ 1]:
-            hint = ""
-            if vertex[h] == story.origin[h ^ 1] and vertex[h ^ 1] == story.origin[h]:
-                hint = (" It points the wrong way: the first sighting of an edge gets the even number 2e and "
-                        "runs the way that face uses it; the second sighting is the odd twin 2e + 1.")
-            else:
-                same = np.flatnonzero((story.origin == vertex[h]) &
-                                      (story.origin[np.arange(n_halfedges) ^ 1] ==
-                                       (vertex[h ^ 1] if (h ^ 1) < len(vertex) else -1)))
-                if len(same):
-                    hint = (f" Your halfedge {h} is the course's halfedge {int(same[0])}: the numbering differs. "
-                            f"Edges are numbered in the order they are first seen, face by face, going "
-                            f"(i, j), (j, k), (k, i) around each face.")
-            return (f"{story.what(h)}. It should run {story.run(h)}, but yours runs "
-                    f"{_learner_run(vertex, h)}.{hint}", ("halfedge", h))
+            if not (vertex[h] == story.origin[h ^ 1] and vertex[h ^ 1] == story.origin[h]):
+                return None  # another numbering: the broken invariant says more than the difference
+            return (f"{story.what(h)}. It should run {story.run(h)}, but yours runs {_learner_run(vertex, h)}. "
+                    f"It points the wrong way: the first sighting of an edge gets the even number 2e and "
+                    f"runs the way that face uses it; the second sighting is the odd twin 2e + 1.", ("halfedge", h))
 
     face = arrays["face"]
     for h in range(n_halfedges):
@@ -272,14 +300,149 @@ def _compare_build(answer, faces: np.ndarray, n_vertices: int) -> tuple[str, tup
     return None
 
 
+
+# --------------------------------------------------------------------------------------
+# check_build: any numbering (relabel-invariant judge)
+# --------------------------------------------------------------------------------------
+
+def _judge_structure(arrays: dict[str, np.ndarray], faces: np.ndarray,
+                     n_vertices: int) -> tuple[str, tuple | None] | None:
+    """None if ``arrays`` is *a* correct halfedge structure of ``faces``, in any numbering.
+
+    Judged by invariants only, so every course's numbering passes: this package's (edge
+    ``e`` owns ``2e`` and ``2e + 1``, boundary halfedges included, ``twin`` not returned
+    because it is ``h ^ 1``) and UChicago's (three halfedges per face, ``3f``, ``3f + 1``,
+    ``3f + 2`` for (i, j), (j, k), (k, i), twins found afterwards and returned as
+    ``"twin"``, -1 where a face's side has no neighbour: that course has no boundary
+    halfedges). Faces keep their row numbers in every course, so a halfedge's face is
+    compared with the row. The offending element is named in the *package's* numbering
+    (a face or a vertex), which is the same in every convention.
+    """
+    vertex, face, next_ = arrays["vertex"], arrays["face"], arrays["next"]
+    n_halfedges = len(vertex)
+    for key in ("face", "next") + tuple(k for k in ("prev", "twin") if k in arrays):
+        if len(arrays[key]) != n_halfedges:
+            return (f"your 'vertex' has {n_halfedges} entries but your {key!r} has {len(arrays[key])}: "
+                    f"every halfedge needs one entry in each.", None)
+    if "twin" in arrays:
+        twin = arrays["twin"]
+    elif n_halfedges % 2:
+        return (f"you return {n_halfedges} halfedges and no 'twin', so the twin would be h ^ 1, which needs an "
+                f"even count. Return 'twin' too if your halfedges are not paired that way (three per face, as "
+                f"in the UChicago build, is fine with a 'twin' list).", None)
+    else:
+        twin = np.arange(n_halfedges) ^ 1
+
+    for h in range(n_halfedges):
+        if not 0 <= vertex[h] < n_vertices:
+            return f"halfedge {h} leaves vertex {vertex[h]}, but the vertices are 0 to {n_vertices - 1}.", None
+        if not 0 <= next_[h] < n_halfedges:
+            return f"the next of halfedge {h} is {next_[h]}, which is not one of your halfedges.", None
+        if not -1 <= twin[h] < n_halfedges:
+            return f"the twin of halfedge {h} is {twin[h]}, which is not one of your halfedges (or -1).", None
+        if not -1 <= face[h] < len(faces):
+            return f"halfedge {h} says its face is {face[h]}, but the faces are 0 to {len(faces) - 1}.", None
+
+    def run(h: int) -> str:  # meaningful once every face's next is right (checked first)
+        return f"{vertex[h]} -> {vertex[next_[h]]}"
+
+    for f, corners in enumerate(faces.tolist()):
+        mine = np.flatnonzero(face == f)
+        words = f"face {f} = {corners}"
+        if len(mine) != 3:
+            return (f"{words} is a triangle, so three halfedges should say face {f}, but {len(mine)} of yours "
+                    f"do ({mine.tolist()}).", ("face", f))
+        origins = sorted(int(vertex[g]) for g in mine)
+        if origins != sorted(corners):
+            return (f"{words}: its three halfedges should leave its corners {corners[0]}, {corners[1]} and "
+                    f"{corners[2]}, one each, but yours ({mine.tolist()}) leave {origins}.", ("face", f))
+        for g in mine.tolist():
+            a = int(vertex[g])
+            after = corners[(corners.index(a) + 1) % 3]
+            n = int(next_[g])
+            if face[n] != f or vertex[n] != after:
+                leaves = f"leaves vertex {vertex[n]}" + ("" if face[n] == f else f" in face {face[n]}")
+                hint = (" That is the corner before, not after: next goes round the face in the row's order "
+                        "(counter-clockwise)." if face[n] == f else "")
+                return (f"{words}: halfedge {g} leaves vertex {a}, so its next should be the halfedge of this face "
+                        f"that leaves vertex {after}, the next corner in the row, but your next, {n}, "
+                        f"{leaves}.{hint}", ("face", f))
+
+    uses: dict[tuple[int, int], list[int]] = {}
+    for f, corners in enumerate(faces.tolist()):
+        for c in range(3):
+            a, b = corners[c], corners[(c + 1) % 3]
+            uses.setdefault((min(a, b), max(a, b)), []).append(f)
+    has_boundary_halfedges = bool(np.any(face < 0))
+    for h in range(n_halfedges):
+        t = int(twin[h])
+        a, b = int(vertex[h]), int(vertex[next_[h]])
+        key = (min(a, b), max(a, b))
+        if t < 0:
+            if face[h] < 0 or len(uses[key]) > 1 or has_boundary_halfedges:
+                where = ("faces " + " and ".join(str(g) for g in uses[key]) + " share that edge"
+                         if len(uses[key]) > 1 else "with boundary halfedges, every halfedge has a twin")
+                pointing = np.flatnonzero(twin == h)
+                hint = (f" Your halfedge {int(pointing[0])} has {h} as its twin: set the pair both ways, when "
+                        f"the second sighting finds the first." if len(pointing) else "")
+                return (f"halfedge {h} ({run(h)}) has no twin (-1), but {where}.{hint}", ("vertex", a))
+            continue
+        if twin[t] != h or t == h:
+            return (f"the twin of halfedge {h} ({run(h)}) is {t}, but the twin of {t} is {twin[t]}: twins come in "
+                    f"pairs, each the twin of the other.", ("vertex", a))
+        if (int(vertex[t]), int(vertex[next_[t]])) != (b, a):
+            return (f"halfedge {h} runs {run(h)}, so its twin should run {b} -> {a}, but your twin {t} runs "
+                    f"{run(t)}.", ("vertex", a))
+    for h in np.flatnonzero(face < 0).tolist():
+        g = int(next_[h])
+        if face[g] >= 0:
+            return (f"halfedge {h} ({run(h)}) runs along the boundary (face -1); its next should be the boundary "
+                    f"halfedge leaving vertex {vertex[g]}, but yours, {g}, is inside face {face[g]}.",
+                    ("vertex", int(vertex[g])))
+    n_edges = len(uses)
+    n_boundary_edges = sum(1 for faces_of in uses.values() if len(faces_of) == 1)
+    if has_boundary_halfedges and n_halfedges != 2 * n_edges:
+        return (f"{len(faces)} faces with {n_edges} edges make {2 * n_edges} halfedges with the boundary ones, but "
+                f"you have {n_halfedges}.", None)
+    if not has_boundary_halfedges and n_halfedges != 3 * len(faces):
+        hint = (f" The {n_boundary_edges} boundary edges each need a halfedge with face -1, or none at all "
+                f"(then return 'twin', -1 where a side has no neighbour)." if n_boundary_edges else "")
+        return (f"{len(faces)} faces make {3 * len(faces)} halfedges, but you have {n_halfedges}.{hint}", None)
+
+    if "prev" in arrays:
+        prev = arrays["prev"]
+        for h in range(n_halfedges):
+            if not 0 <= prev[h] < n_halfedges or next_[prev[h]] != h:
+                return (f"the prev of halfedge {h} ({run(h)}) should be the halfedge whose next is {h}, but yours "
+                        f"is {prev[h]}.", ("vertex", int(vertex[h])))
+    if "vertex_halfedge" in arrays:
+        vertex_halfedge = arrays["vertex_halfedge"]
+        for v in range(n_vertices):
+            got = int(vertex_halfedge[v])
+            got_text = f"{got} ({run(got)})" if 0 <= got < n_halfedges else str(got)
+            if not 0 <= got < n_halfedges or vertex[got] != v:
+                return (f"vertex {v}'s halfedge should leave vertex {v}, but yours is {got_text}.", ("vertex", v))
+            # With boundary halfedges, a boundary vertex keeps its boundary one, so that
+            # `v.halfedge.face is None` says at once that v is on the boundary and a walk from
+            # it goes round the fan in one piece. Without them (UChicago) any outgoing one is fine.
+            on_boundary = np.flatnonzero((face < 0) & (vertex == v))
+            if has_boundary_halfedges and len(on_boundary) and face[got] >= 0:
+                wanted = int(on_boundary[0])
+                return (f"vertex {v} is on the boundary, so its halfedge must be its outgoing boundary halfedge, "
+                        f"{wanted} ({run(wanted)}), but yours is {got_text} (with boundary halfedges, "
+                        f"`v.halfedge.face is None` then says at once that v is on the boundary).",
+                        ("vertex", v))
+    return None
+
+
 def check_build(learner_build: Callable) -> CheckResult:
     """Run ``learner_build(faces)`` on several meshes and compare with ``build_reference``.
 
     Args:
         learner_build: a function ``faces -> dict`` with lists ``"vertex"``, ``"face"``,
-            ``"next"`` (one entry per halfedge, course numbering, twin = ``h ^ 1``) and
-            optionally ``"prev"`` and ``"vertex_halfedge"``. ``faces`` is an (m, 3) int
-            array; rows are triangles counter-clockwise.
+            ``"next"`` (one entry per halfedge, any numbering) and optionally ``"prev"``,
+            ``"vertex_halfedge"`` and ``"twin"`` (without it the twin is ``h ^ 1``).
+            ``faces`` is an (m, 3) int array; rows are triangles counter-clockwise.
 
     Returns:
         A :class:`CheckResult`: on the first difference, what it is in words and which
@@ -304,7 +467,9 @@ def check_build(learner_build: Callable) -> CheckResult:
             text, element = problem
             return harness.failed("build", checked, name, intro + text, element, mesh)
         checked.append(name)
-    return harness.passed("build", checked, "Your loop builds the same halfedges, in the same order, as the library.")
+    return CheckResult("build", True, f"All good! Your build makes a correct halfedge structure on {len(checked)} "
+                       f"meshes ({', '.join(checked)}): each face goes round by next, twins pair up, and every "
+                       f"edge is there, whatever numbering you chose.", list(checked))
 
 
 # --------------------------------------------------------------------------------------
@@ -345,10 +510,17 @@ def _ring_as_ints(answer) -> tuple[list[int] | None, str | None]:
         return None, f"one_ring should return vertex indices (or Vertex handles), but yours returned {items!r:.80}."
 
 
+def _is_clockwise(want: list[int], ring: list[int]) -> bool:
+    """Whether ``ring`` is ``want`` walked the other way round from the same start (the CMU
+    notes' ``h = h.twin.next`` walk), on a vertex with at least three neighbours (with
+    fewer, both ways round are the same list)."""
+    return len(want) > 2 and ring == want[:1] + want[1:][::-1]
+
+
 def _compare_ring(mesh: HalfedgeMesh, v: int, ring: list[int]) -> str | None:
     vertex = mesh.vertex(v)
     want = [int(u) for u in vertex.neighbors()]
-    if ring == want:
+    if ring == want or _is_clockwise(want, ring):
         return None
     start = vertex.halfedge
     where = (f"vertex {v} lies on the boundary (its halfedge {start.index} is the boundary halfedge "
@@ -360,17 +532,14 @@ def _compare_ring(mesh: HalfedgeMesh, v: int, ring: list[int]) -> str | None:
     if len(ring) > 1 and len(set(ring)) == 1 and len(want) > 1:
         return head + (f" Every entry is vertex {ring[0]}: the walk circles around that vertex instead of "
                        f"around v (h.next.twin does that). Step with h = h.prev.twin to stay at v.")
-    if len(ring) == len(want) and ring[:1] == want[:1] and ring[1:] == want[1:][::-1]:
-        return head + (" You walked clockwise. h.twin.next turns clockwise around v; to turn "
-                       "counter-clockwise, step h = h.prev.twin.")
     if len(ring) == len(want) and any(ring == want[k:] + want[:k] for k in range(len(want))):
         return head + f" Right order, wrong start: begin with the tip of v.halfedge, vertex {int(start.tip)}."
     reversed_ring = want[::-1]
     if len(ring) == len(want) and any(ring == reversed_ring[k:] + reversed_ring[:k] for k in range(len(want))):
-        return head + (" That is the clockwise order; turn counter-clockwise with h = h.prev.twin, "
-                       "starting at v.halfedge.")
+        return head + (f" That is the clockwise order (CMU's h.twin.next walk, fine too) but from another start: "
+                       f"begin with the tip of v.halfedge, vertex {int(start.tip)}.")
     if sorted(ring) == sorted(want):
-        return head + " Same neighbours, but not in counter-clockwise order around v."
+        return head + " Same neighbours, but not in order around v (either way round is fine, one step at a time)."
     extra = sorted(set(ring) - set(want))
     missing = [u for u in want if u not in ring]
     parts = []
@@ -388,13 +557,23 @@ def _compare_ring(mesh: HalfedgeMesh, v: int, ring: list[int]) -> str | None:
     return head + " " + found[:1].upper() + found[1:] + "." + hint
 
 
+_CLOCKWISE_PRAISE = (
+    "Your walk turns clockwise (h = h.twin.next, as in the CMU notes): the same neighbours from the same "
+    "start, the other way round, which is correct for that convention. This chapter and the library walk "
+    "counter-clockwise (h = h.prev.twin) because then v, r[i], r[i + 1] is always one of the mesh's faces in "
+    "its own counter-clockwise order, so the cross products of chapter 05's normals point outwards without a "
+    "sign flip; reverse ring[1:] (or step with h.prev.twin) when you use the library's rings.")
+
+
 def check_one_ring(learner_one_ring: Callable) -> CheckResult:
     """Run ``learner_one_ring(mesh, v)`` on every vertex of several meshes.
 
     Args:
         learner_one_ring: a function ``(mesh, v) -> list`` of the neighbours of vertex
-            ``v`` (a Vertex handle; ``int(v)`` is its index), counter-clockwise, starting
-            with the tip of ``v.halfedge``. Vertex handles or ints in the list.
+            ``v`` (a Vertex handle; ``int(v)`` is its index), starting with the tip of
+            ``v.halfedge``, counter-clockwise (the chapter's ``h.prev.twin``) or clockwise
+            (the CMU notes' ``h.twin.next``), the same way at every vertex. Vertex
+            handles or ints in the list.
 
     Returns:
         A :class:`CheckResult` naming the first vertex whose ring differs and why
@@ -404,6 +583,7 @@ def check_one_ring(learner_one_ring: Callable) -> CheckResult:
     if unfinished:
         return harness.failed("one_ring", [], None, unfinished)
     checked: list[str] = []
+    turns: tuple[str, int] | None = None  # which way the learner's rings go, and where that was first seen
     for name, mesh in one_ring_cases():
         for vertex in mesh.vertices:
             status, answer = harness.run(learner_one_ring, mesh, vertex)
@@ -424,5 +604,18 @@ def check_one_ring(learner_one_ring: Callable) -> CheckResult:
             problem = _compare_ring(mesh, v, ring)
             if problem is not None:
                 return harness.failed("one_ring", checked, name, problem, ("vertex", v), mesh)
+            want = [int(u) for u in vertex.neighbors()]
+            if len(want) > 2:
+                turn = "clockwise" if _is_clockwise(want, ring) else "counter-clockwise"
+                if turns and turn not in turns:
+                    return harness.failed(
+                        "one_ring", checked, name,
+                        f"vertex {v}'s ring {ring} goes {turn}, but your rings before went {turns[0]} "
+                        f"(at vertex {turns[1]}): one walk turns one way at every vertex. Step with h.prev.twin "
+                        f"(counter-clockwise) or h.twin.next (clockwise), the same everywhere.", ("vertex", v), mesh)
+                turns = turns or (turn, v)
         checked.append(name)
+    if turns and turns[0] == "clockwise":
+        return CheckResult("one_ring", True, f"All good! Your one_ring finds the same neighbours as the library on "
+                           f"{len(checked)} meshes ({', '.join(checked)}). {_CLOCKWISE_PRAISE}", list(checked))
     return harness.passed("one_ring", checked, "You can walk around any vertex, inside or on the boundary.")

@@ -12,6 +12,10 @@ computed from the old ones and returned (``mesh`` must not change):
    ``s = c - p`` without its normal part, ``p + s - (s . n) n``;
 3. boundary vertices stay where they are.
 
+A step damped by a weight ``w`` between 0 and 1, ``p + w (s - (s . n) n)`` (CMU's
+notes use ``w = 1/5``), is accepted too, the same ``w`` every time; the congratulation
+says why the library takes the full step.
+
 The check compares the answer with the library's smoothing phase of
 :func:`~halfedge_edu.algorithms.remesh.remesh` on small meshes, and at the first vertex
 that differs says what the right position is and, where the answer matches a common
@@ -96,6 +100,38 @@ def _gauss_seidel(mesh: HalfedgeMesh) -> np.ndarray:
     return P
 
 
+def _damping(before: np.ndarray, yours: np.ndarray, target: np.ndarray) -> float | None:
+    """The weight ``w`` in ``yours = before + w (target - before)``, the same for every vertex,
+    or None when no single ``w`` in (0, 1) fits.
+
+    CMU's notes move each vertex ``q = p + w (c - p)`` with a damping weight (1/5 in their
+    examples), and project the step on the tangent plane: the same step as the library's,
+    scaled by ``w``.
+    """
+    step = target - before                                          # (n, 3)
+    length_squared = float(np.sum(step * step))
+    if length_squared == 0.0:
+        return None
+    weight = float(np.sum((yours - before) * step)) / length_squared
+    if not 0.0 < weight < 1.0 or not harness.close(yours, before + weight * step):
+        return None
+    return weight
+
+
+def _plain_centroids(mesh: HalfedgeMesh) -> np.ndarray:
+    """(n_vertex_slots, 3): each interior vertex at its neighbours' centroid, the rest unmoved."""
+    centroids = mesh.positions.copy()
+    for vertex in mesh.vertices:
+        if not vertex.is_boundary and vertex.halfedge is not None:
+            centroids[vertex.index] = mesh.positions[[u.index for u in vertex.neighbors()]].mean(axis=0)
+    return centroids
+
+
+def _weight_text(weight: float) -> str:
+    fifth = " (CMU's 1/5)" if abs(weight - 0.2) < 1e-9 else ""
+    return f"w = {weight:.4g}{fifth}"
+
+
 def _explain(mesh: HalfedgeMesh, v: int, yours: np.ndarray, wanted: np.ndarray) -> str:
     """Words for the first vertex where the learner's position differs from the library's."""
     P = mesh.positions
@@ -164,6 +200,7 @@ def check_tangential_smoothing(tangential_smoothing: Callable) -> CheckResult:
     if unfinished:
         return harness.failed(name, [], None, unfinished)
     checked: list[str] = []
+    weights: list[float] = []  # the learner's damping weight w, if they damp the step (CMU's notes)
     for case, mesh in smoothing_cases():
         before = mesh.positions.copy()
         status, answer = harness.run(tangential_smoothing, mesh)
@@ -183,11 +220,33 @@ def check_tangential_smoothing(tangential_smoothing: Callable) -> CheckResult:
             return harness.failed(name, checked, case, f"tangential_smoothing should return one new position per vertex, "
                            f"shape {before.shape}, but yours has shape {yours.shape}.")
         wanted = _library(mesh)
+        damping = _damping(before, yours, wanted)
+        if damping is not None and weights and abs(damping - weights[0]) > 1e-9:
+            return harness.failed(name, checked, case, f"your steps are damped with {_weight_text(damping)} here but "
+                                  f"{_weight_text(weights[0])} before: use one weight for every step.")
+        if damping is not None:
+            weights.append(damping)
+            checked.append(case.split(" (")[0])
+            continue
         wrong = np.flatnonzero(~np.isclose(yours, wanted, rtol=1e-7, atol=1e-9).all(axis=1))
         if len(wrong) == 0:
             checked.append(case.split(" (")[0])
             continue
         v = int(wrong[0])
+        kept_normal = _damping(before, yours, _plain_centroids(mesh))
+        if kept_normal is not None:
+            return harness.failed(name, checked, case, (
+                f"your vertices move p + w (c - p) with {_weight_text(kept_normal)}, the damped step CMU's notes "
+                f"start from, but with its normal part kept, so a curved surface shrinks. Remove the normal part "
+                f"of the step before you scale it: s = c - p, s - (s . n) n, then p + w (s - (s . n) n)."),
+                ("vertex", v), mesh)
         return harness.failed(name, checked, case, _explain(mesh, v, yours[v], wanted[v]), ("vertex", v), mesh)
+    if weights:
+        return harness.all_good(name, checked, "meshes", (
+            f"You damp each step with {_weight_text(weights[0])}, as CMU's notes do: p + w (s - (s . n) n), "
+            f"correct in that convention. The library (like pmp-library's remesher and Botsch and Kobbelt's "
+            f"paper it follows) takes the full tangential step, w = 1, because the remesher's split, collapse "
+            f"and flip passes run between smoothing steps and a full step evens the vertices out in fewer rounds; "
+            f"a damped step moves more gently and needs more of them."))
     return harness.all_good(name, checked, "meshes", "That is the smoothing phase of the remesher: the vertices spread "
                      "out evenly and the surface keeps its shape.")

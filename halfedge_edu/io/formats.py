@@ -29,7 +29,7 @@ from halfedge_edu.io.obj import atomic_output, checked_arrays, read_obj, require
 __all__ = ["load", "load_arrays", "save", "SUFFIXES"]
 
 #: The file suffixes ``load`` and ``save`` understand.
-SUFFIXES = (".obj", ".ply", ".stl", ".off", ".glb", ".gltf")
+SUFFIXES = (".obj", ".ply", ".stl", ".off", ".glb", ".gltf", ".dae")
 
 #: The formats trimesh writes with float32 positions.
 FLOAT32_SUFFIXES = (".ply", ".stl", ".glb", ".gltf")
@@ -44,11 +44,15 @@ def _suffix(path: Path) -> str:
     return suffix
 
 
-def load(path: str | os.PathLike, *, repair: bool = False, triangulate: bool = True) -> HalfedgeMesh:
+def load(path: str | os.PathLike, *, repair: bool = False, triangulate: bool = True,
+         drop_unreferenced: bool = False) -> HalfedgeMesh:
     """Read a mesh file into a ``HalfedgeMesh``.
 
     Args:
-        path: a ``.obj``, ``.ply``, ``.stl``, ``.off``, ``.glb`` or ``.gltf`` file.
+        path: a ``.obj``, ``.ply``, ``.stl``, ``.off``, ``.glb``, ``.gltf`` or ``.dae``
+            (COLLADA, the CMU and CS184 assignments' format; needs pycollada, in the
+            ``io`` extra) file. trimesh's COLLADA reader numbers vertices by their first
+            use in the triangle lists, so ``.dae`` vertex ids are not the file's.
         repair: first make the triangles loadable with ``repair_faces`` (drop degenerate
             and duplicate faces, orient consistently, split non-manifold edges and
             vertices). The mesh then has an attribute ``repair_report``, and if anything
@@ -56,9 +60,13 @@ def load(path: str | os.PathLike, *, repair: bool = False, triangulate: bool = T
         triangulate: for ``.obj``, cut polygons into triangles (False: reject them).
             trimesh always triangulates the other formats. ``.stl`` has no shared
             vertices, so corners at exactly the same position are merged into one.
+        drop_unreferenced: False (the default) keeps every vertex of the file at its
+            index, so vertex ``i`` of the file is ``mesh.vertex(i)`` (a vertex no face
+            uses is isolated: no halfedge), as pmp-library and OpenMesh do; True drops
+            those vertices with a ``MeshWarning`` and renumbers the rest in order.
 
     Returns:
-        A new ``HalfedgeMesh``. Vertices no face uses are dropped with a ``MeshWarning``.
+        A new ``HalfedgeMesh``.
 
     Raises:
         FileNotFoundError: the file does not exist (the standard error for that).
@@ -68,12 +76,14 @@ def load(path: str | os.PathLike, *, repair: bool = False, triangulate: bool = T
     path = Path(path)
     vertices, faces, face_lines = load_arrays(path, triangulate=triangulate)
     if not repair:
-        return HalfedgeMesh.from_faces(vertices, faces, face_lines=face_lines, source=path.name)
+        return HalfedgeMesh.from_faces(vertices, faces, face_lines=face_lines, source=path.name,
+                                   drop_unreferenced=drop_unreferenced)
 
     vertices, faces, report = repair_faces(vertices, faces)
     if face_lines is not None:
         face_lines = face_lines[report.face_origin]
-    mesh = HalfedgeMesh.from_faces(vertices, faces, face_lines=face_lines, source=path.name)
+    mesh = HalfedgeMesh.from_faces(vertices, faces, face_lines=face_lines, source=path.name,
+                                   drop_unreferenced=drop_unreferenced)
     mesh.repair_report = report
     if report:
         warnings.warn(f"{path.name}: {report}", MeshWarning, stacklevel=2)

@@ -93,6 +93,18 @@ print("holes:", bunny.n_boundary_loops, "| edges around each:", [len(loop) for l
 print("V - E + F =", bunny.euler_characteristic, "| genus:", bunny.genus)
 
 # %% [markdown]
+# So `V - E + F = 2` is not the sanity check for the bunny: a closed surface of genus 0
+# has 2, and every hole lowers it by one, so five holes give `2 - 5 = -3`. Here are the
+# five boundary loops, each drawn over the surface:
+
+# %%
+from IPython.display import Image
+
+from halfedge_edu.viz import surface_png
+
+Image(surface_png(bunny, view=(0.3, -1.0, 0.4), boundary_color="#D1495B", size=(480, 380)))  # seen from below
+
+# %% [markdown]
 # ## Look around a vertex
 #
 # The one-ring viewer shows a vertex (orange), its outgoing halfedges (blue), its

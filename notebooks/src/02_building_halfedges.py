@@ -202,6 +202,52 @@ for v in two.vertices:
           f"boundary: {v.is_boundary}")
 
 # %% [markdown]
+# ## Two layouts of the same halfedges
+#
+# The course notes (UChicago's build among them) allocate three halfedges per face as
+# they go: face `f` gets `3f`, `3f + 1`, `3f + 2` for its sides (i, j), (j, k), (k, i),
+# and the twins are found afterwards, when an edge is seen a second time. This package,
+# like pmp-library and OpenMesh, gives each *edge* a pair: `2e` and `2e + 1`, so the
+# twin is never stored, it is `h ^ 1`, and a side that no other face shares still gets
+# its twin, a boundary halfedge with no face. Here are both for the two triangles:
+
+# %%
+def per_face_layout(faces: np.ndarray) -> list[tuple[int, int, int, int | None]]:
+    """(halfedge, from, to, twin) with three halfedges per face, twins found afterwards."""
+    rows, first_seen = [], {}
+    for f, (i, j, k) in enumerate(faces.tolist()):
+        for c, (a, b) in enumerate(((i, j), (j, k), (k, i))):
+            h = 3 * f + c
+            rows.append([h, a, b, None])
+            key = (min(a, b), max(a, b))
+            if key in first_seen:
+                rows[h][3], rows[first_seen[key]][3] = first_seen[key], h
+            else:
+                first_seen[key] = h
+    return [tuple(row) for row in rows]
+
+
+two_triangles = np.array([[0, 1, 2], [0, 2, 3]])
+paired = hx.build_reference(two_triangles)
+per_face = per_face_layout(two_triangles)
+print("per face (course notes)        paired twins (pmp, OpenMesh, this package)")
+for h in range(len(paired.halfedge_vertex)):
+    left = per_face[h] if h < len(per_face) else None
+    left_text = f"h {left[0]}: {left[1]} -> {left[2]}, twin {left[3]}" if left else ""
+    tip = paired.halfedge_vertex[h ^ 1]
+    face = paired.halfedge_face[h]
+    print(f"{left_text:30s} h {h}: {paired.halfedge_vertex[h]} -> {tip}, twin {h ^ 1}, "
+          f"face {face if face >= 0 else 'none (boundary)'}")
+
+# %% [markdown]
+# The per-face layout needs no boundary halfedges and follows the loop the notes write,
+# but it stores a twin per halfedge and leaves `None` where a side has no neighbour, so
+# every walk around a boundary vertex has to test for it. Libraries pick the pairs: the
+# twin costs nothing (one bit), an edge is just `h >> 1`, every halfedge has a twin so
+# walks never stop at a hole, and the boundary loops are there to follow with `next`.
+# `check_build` accepts either layout (return `"twin"` with the per-face one).
+
+# %% [markdown]
 # ## Walk the result
 #
 # The explorer below starts at halfedge 0. Press **next**, **prev** and **twin** and

@@ -303,11 +303,11 @@ result = check_one_ring(one_ring)
 result
 
 # %% [markdown]
-# ### What a mistake looks like
+# ### The other way round, and what a mistake looks like
 #
-# A ring walked with the course's `h = h.twin.next` has the right neighbours in the
-# wrong direction. The check says so, and `result.show()` draws the vertex where it
-# stopped with its ring.
+# A ring walked with the CMU notes' `h = h.twin.next` has the same neighbours from the
+# same start, clockwise. That is correct in that course's convention, so the check
+# accepts it, and its answer says why this chapter turns the other way.
 
 # %%
 def one_ring_clockwise(mesh, v):
@@ -320,7 +320,26 @@ def one_ring_clockwise(mesh, v):
             return ring
 
 
-wrong_way = check_one_ring(one_ring_clockwise)
+check_one_ring(one_ring_clockwise)
+
+# %% [markdown]
+# A walk that steps with `h = h.next.twin` instead circles around the *tip* of the first
+# halfedge, not around `v`. The check stops at the first vertex where that shows, says
+# what happened, and `result.show()` draws that vertex with its ring.
+
+# %%
+def one_ring_around_the_tip(mesh, v):
+    start = v.halfedge
+    ring, h = [], start
+    for _ in range(mesh.n_vertices):   # a bounded walk: this one never gets back to start
+        ring.append(h.tip.index)
+        h = h.next.twin
+        if h == start:
+            break
+    return ring
+
+
+wrong_way = check_one_ring(one_ring_around_the_tip)
 wrong_way
 
 # %%
@@ -334,7 +353,8 @@ wrong_way.show()
 #   boundary.
 # - Around a face: step `next` until back at the start.
 # - Around a vertex: `h = h.prev.twin` turns **counter-clockwise**; the course's
-#   `h = h.twin.next` turns **clockwise**. Both see every neighbour once.
+#   `h = h.twin.next` turns **clockwise**. Both see every neighbour once, and
+#   `check_one_ring` accepts either.
 # - A boundary vertex starts its ring at its boundary halfedge, so the same loop works
 #   on the rim; boundary halfedges chain into loops by `next`.
 # - Compare halfedges with `==`, and stop when you are back at the start.

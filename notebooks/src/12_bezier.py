@@ -219,6 +219,26 @@ print("S(0, 0) =", surface_point(grid, 0.0, 0.0), " = P[0][0] =", grid[0, 0])
 print("library agrees:", np.allclose(bezier_surface_points(grid, 5)[2, 2], surface_point(grid, 0.5, 0.5)))
 
 # %% [markdown]
+# **Coming from CS184?** That assignment stores the grid as rows, `controlPoints[i]`,
+# runs de Casteljau at `u` *along each row* (over `j`) and then at `v` through the row
+# results (over `i`). Here `u` runs down the columns (over `i`) and `v` along the rows
+# (over `j`): the two conventions are each other's transpose. This package's `S(u, v)`
+# is CS184's `S(v, u)` on the same grid, or, to keep CS184's meaning of `u` and `v`,
+# pass the transposed grid `grid.transpose(1, 0, 2)`:
+
+# %%
+def cs184_point(grid, u, v):
+    rows = [de_casteljau(grid[i], u)[-1][0] for i in range(grid.shape[0])]    # one curve per row, at u
+    return de_casteljau(np.array(rows), v)[-1][0]                              # then through the rows, at v
+
+
+asymmetric = grid.copy()
+asymmetric[1, 2, 2] = 3.0                                         # one raised point, so transposing shows
+print("CS184 S(0.2, 0.7):                 ", cs184_point(asymmetric, 0.2, 0.7))
+print("here, S(0.7, 0.2):                 ", surface_point(asymmetric, 0.7, 0.2))
+print("here, transposed grid, S(0.2, 0.7):", surface_point(asymmetric.transpose(1, 0, 2), 0.2, 0.7))
+
+# %% [markdown]
 # The middle of the patch rises to `0.5625 = 9/16` of the inner points' height: just as
 # with curves, the surface heads towards its inner control points without reaching
 # them. At the corners it passes exactly through the corner control points.

@@ -262,7 +262,7 @@ def test_unreferenced_vertices_are_dropped_with_a_warning_keeping_the_order():
     vertices = np.arange(18, dtype=float).reshape(6, 3)
     faces = np.array([[0, 2, 3], [0, 3, 5]])
     with pytest.warns(hx.MeshWarning, match="dropped 2 unreferenced vertices.*1, 4"):
-        mesh = hx.HalfedgeMesh.from_faces(vertices, faces)
+        mesh = hx.HalfedgeMesh.from_faces(vertices, faces, drop_unreferenced=True)
     assert mesh.n_vertices == 4
     assert np.array_equal(mesh.positions, vertices[[0, 2, 3, 5]])
     assert mesh.face_vertices().tolist() == [[0, 1, 2], [0, 2, 3]]
@@ -284,10 +284,32 @@ def test_errors_name_vertices_as_numbered_in_the_input_even_when_some_are_droppe
     # error must still name the vertices the way the caller (or the file) numbers them.
     vertices = np.arange(3.0 * (1 + np.max(faces))).reshape(-1, 3)
     with pytest.warns(hx.MeshWarning), pytest.raises(hx.MeshInputError) as caught:
-        hx.HalfedgeMesh.from_faces(vertices, faces)
+        hx.HalfedgeMesh.from_faces(vertices, faces, drop_unreferenced=True)
     assert caught.value.element == element
     name = f"vertex {element[1]}" if element[0] == "vertex" else str(element[1])
     assert name in str(caught.value)
+
+
+def test_unreferenced_vertices_stay_at_their_input_index_as_isolated_vertices():
+    vertices = np.arange(18, dtype=float).reshape(6, 3)
+    faces = np.array([[0, 2, 3], [0, 3, 5]])
+    mesh = hx.HalfedgeMesh.from_faces(vertices, faces)
+    assert mesh.n_vertices == 6 and np.array_equal(mesh.positions, vertices)
+    assert mesh.face_vertices().tolist() == faces.tolist()
+    assert mesh.vertex_halfedge[[1, 4]].tolist() == [-1, -1]
+    mesh.validate()
+    kept_vertices, kept_faces = mesh.to_arrays()
+    assert np.array_equal(kept_vertices, vertices) and kept_faces.tolist() == faces.tolist()
+    compact_vertices, compact_faces = mesh.to_arrays(compact=True)
+    assert np.array_equal(compact_vertices, vertices[[0, 2, 3, 5]])
+    assert compact_faces.tolist() == [[0, 1, 2], [0, 2, 3]]
+
+
+def test_errors_name_input_vertices_when_unreferenced_ones_are_kept():
+    vertices = np.arange(18.0).reshape(6, 3)
+    with pytest.raises(hx.MeshInputError) as caught:
+        hx.HalfedgeMesh.from_faces(vertices, [[1, 2, 3], [1, 4, 5]])
+    assert caught.value.element == ("vertex", 1)
 
 
 def test_a_pillow_of_two_triangles_is_refused_naming_both_faces():

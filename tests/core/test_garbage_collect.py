@@ -142,8 +142,7 @@ def test_add_vertex_grows_the_arrays_and_keeps_the_old_rows(tetrahedron):
     assert (tetrahedron.vertex_halfedge[4:] == -1).all()
     assert not tetrahedron.vertex_deleted.any()
     assert tetrahedron.topology_version > version
-    with pytest.raises(hx.MeshInvariantError, match="orphan"):
-        tetrahedron.validate()
+    tetrahedron.validate()  # isolated vertices are allowed (a file's unused vertices stay)
 
 
 def test_add_edge_grows_the_arrays_and_leaves_the_links_empty(tetrahedron):

@@ -36,9 +36,16 @@ def test_the_empty_mesh_builds_and_validates(vertices, faces):
     assert vertices.shape == (0, 3) and faces.shape == (0, 3)
 
 
-def test_vertices_without_faces_become_the_empty_mesh_with_a_warning():
+def test_vertices_without_faces_stay_as_isolated_vertices():
+    # Every input vertex keeps its index (as in pmp-library and OpenMesh), faces or not.
+    mesh = hx.HalfedgeMesh.from_faces(TRIANGLE, np.zeros((0, 3), dtype=int))
+    mesh.validate()
+    assert (mesh.n_vertices, mesh.n_faces) == (3, 0)
+
+
+def test_dropping_unreferenced_vertices_without_faces_gives_the_empty_mesh_with_a_warning():
     with pytest.warns(hx.MeshWarning, match="dropped 3 unreferenced vertices"):
-        mesh = hx.HalfedgeMesh.from_faces(TRIANGLE, np.zeros((0, 3), dtype=int))
+        mesh = hx.HalfedgeMesh.from_faces(TRIANGLE, np.zeros((0, 3), dtype=int), drop_unreferenced=True)
     assert mesh.n_vertices == 0
 
 

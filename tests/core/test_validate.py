@@ -127,6 +127,7 @@ def vertex_halfedge_out_of_range():
 def orphan_vertex():
     mesh = _mesh(shapes.tetrahedron())
     mesh.add_vertex([5.0, 5.0, 5.0])
+    mesh.halfedge_vertex[0] = 4  # a halfedge leaves it, so it is not isolated
     return mesh, "vertex-halfedge-origin", ("vertex", 4), "vertex 4"
 
 

@@ -134,7 +134,7 @@ def test_twin_that_points_the_wrong_way_is_explained():
     assert "points the wrong way" in result.message
 
 
-def test_edges_numbered_by_sorted_key_are_a_numbering_difference():
+def test_edges_numbered_by_sorted_key_are_accepted_as_another_numbering():
     def sorted_numbering(faces):
         # Edges numbered by their sorted vertex pair instead of first sighting.
         answer = student_build(faces)
@@ -151,9 +151,65 @@ def test_edges_numbered_by_sorted_key_are_a_numbering_difference():
         return out
 
     result = check_build(sorted_numbering)
-    assert not result
-    assert "the numbering differs" in result.message
-    assert "in the order they are first seen" in result.message
+    assert result.passed, result.message
+    assert "whatever numbering you chose" in result.message
+
+
+def uchicago_build(faces, *, pair_twins: bool = True, next_step: int = 1):
+    """CMSC 23700's P1 order: face f allocates halfedges 3f, 3f + 1, 3f + 2 for (i, j),
+    (j, k), (k, i); a side seen before gets its twin then; there are no boundary halfedges
+    (twin None); a vertex's halfedge is the last one set."""
+    n_halfedges = 3 * len(faces)
+    vertex, face, next_ = [0] * n_halfedges, [0] * n_halfedges, [0] * n_halfedges
+    twin: list[int | None] = [None] * n_halfedges
+    vertex_halfedge: dict[int, int] = {}
+    first_seen: dict[tuple[int, int], int] = {}
+    for f, (i, j, k) in enumerate(faces.tolist()):
+        for c, (a, b) in enumerate(((i, j), (j, k), (k, i))):
+            h = 3 * f + c
+            vertex[h], face[h], next_[h] = a, f, 3 * f + (c + next_step) % 3
+            vertex_halfedge[a] = h
+            key = (min(a, b), max(a, b))
+            if key in first_seen:
+                twin[h] = first_seen[key]
+                if pair_twins:
+                    twin[first_seen[key]] = h
+            else:
+                first_seen[key] = h
+    return {"vertex": vertex, "face": face, "next": next_, "twin": twin,
+            "vertex_halfedge": [vertex_halfedge[v] for v in range(len(vertex_halfedge))]}
+
+
+def test_the_uchicago_allocation_order_is_accepted():
+    result = check_build(uchicago_build)
+    assert result.passed, result.message
+    assert "octahedron, shuffled" in result.checked and "annulus (two boundary loops)" in result.checked
+
+
+def test_uchicago_twin_set_one_way_only_is_named():
+    result = check_build(lambda faces: uchicago_build(faces, pair_twins=False))
+    assert not result and result.mesh_name == "two triangles"
+    assert "halfedge 2 (2 -> 0) has no twin (-1), but faces 0 and 1 share that edge" in result.message
+    assert "Your halfedge 3 has 2 as its twin: set the pair both ways" in result.message
+
+
+def test_uchicago_next_the_wrong_way_round_is_named():
+    result = check_build(lambda faces: uchicago_build(faces, next_step=2))
+    assert not result and result.element == ("face", 0)
+    assert ("halfedge 0 leaves vertex 0, so its next should be the halfedge of this face that leaves vertex 1"
+            in result.message)
+    assert "That is the corner before, not after" in result.message
+
+
+def test_three_per_face_without_a_twin_list_says_how_to_return_it():
+    def no_twin(faces):
+        answer = uchicago_build(faces)
+        del answer["twin"]
+        return answer
+
+    result = check_build(no_twin)
+    assert not result and "the boundary halfedges are missing" in result.message
+    assert "if you also return 'twin'" in result.message
 
 
 def test_boundary_halfedge_with_a_face_is_named():
@@ -291,11 +347,32 @@ def test_check_one_ring_accepts_vertex_handles():
     assert check_one_ring(lambda mesh, v: v.neighbors())
 
 
-def test_clockwise_walk_is_named():
+def test_the_cmu_clockwise_walk_is_accepted_and_the_chapters_direction_explained():
     result = check_one_ring(walk(lambda h: h.twin.next))
+    assert result.passed, result.message
+    assert "annulus (two boundary loops)" in result.checked
+    assert "Your walk turns clockwise (h = h.twin.next, as in the CMU notes)" in result.message
+    assert "counter-clockwise (h = h.prev.twin) because" in result.message
+
+
+def test_a_walk_that_changes_direction_between_vertices_is_named():
+    def sometimes_clockwise(mesh, v):
+        step = (lambda h: h.twin.next) if int(v) == 2 else (lambda h: h.prev.twin)
+        return walk(step)(mesh, v)
+
+    result = check_one_ring(sometimes_clockwise)
+    assert not result and result.mesh_name == "open patch" and result.element == ("vertex", 2)
+    assert "goes clockwise, but your rings before went counter-clockwise" in result.message
+
+
+def test_a_clockwise_walk_from_the_wrong_start_is_named():
+    def clockwise_from_the_next_one(mesh, v):
+        ring = walk(lambda h: h.twin.next)(mesh, v)
+        return ring[1:] + ring[:1]
+
+    result = check_one_ring(clockwise_from_the_next_one)
     assert result.mesh_name == "open patch" and result.element == ("vertex", 0)
-    assert "is [4, 1, 5], but yours is [4, 5, 1]" in result.message
-    assert "You walked clockwise" in result.message and "h = h.prev.twin" in result.message
+    assert "That is the clockwise order (CMU's h.twin.next walk, fine too) but from another start" in result.message
 
 
 def test_wrong_start_is_named():
@@ -372,7 +449,7 @@ def test_one_ring_with_blanks_is_not_run():
 # --------------------------------------------------------------------------------------
 
 def test_result_reads_as_its_message():
-    result = check_one_ring(walk(lambda h: h.twin.next))
+    result = check_one_ring(walk(lambda h: h.next.twin))
     assert isinstance(result, CheckResult)
     assert repr(result) == result.message and result.message.startswith("Not yet. On 'open patch': ")
     assert isinstance(result.mesh, hx.HalfedgeMesh)

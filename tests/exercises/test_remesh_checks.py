@@ -82,3 +82,35 @@ def test_blanks_are_reported_before_running():
 def test_a_wrong_shape_is_reported():
     result = check_tangential_smoothing(lambda mesh: mesh.positions[:3].copy())
     assert not result and "shape" in result.message
+
+
+def damped(weight, **slips):
+    """CMU's vertex averaging: q = p + w (step), the step the same as the library's."""
+    def step(mesh):
+        return mesh.positions + weight * (smoothing(mesh, **slips) - mesh.positions)
+    return step
+
+
+def test_cmus_damping_weight_of_one_fifth_is_accepted_and_named():
+    result = check_tangential_smoothing(damped(0.2))
+    assert result.passed, result.message
+    assert "You damp each step with w = 0.2 (CMU's 1/5)" in result.message
+    assert "takes the full tangential step, w = 1, because" in result.message
+
+
+def test_damping_that_keeps_the_normal_part_is_named():
+    result = check_tangential_smoothing(damped(0.2, keep_normal_part=True))
+    assert not result.passed
+    assert "your vertices move p + w (c - p) with w = 0.2 (CMU's 1/5)" in result.message
+    assert "with its normal part kept" in result.message
+
+
+def test_a_weight_that_changes_between_meshes_is_named():
+    weights = iter([0.2, 0.5, 0.5, 0.5])
+
+    def changing(mesh):
+        return damped(next(weights))(mesh)
+
+    result = check_tangential_smoothing(changing)
+    assert not result.passed and result.mesh_name.startswith("icosphere")
+    assert "damped with w = 0.5 here but w = 0.2 (CMU's 1/5) before" in result.message

@@ -90,7 +90,7 @@ def test_unknown_suffix_is_refused_by_load_and_save(tmp_path, spot):
     with pytest.raises(MeshInputError, match="unknown file type '.xyz'"):
         load(tmp_path / "mesh.xyz")
     with pytest.raises(MeshInputError, match="unknown file type"):
-        save(spot, tmp_path / "out.dae")
+        save(spot, tmp_path / "out.abc")
     assert sorted(os.listdir(tmp_path)) == ["mesh.xyz"]
 
 
@@ -118,9 +118,16 @@ def test_polygons_are_triangulated_unless_asked_not_to(tmp_path):
         load(tmp_path / "quad.obj", triangulate=False)
 
 
-def test_loading_the_bunny_file_warns_about_its_unreferenced_vertices():
+def test_loading_the_bunny_file_keeps_its_unreferenced_vertices_at_their_index():
+    mesh = load(MESHES / "stanford-bunny.obj")
+    assert (mesh.n_vertices, mesh.n_faces) == (35947, 69451)
+    assert int(np.count_nonzero(mesh.vertex_halfedge == -1)) == 1113
+    mesh.validate()
+
+
+def test_loading_the_bunny_file_can_drop_its_unreferenced_vertices_with_a_warning():
     with pytest.warns(MeshWarning, match="1113 unreferenced vertices"):
-        mesh = load(MESHES / "stanford-bunny.obj")
+        mesh = load(MESHES / "stanford-bunny.obj", drop_unreferenced=True)
     assert (mesh.n_vertices, mesh.n_faces) == (34834, 69451)
 
 
