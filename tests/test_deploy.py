@@ -73,12 +73,14 @@ def test_shared_start_script_sets_the_live_environment_and_copies_the_course(tmp
     env.update(HOME=str(tmp_path), JUPYTERHUB_SERVICE_PREFIX="/user/ann/",
                PATH=os.path.dirname(sys.executable) + os.pathsep + env.get("PATH", ""))
     result = subprocess.run(
-        [str(START), sys.executable, "-c", "import json, os; print(json.dumps(dict(os.environ)))"],
+        [str(START), sys.executable, "-c", "import json, os, pyvista; print(json.dumps(dict(os.environ, "
+         "view_prefix=pyvista.global_theme.trame.server_proxy_prefix)))"],
         capture_output=True, text=True, env=env, timeout=120,
     )
     assert result.returncode == 0, result.stderr
     started = json.loads(result.stdout.splitlines()[-1])
-    assert started["PYVISTA_TRAME_SERVER_PROXY_PREFIX"] == "/user/ann/proxy/"
+    # The prefix the live view's address is built with: the user's own, once.
+    assert started.pop("view_prefix") == "/user/ann/proxy/"
     assert started["VTK_DEFAULT_OPENGL_WINDOW"] == re.search(r"VTK_DEFAULT_OPENGL_WINDOW=(\S+)", MAKEFILE).group(1)
     wasm = Path(started["VTK_WASM_DIR_OVERRIDE"])
     assert wasm.is_dir() and not any(wasm.iterdir())
