@@ -106,6 +106,22 @@ def test_local_hub_config_starts_students_through_the_shared_script(tmp_path):
     assert Path(command[0]) == START and os.access(command[0], os.X_OK)
     assert command[1:] == ["jupyterhub-singleuser"]
     assert (tmp_path / "hub").is_dir()
+    # Without the variables below, no API token and the package's own live view.
+    assert "services" not in config.JupyterHub and "environment" not in config.Spawner
+
+
+def test_local_hub_config_passes_the_live_backend_on_and_takes_an_admin_token(tmp_path, monkeypatch):
+    monkeypatch.setenv("HALFEDGE_EDU_LIVE_BACKEND", "client")
+    monkeypatch.setenv("HALFEDGE_HUB_API_TOKEN", "secret-of-the-script")
+    monkeypatch.setenv("HALFEDGE_HUB_INTERNAL_PORT", "18081")
+    config = hub_config(tmp_path)
+    assert config.Spawner.environment == {"HALFEDGE_EDU_LIVE_BACKEND": "client"}
+    [service] = config.JupyterHub.services
+    assert service["api_token"] == "secret-of-the-script"
+    [role] = config.JupyterHub.load_roles
+    assert role["services"] == [service["name"]]
+    assert {"admin:servers", "access:servers"} <= set(role["scopes"])
+    assert config.JupyterHub.hub_port == 18081
 
 
 def test_kubernetes_values_have_the_local_hubs_limits(tmp_path):
