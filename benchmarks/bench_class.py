@@ -281,23 +281,24 @@ def chapter_cells(path: Path) -> list[str]:
 
 # --------------------------------------------------------------------------- processes
 
-def server_processes(user: str):
-    """(the single-user server, its descendants) of ``user``, found by JUPYTERHUB_USER."""
+def server_processes(home: Path):
+    """(the single-user server, its descendants) whose HOME is ``home``: a student of this
+    hub (two hubs on one machine both have a student00; their homes differ)."""
     import psutil
 
     for process in psutil.process_iter(["cmdline"]):
         try:
             if any("jupyterhub-singleuser" in part for part in process.info["cmdline"] or []) \
-                    and process.environ().get("JUPYTERHUB_USER") == user:
+                    and process.environ().get("HOME") == str(home):
                 return process, process.children(recursive=True)
         except (psutil.NoSuchProcess, psutil.AccessDenied):
             continue
-    raise BenchError(f"no jupyterhub-singleuser process for {user}")
+    raise BenchError(f"no jupyterhub-singleuser process with HOME={home}")
 
 
-def memory(user: str) -> tuple[float, float, float]:
+def memory(home: Path) -> tuple[float, float, float]:
     """(PSS of server + kernel, PSS of the kernel alone, RSS of server + kernel) in MiB."""
-    server, children = server_processes(user)
+    server, children = server_processes(home)
     pss = rss = kernel_pss = 0.0
     for process in [server, *children]:
         info = process.memory_full_info()
@@ -308,9 +309,9 @@ def memory(user: str) -> tuple[float, float, float]:
     return pss / MIB, kernel_pss / MIB, rss / MIB
 
 
-def cpu_seconds(user: str) -> float:
-    """User + system CPU seconds used so far by ``user``'s server and its kernel."""
-    server, children = server_processes(user)
+def cpu_seconds(home: Path) -> float:
+    """User + system CPU seconds used so far by the server of ``home`` and its kernel."""
+    server, children = server_processes(home)
     total = 0.0
     for process in [server, *children]:
         times = process.cpu_times()
@@ -323,6 +324,7 @@ def cpu_seconds(user: str) -> float:
 @dataclass
 class Student:
     name: str
+    home: Path
     spawn_s: float = float("nan")
     chapter_s: float = float("nan")
     pss_mib: float = float("nan")
@@ -356,6 +358,7 @@ class ClassResult:
             "step_p50_ms": percentile(steps, 0.5), "step_p95_ms": percentile(steps, 0.95),
             "cpu_per_step_ms": median([s.cpu_per_step_ms for s in self.members]),
             "rotate_cpu_per_s": median(rotate),
+            "drags_per_s": median([view["drags_per_s"] for view in self.browser]),
             "click_ms": median([view["click_ms"] for view in self.browser]),
         }
 
@@ -366,7 +369,7 @@ def run_class(n: int, *, steps: int = 20, step_interval: float = 1.0, rotate_sec
     """Everything the module docstring lists, for ``n`` students; always stops the hub."""
     state = Path(tempfile.mkdtemp(prefix=f"halfedge-class-{n}-"))
     load = os.getloadavg()[0]
-    members = [Student(f"student{i:02d}") for i in range(n)]
+    members = [Student(f"student{i:02d}", state / f"student{i:02d}") for i in range(n)]
     for student in members:
         prepare_home(state, student.name)
     started = time.monotonic()
@@ -382,7 +385,7 @@ def run_class(n: int, *, steps: int = 20, step_interval: float = 1.0, rotate_sec
             list(pool.map(lambda s: run_chapter(hub, s, timeout, live_backend), members))
             log(f"[{n} students] chapter 03 ran: median {statistics.median(s.chapter_s for s in members):.1f} s")
             for student in members:
-                student.pss_mib, student.kernel_pss_mib, student.rss_mib = memory(student.name)
+                student.pss_mib, student.kernel_pss_mib, student.rss_mib = memory(student.home)
             list(pool.map(lambda s: stepper_session(s, steps, step_interval, timeout), members))
         views = []
         if browsers:
@@ -446,7 +449,7 @@ def stepper_session(student: Student, steps: int, interval: float, timeout: floa
     from request to reply; CPU per step from the server's and kernel's CPU times."""
     # Students do not click in lockstep: start at a random moment within one interval.
     time.sleep(interval * secrets.randbelow(1000) / 1000)
-    cpu_before, started = cpu_seconds(student.name), time.monotonic()
+    cpu_before, started = cpu_seconds(student.home), time.monotonic()
     for k in range(steps):
         if time.monotonic() - started > timeout:
             break
@@ -455,7 +458,7 @@ def stepper_session(student: Student, steps: int, interval: float, timeout: floa
         student.steps_ms.append(1000 * seconds)
         time.sleep(max(0.0, interval - (time.monotonic() - tick)))
     if student.steps_ms:
-        student.cpu_per_step_ms = 1000 * (cpu_seconds(student.name) - cpu_before) / len(student.steps_ms)
+        student.cpu_per_step_ms = 1000 * (cpu_seconds(student.home) - cpu_before) / len(student.steps_ms)
 
 
 # --------------------------------------------------------------------------- browser
@@ -577,7 +580,7 @@ def one_view(hub: Hub, page, student: Student, rotate_seconds: float, timeout: f
     box = frame.bounding_box()
     cx, cy = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
     page.mouse.move(cx, cy)
-    cpu_before, start = cpu_seconds(student.name), time.monotonic()
+    cpu_before, start = cpu_seconds(student.home), time.monotonic()
     page.mouse.down()
     moves = 0
     while time.monotonic() - start < rotate_seconds and moves < 10_000:
@@ -588,12 +591,13 @@ def one_view(hub: Hub, page, student: Student, rotate_seconds: float, timeout: f
         page.wait_for_timeout(16)
     page.mouse.up()
     dragged = time.monotonic() - start
-    rotate_cpu = (cpu_seconds(student.name) - cpu_before) / dragged
+    rotate_cpu = (cpu_seconds(student.home) - cpu_before) / dragged
     png, rotated = settled_picture(frame, after, timeout=min(timeout, 120))
     (shots / f"{student.name}-2-rotated.png").write_bytes(png)
     return {"student": student.name, "click_changed": round(moved, 4), "click_ms": round(click_ms),
             "rotate_changed": round(changed_share(after, rotated), 4),
-            "rotate_cpu_per_s": round(rotate_cpu, 3), "drag_events": moves}
+            "rotate_cpu_per_s": round(rotate_cpu, 3), "drag_events": moves,
+            "drags_per_s": round(moves / dragged, 1)}
 
 
 # --------------------------------------------------------------------------- table
@@ -604,6 +608,7 @@ COLUMNS = [
     ("spawn_s", "spawn s", "{:.1f}"), ("chapter_s", "ch.03 s", "{:.1f}"),
     ("step_p50_ms", "step p50 ms", "{:.0f}"), ("step_p95_ms", "step p95 ms", "{:.0f}"),
     ("cpu_per_step_ms", "CPU/step ms", "{:.0f}"), ("rotate_cpu_per_s", "CPU/s rotating", "{:.2f}"),
+    ("drags_per_s", "drags/s", "{:.0f}"),
 ]
 
 
