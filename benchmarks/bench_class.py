@@ -347,7 +347,8 @@ class ClassResult:
         """The table's numbers: medians over students (p50/p95 over all steps)."""
         steps = [ms for student in self.members for ms in student.steps_ms]
         median = lambda values: statistics.median(values) if values else float("nan")  # noqa: E731
-        rotate = [view["rotate_cpu_per_s"] for view in self.browser]
+        views = [view for view in self.browser if "failed" not in view]
+        rotate = [view["rotate_cpu_per_s"] for view in views]
         return {
             "students": self.students, "load": self.load,
             "pss_mib": median([s.pss_mib for s in self.members]),
@@ -358,8 +359,9 @@ class ClassResult:
             "step_p50_ms": percentile(steps, 0.5), "step_p95_ms": percentile(steps, 0.95),
             "cpu_per_step_ms": median([s.cpu_per_step_ms for s in self.members]),
             "rotate_cpu_per_s": median(rotate),
-            "drags_per_s": median([view["drags_per_s"] for view in self.browser]),
-            "click_ms": median([view["click_ms"] for view in self.browser]),
+            "drags_per_s": median([view["drags_per_s"] for view in views]),
+            "views_drawn": f"{len(views)}/{len(self.browser)}",
+            "click_ms": median([view["click_ms"] for view in views]),
         }
 
 
@@ -534,17 +536,19 @@ def look_in_browser(hub: Hub, students: list[Student], rotate_seconds: float, ti
             for student in students:
                 context = browser.new_context(viewport={"width": 1400, "height": 1000})
                 page = context.new_page()
+                console = []
+                page.on("console", lambda message: console.append(f"{message.type}: {message.text}"))
+                page.on("pageerror", lambda error: console.append(f"pageerror: {error}"))
                 try:
                     results.append(one_view(hub, page, student, rotate_seconds, timeout, screenshots))
-                except BaseException:
-                    page.screenshot(path=str(screenshots / f"{student.name}-failure-page.png"))
+                except BenchError as error:
+                    # One student's view failing is a result too: the others still count.
+                    shot = screenshots / f"{student.name}-failure-page.png"
+                    page.screenshot(path=str(shot))
                     sources = page.eval_on_selector_all("iframe", "frames => frames.map(f => f.src)")
-                    log(f"[{student.name}] the page's iframes: {sources}")
-                    for source in sources:
-                        answer = page.request.get(source, timeout=30_000)
-                        log(f"  {source}: HTTP {answer.status} {answer.text()[:300]!r}")
-                    log(f"[{student.name}] failed; the page: {screenshots / f'{student.name}-failure-page.png'}")
-                    raise
+                    log(f"[{student.name}] live view FAILED: {error}; the page: {shot}; its iframes: {sources}")
+                    log("  browser console:\n  " + "\n  ".join(console[-15:]))
+                    results.append({"student": student.name, "failed": str(error)})
                 finally:
                     context.close()
                 log(f"[{student.name}] live view: {results[-1]}")
@@ -609,6 +613,7 @@ COLUMNS = [
     ("step_p50_ms", "step p50 ms", "{:.0f}"), ("step_p95_ms", "step p95 ms", "{:.0f}"),
     ("cpu_per_step_ms", "CPU/step ms", "{:.0f}"), ("rotate_cpu_per_s", "CPU/s rotating", "{:.2f}"),
     ("drags_per_s", "drags/s", "{:.0f}"),
+    ("views_drawn", "views ok", "{}"),
 ]
 
 

@@ -58,6 +58,7 @@ def test_two_students_run_chapter_03_and_see_their_live_views_through_the_hub(hu
         assert student.cpu_per_step_ms > 0 and math.isfinite(student.cpu_per_step_ms)
     assert [view["student"] for view in result.browser] == ["student00", "student01"]
     for view in result.browser:
+        assert "failed" not in view, view
         assert view["click_changed"] >= bench.MIN_CHANGED_SHARE, view
         assert view["rotate_changed"] >= bench.MIN_CHANGED_SHARE, view
         assert view["drag_events"] > 0 and view["rotate_cpu_per_s"] >= 0
