@@ -10,13 +10,16 @@
 # - VTK_WASM_DIR_OVERRIDE: an empty folder, so trame-vtklocal never tries to download VTK.wasm.
 # - PYVISTA_TRAME_SERVER_PROXY_PREFIX: the live 3D views reach the kernel's trame server
 #   through jupyter-server-proxy under this user's own prefix (/user/NAME/proxy/PORT).
+#   pyvista puts $JUPYTERHUB_SERVICE_PREFIX (/user/NAME/) in front by itself, so the
+#   variable is only "/proxy/": with the prefix in it too, the view's address had it
+#   twice (/user/NAME/user/NAME/proxy/...) and the live view stayed an error page.
 # PYVISTA_JUPYTER_BACKEND=static is NOT set: that is for CI only and would turn every live
 # view into a picture. A hub short of memory may set HALFEDGE_EDU_VIZ=static instead.
 set -euo pipefail
 
 export VTK_DEFAULT_OPENGL_WINDOW=vtkEGLRenderWindow
 export VTK_WASM_DIR_OVERRIDE="${VTK_WASM_DIR_OVERRIDE:-$HOME/.cache/halfedge_edu/vtk-wasm-empty}"
-export PYVISTA_TRAME_SERVER_PROXY_PREFIX="${JUPYTERHUB_SERVICE_PREFIX:-/}proxy/"
+export PYVISTA_TRAME_SERVER_PROXY_PREFIX="/proxy/"
 mkdir -p "$VTK_WASM_DIR_OVERRIDE"
 
 # Each student's own copy of the chapters, from the installed package; files already

@@ -73,17 +73,19 @@ def test_shared_start_script_sets_the_live_environment_and_copies_the_course(tmp
     env.update(HOME=str(tmp_path), JUPYTERHUB_SERVICE_PREFIX="/user/ann/",
                PATH=os.path.dirname(sys.executable) + os.pathsep + env.get("PATH", ""))
     result = subprocess.run(
-        [str(START), sys.executable, "-c", "import json, os; print(json.dumps(dict(os.environ)))"],
+        [str(START), sys.executable, "-c", "import json, os, pyvista; print(json.dumps(dict(os.environ, "
+         "view_prefix=pyvista.global_theme.trame.server_proxy_prefix)))"],
         capture_output=True, text=True, env=env, timeout=120,
     )
     assert result.returncode == 0, result.stderr
     started = json.loads(result.stdout.splitlines()[-1])
-    assert started["PYVISTA_TRAME_SERVER_PROXY_PREFIX"] == "/user/ann/proxy/"
+    # The prefix the live view's address is built with: the user's own, once.
+    assert started.pop("view_prefix") == "/user/ann/proxy/"
     assert started["VTK_DEFAULT_OPENGL_WINDOW"] == re.search(r"VTK_DEFAULT_OPENGL_WINDOW=(\S+)", MAKEFILE).group(1)
     wasm = Path(started["VTK_WASM_DIR_OVERRIDE"])
     assert wasm.is_dir() and not any(wasm.iterdir())
     assert "PYVISTA_JUPYTER_BACKEND" not in started, "a hub keeps the live view (static is for CI)"
-    assert len(list((tmp_path / "course").glob("[0-9][0-9]_*.ipynb"))) == len(list((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb")))
+    assert len(list((tmp_path / "course").glob("[0-9][0-9]*_*.ipynb"))) == len(list((ROOT / "notebooks").glob("[0-9][0-9]*_*.ipynb")))
 
 
 def test_start_script_sets_the_makefiles_variables_and_the_proxy_prefix():
@@ -104,6 +106,22 @@ def test_local_hub_config_starts_students_through_the_shared_script(tmp_path):
     assert Path(command[0]) == START and os.access(command[0], os.X_OK)
     assert command[1:] == ["jupyterhub-singleuser"]
     assert (tmp_path / "hub").is_dir()
+    # Without the variables below, no API token and the package's own live view.
+    assert "services" not in config.JupyterHub and "environment" not in config.Spawner
+
+
+def test_local_hub_config_passes_the_live_backend_on_and_takes_an_admin_token(tmp_path, monkeypatch):
+    monkeypatch.setenv("HALFEDGE_EDU_LIVE_BACKEND", "client")
+    monkeypatch.setenv("HALFEDGE_HUB_API_TOKEN", "secret-of-the-script")
+    monkeypatch.setenv("HALFEDGE_HUB_INTERNAL_PORT", "18081")
+    config = hub_config(tmp_path)
+    assert config.Spawner.environment == {"HALFEDGE_EDU_LIVE_BACKEND": "client"}
+    [service] = config.JupyterHub.services
+    assert service["api_token"] == "secret-of-the-script"
+    [role] = config.JupyterHub.load_roles
+    assert role["services"] == [service["name"]]
+    assert {"admin:servers", "access:servers"} <= set(role["scopes"])
+    assert config.JupyterHub.hub_port == 18081
 
 
 def test_kubernetes_values_have_the_local_hubs_limits(tmp_path):

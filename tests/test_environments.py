@@ -28,8 +28,8 @@ else:  # pytest itself depends on tomli before 3.11
 ROOT = Path(__file__).resolve().parents[1]
 PROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
 LOCKS = sorted((ROOT / "constraints").glob("*.txt"))
-# What `make test` installs (the dev extra pulls in notebooks and docs); bench floats.
-LOCKED_EXTRAS = ("notebooks", "dev", "docs")
+# What `make test` installs (the dev extra pulls in notebooks, docs and hub); bench floats.
+LOCKED_EXTRAS = ("notebooks", "dev", "docs", "hub")
 
 
 def normalise(name: str) -> str:

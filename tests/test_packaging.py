@@ -28,11 +28,11 @@ PROJECT = PYPROJECT["project"]
 # students get the notebooks only, contributors everything.
 ENVIRONMENT_FILES = {
     "environment.yml": ("notebooks",),
-    "environment-dev.yml": ("notebooks", "dev", "docs", "bench"),
+    "environment-dev.yml": ("notebooks", "dev", "docs", "hub", "bench"),
 }
 README = (ROOT / "README.md").read_text()
 
-EXTRAS = ("notebooks", "dev", "docs", "bench")
+EXTRAS = ("notebooks", "dev", "docs", "hub", "bench")
 # Imported by the notebooks and widgets only; `import halfedge_edu` must not pull them in.
 PLOTTING_MODULES = ("pyvista", "vtk", "vtkmodules", "trame", "trame_pyvista", "ipywidgets", "matplotlib")
 
@@ -115,8 +115,8 @@ def test_students_environment_has_no_contributor_tools():
     assert not (set(conda) | set(pip)) & contributor_only
 
 
-def test_dev_extra_includes_the_notebooks_and_docs_extras():
-    assert "halfedge_edu[notebooks,docs]" in PROJECT["optional-dependencies"]["dev"]
+def test_dev_extra_includes_the_notebooks_docs_and_hub_extras():
+    assert "halfedge_edu[notebooks,docs,hub]" in PROJECT["optional-dependencies"]["dev"]
 
 
 def test_import_does_not_load_the_plotting_stack():

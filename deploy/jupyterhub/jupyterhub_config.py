@@ -32,6 +32,10 @@ STATE.mkdir(parents=True, exist_ok=True)
 c.JupyterHub.ip = os.environ.get("HALFEDGE_HUB_IP", "127.0.0.1")
 c.JupyterHub.port = int(os.environ.get("HALFEDGE_HUB_PORT", "8000"))
 c.JupyterHub.hub_ip = "127.0.0.1"
+# The hub's own API and the proxy's API (defaults 8081 and port + 1): the benchmark
+# starts several hubs one after the other and gives each free ports.
+c.JupyterHub.hub_port = int(os.environ.get("HALFEDGE_HUB_INTERNAL_PORT", "8081"))
+c.ConfigurableHTTPProxy.api_url = f"http://127.0.0.1:{os.environ.get('HALFEDGE_HUB_PROXY_API_PORT', c.JupyterHub.port + 1)}"
 c.JupyterHub.cookie_secret_file = str(STATE / "cookie_secret")
 c.JupyterHub.db_url = f"sqlite:///{STATE / 'jupyterhub.sqlite'}"
 
@@ -43,6 +47,10 @@ c.JupyterHub.spawner_class = os.environ.get("HALFEDGE_HUB_SPAWNER", "simple")
 c.SimpleLocalProcessSpawner.home_dir_template = str(STATE / "{username}")
 c.Spawner.cmd = [str(DEPLOY / "singleuser-start.sh"), "jupyterhub-singleuser"]
 c.Spawner.default_url = "/lab/tree/course"
+# The test spawner runs servers as the hub's own user; when that is root (a container,
+# CI), Jupyter refuses to start without this. SystemdSpawner's students are never root.
+if c.JupyterHub.spawner_class == "simple" and os.geteuid() == 0:
+    c.Spawner.args = ["--ServerApp.allow_root=True"]
 # Measured (issue 14): 470-530 MiB per student kernel after chapter 03, about 200 MiB of
 # it the first live 3D view; rotating it costs up to a core while dragging.
 c.Spawner.mem_limit = "1G"
@@ -51,3 +59,18 @@ c.Spawner.cpu_limit = 1.0
 c.Spawner.cpu_guarantee = 0.25
 c.Spawner.start_timeout = 120
 c.Spawner.http_timeout = 120
+
+# The live 3D view for everyone: "server" (the kernel renders; default) or "client"
+# (vtk.js draws in the browser). See README, "Deploying for a class".
+if "HALFEDGE_EDU_LIVE_BACKEND" in os.environ:
+    c.Spawner.environment = {"HALFEDGE_EDU_LIVE_BACKEND": os.environ["HALFEDGE_EDU_LIVE_BACKEND"]}
+
+# An admin token for scripts (benchmarks/bench_class.py): start and stop servers, and
+# reach them (run a chapter in a student's kernel). Only when the variable is set.
+if os.environ.get("HALFEDGE_HUB_API_TOKEN"):
+    c.JupyterHub.services = [{"name": "class-admin", "api_token": os.environ["HALFEDGE_HUB_API_TOKEN"]}]
+    c.JupyterHub.load_roles = [{
+        "name": "class-admin",
+        "scopes": ["admin:users", "admin:servers", "access:servers", "list:users", "read:users"],
+        "services": ["class-admin"],
+    }]

@@ -1,0 +1,68 @@
+"""A class of two on a real JupyterHub: benchmarks/bench_class.py's smallest case.
+
+The hub of deploy/jupyterhub/jupyterhub_config.py on 127.0.0.1 spawns two students'
+servers through its REST API (deploy/singleuser-start.sh copies the course), runs
+chapter 03 in both kernels at once, steps the bunny explorer in both, and then opens
+both students' live 3D views through the hub in headless Chromium: each must be drawn,
+move its arrow on a click of ``next`` and turn when dragged. What the benchmark
+measures on the way (memory, step latency, CPU) is checked for being measured at all;
+its size is the benchmark's business, not a pass/fail line on a shared machine.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import math
+import shutil
+import sys
+from pathlib import Path
+
+import pytest
+
+pytestmark = pytest.mark.browser
+
+ROOT = Path(__file__).resolve().parents[2]
+STEPS = 5
+
+
+def bench_class():
+    """benchmarks/bench_class.py as a module (benchmarks/ is not a package)."""
+    spec = importlib.util.spec_from_file_location("bench_class", ROOT / "benchmarks" / "bench_class.py")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module   # dataclasses look their module up by name
+    spec.loader.exec_module(module)
+    return module
+
+
+@pytest.fixture(scope="module")
+def hub_setup(chromium_executable):
+    if shutil.which("configurable-http-proxy") is None:
+        pytest.skip("configurable-http-proxy not installed: npm install -g configurable-http-proxy")
+    bench = bench_class()
+    missing = bench.missing_setup()
+    assert not missing, f"bench_class names setup that is still missing: {missing}"
+    return bench
+
+
+def test_two_students_run_chapter_03_and_see_their_live_views_through_the_hub(hub_setup, screenshot_dir):
+    bench = hub_setup
+    result = bench.run_class(2, steps=STEPS, step_interval=0.5, rotate_seconds=2.0, browsers=2,
+                             timeout=600, screenshots=screenshot_dir)
+    print(bench.table([result.row()]))
+    assert [student.name for student in result.members] == ["student00", "student01"]
+    for student in result.members:
+        assert student.spawn_s > 0 and student.chapter_s > 0
+        # Server plus kernel, after chapter 03: the kernel holds VTK and the bunny.
+        assert 0 < student.kernel_pss_mib < student.pss_mib <= student.rss_mib
+        assert len(student.steps_ms) == STEPS and all(ms > 0 for ms in student.steps_ms)
+        assert student.cpu_per_step_ms > 0 and math.isfinite(student.cpu_per_step_ms)
+    assert [view["student"] for view in result.browser] == ["student00", "student01"]
+    for view in result.browser:
+        assert "failed" not in view, view
+        assert view["click_changed"] >= bench.MIN_CHANGED_SHARE, view
+        assert view["rotate_changed"] >= bench.MIN_CHANGED_SHARE, view
+        assert view["drag_events"] > 0 and view["rotate_cpu_per_s"] >= 0
+        for shot in ("0-drawn", "1-next", "2-rotated"):
+            assert (screenshot_dir / f"{view['student']}-{shot}.png").stat().st_size > 0
+    row = result.row()
+    assert row["step_p50_ms"] <= row["step_p95_ms"]
