@@ -26,11 +26,13 @@ PACKAGE_DIR = Path(halfedge_edu.__file__).resolve().parent
 #: and only the applications on top (``exercises``, ``figures``, the ``cli``, the
 #: ``__main__`` entry point and the top-level ``__init__`` that gathers the public
 #: names) may use the pictures and each other. ``package`` is ``halfedge_edu/__init__``.
-#: ``_extras`` (which optional packages an extra brings, and the error naming it) imports
-#: nothing of the package, so any layer may ask it.
-_BASE = frozenset({"_extras"})
+#: ``_extras`` (which optional packages an extra brings, and the error naming it) and
+#: ``live_backend`` (which live view a hub chose, from one environment variable) import
+#: nothing of the package, so any layer may ask them.
+_BASE = frozenset({"_extras", "live_backend"})
 ALLOWED: dict[str, frozenset[str]] = {
     "_extras": frozenset(),
+    "live_backend": frozenset(),
     "core": _BASE,
     "io": _BASE | {"core"},
     "algorithms": _BASE | {"core"},

@@ -20,6 +20,8 @@ from __future__ import annotations
 import importlib.util
 import os
 
+from halfedge_edu import live_backend
+
 MODES = ("live", "static")
 ENV_VARIABLE = "HALFEDGE_EDU_VIZ"
 _LIVE_BACKENDS = {"trame", "server", "client"}
@@ -92,7 +94,7 @@ class View:
             # A collapsed menu is one small button in the corner; the full toolbar would
             # cover the top ~60 px of the view, where the highlighted halfedge may be.
             self.widget = scene.plotter.show(
-                jupyter_backend="trame", return_viewer=True, jupyter_kwargs={"collapse_menu": True}
+                jupyter_backend="trame", return_viewer=True, jupyter_kwargs={"collapse_menu": True, "mode": live_backend.trame_mode()}
             )
         self.update()
 

@@ -201,7 +201,10 @@ class SceneWidget:
     def _repr_mimebundle_(self, include=None, exclude=None):
         bundle = self.widget._repr_mimebundle_(include=include, exclude=exclude)
         bundle["text/plain"] = self.describe()
-        bundle["image/png"] = base64.b64encode(self.screenshot()).decode("ascii")
+        # A client-side live view (HALFEDGE_EDU_LIVE_BACKEND=client) renders in the
+        # browser only: the kernel's plotter has no picture to give for the fallback.
+        if not getattr(self.scene.plotter, "suppress_rendering", False):
+            bundle["image/png"] = base64.b64encode(self.screenshot()).decode("ascii")
         return bundle
 
 
