@@ -93,7 +93,7 @@ def main(argv: list[str] | None = None) -> None:
                 f"{name:<24}{len(faces):>8,}{label:>21}{len(f):>8,}{seconds:>9.3f}{ratio:>11}"
                 f"{mean / diagonal:>11.2e}{worst / diagonal:>10.2e}{valid:>7}"
             )
-    print("goal: <= 5x openmesh's time, mean distance <= fast-simplification's")
+    print("goal: <= 1.5x openmesh's time, mean distance <= fast-simplification's")
 
 
 if __name__ == "__main__":
