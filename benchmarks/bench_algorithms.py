@@ -3,7 +3,7 @@
     python benchmarks/bench_algorithms.py            # Loop on ~82k faces, smoothing on ~1.3M
     python benchmarks/bench_algorithms.py --quick    # ~20k and ~82k faces
 
-Rows (best of a few runs each; the inputs are built before the clock starts):
+Rows (median of a few runs each; the inputs are built before the clock starts):
 * Loop x1: ``hx.loop_subdivide(mesh)`` from a HalfedgeMesh, against
   ``trimesh.remesh.subdivide_loop(vertices, faces)`` (arrays in, arrays out) and VTK's
   ``vtkLoopSubdivisionFilter`` through ``pyvista.PolyData.subdivide(1, "loop")``.
@@ -45,15 +45,15 @@ def sphere(faces_wanted: int, seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
     return shuffled, relabel[faces][rng.permutation(len(faces))]
 
 
-def best_time(function, repeats: int, prepare=lambda: None) -> float:
-    """Smallest wall time of ``repeats`` calls of ``function(prepare())``; prepare is untimed."""
+def median_time(function, repeats: int, prepare=lambda: None) -> float:
+    """Median wall time of ``repeats`` calls of ``function(prepare())``; prepare is untimed."""
     times = []
     for _ in range(repeats):
         argument = prepare()
         start = time.perf_counter()
         function(argument)
         times.append(time.perf_counter() - start)
-    return min(times)
+    return float(np.median(times))
 
 
 def row(name: str, faces: int, ours: float, peers: dict[str, float]) -> str:
@@ -70,9 +70,9 @@ def bench_loop(faces_wanted: int, repeats: int) -> str:
     vertices, faces = sphere(faces_wanted)
     mesh = hx.HalfedgeMesh.from_faces(vertices, faces)
     polydata = pyvista.PolyData.from_regular_faces(vertices, faces)
-    ours = best_time(lambda m: loop_subdivide(m), repeats, lambda: mesh)
-    theirs = best_time(lambda _: trimesh.remesh.subdivide_loop(vertices, faces), repeats)
-    vtk = best_time(lambda p: p.subdivide(1, "loop"), repeats, lambda: polydata)
+    ours = median_time(lambda m: loop_subdivide(m), repeats, lambda: mesh)
+    theirs = median_time(lambda _: trimesh.remesh.subdivide_loop(vertices, faces), repeats)
+    vtk = median_time(lambda p: p.subdivide(1, "loop"), repeats, lambda: polydata)
     return row("Loop x1", len(faces), ours, {"trimesh": theirs, "VTK": vtk})
 
 
@@ -90,15 +90,15 @@ def bench_laplacian(faces_wanted: int, repeats: int, iterations: int = 10) -> st
 
     check = trimesh_smooth(fresh_trimesh())
     assert np.allclose(smooth(mesh, iterations).positions, check.vertices, atol=1e-12), "results differ"
-    ours = best_time(lambda m: smooth(m, iterations), repeats, mesh.copy)
-    theirs = best_time(trimesh_smooth, repeats, fresh_trimesh)
+    ours = median_time(lambda m: smooth(m, iterations), repeats, mesh.copy)
+    theirs = median_time(trimesh_smooth, repeats, fresh_trimesh)
     return row(f"Laplacian x{iterations}", len(faces), ours, {"trimesh": theirs})
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--quick", action="store_true", help="smaller meshes")
-    parser.add_argument("--repeats", type=int, default=3, help="runs per measurement (the best is kept)")
+    parser.add_argument("--repeats", type=int, default=3, help="runs per measurement (the median is kept)")
     args = parser.parse_args()
     loop_faces, laplacian_faces = (20_000, 80_000) if args.quick else (80_000, 1_300_000)
     print(f"{'algorithm':<14}  {'faces':>9}  {'ours (s)':>8}  peers (ratio = ours / peer)")

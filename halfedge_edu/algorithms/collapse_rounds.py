@@ -22,14 +22,14 @@ it picks, pass after pass, instead of every candidate.
 
 from __future__ import annotations
 
-from typing import Callable
+from typing import Callable, NamedTuple
 
 import numpy as np
 
 from ..core.arrays import cross_rows, expand
 
 __all__ = [
-    "choose_round", "collapse_topology_ok", "independent_edges", "no_turned_faces",
+    "FOLD_ANGLE", "choose_round", "collapse_topology_ok", "drop_folding_neighbours", "independent_edges", "no_turned_faces",
     "one_collapse_per_opposite_vertex",
 ]
 
@@ -98,6 +98,53 @@ def collapse_topology_ok(
     return ok, shared_owner, shared_vertex
 
 
+#: Two neighbouring faces whose normals differ by more than this many degrees are folded
+#: back onto each other (a dihedral angle near 180): no collapse may make such a pair.
+FOLD_ANGLE = 150.0
+
+
+class _MovedFaces(NamedTuple):
+    """The faces k collapses move, one row each (j rows), before and after."""
+
+    owner: np.ndarray          # (j,) which collapse moves the face
+    face: np.ndarray           # (j,) the face's index
+    corners: np.ndarray        # (j, 3) its vertices, before
+    moving_corner: np.ndarray  # (j, 3) True at the corner that moves
+    normal_before: np.ndarray  # (j, 3) cross products, length twice the area
+    normal_after: np.ndarray   # (j, 3)
+
+
+def _moved_faces(vertices, faces, faces_around, points, keep, remove) -> _MovedFaces:
+    """Every face around ``keep[i]`` or ``remove[i]`` that survives collapse i, moved to ``points[i]``.
+
+    The two faces holding both ends vanish and are left out.
+    """
+    face_offsets, face_of_corner = faces_around                        # from vertex_faces()
+    owners, face_lists, corner_lists, movers = [], [], [], []
+    for end, other in ((keep, remove), (remove, keep)):
+        owner, face = expand(face_offsets, face_of_corner, end)
+        corners = faces[face]                                           # (j, 3)
+        survives = ~(corners == other[owner, None]).any(axis=1)        # faces holding both vanish
+        owners.append(owner[survives])
+        face_lists.append(face[survives])
+        corner_lists.append(corners[survives])
+        movers.append(end[owner[survives]])
+    owner = np.concatenate(owners)
+    corners = np.concatenate(corner_lists)                              # (j, 3)
+    moving_corner = corners == np.concatenate(movers)[:, None]          # one True a row
+    before = vertices[corners]                                          # (j, 3 corners, 3)
+    after = before.copy()
+    after[moving_corner] = points[owner]
+    return _MovedFaces(owner, np.concatenate(face_lists), corners, moving_corner,
+                       cross_rows(before[:, 1] - before[:, 0], before[:, 2] - before[:, 0]),
+                       cross_rows(after[:, 1] - after[:, 0], after[:, 2] - after[:, 0]))
+
+
+def _unit(rows: np.ndarray) -> np.ndarray:
+    """(j, 3) rows scaled to length 1 (zero rows stay zero)."""
+    return rows / np.maximum(np.sqrt(np.einsum("ij,ij->i", rows, rows)), 1e-300)[:, None]
+
+
 def no_turned_faces(
     vertices: np.ndarray,
     faces: np.ndarray,
@@ -108,38 +155,96 @@ def no_turned_faces(
     max_normal_cos: float,
 ) -> np.ndarray:
     """(k,) True where moving both ends of edge ``keep[i] - remove[i]`` to ``points[i]``
-    turns no face over.
+    turns no face over and folds no pair of neighbouring faces.
 
     ``faces_around`` is each vertex's faces as CSR, from
     :func:`halfedge_edu.core.arrays.vertex_faces`; ``max_normal_cos`` the cosine of the
     largest allowed swing of a face normal. The faces around ``keep`` and around
     ``remove`` get a corner moved to the new point; the two faces holding both ends
-    vanish and are skipped. A face "turns over" when its normal swings by more than the
-    allowed angle or its area drops to (almost) nothing.
+    vanish and are skipped. Three tests, each on every moved face:
+
+    * **turn**: its normal swings by more than the allowed angle. A face that had no
+      normal before (zero area) has nothing to swing from, so only the next two judge it;
+    * **collapse**: its area drops to (almost) nothing;
+    * **fold**: it and a neighbour (another moved face across an edge at the new vertex,
+      or an unmoved face across its far edge) end up with normals more than
+      :data:`FOLD_ANGLE` apart. The turn
+      test alone misses this: two neighbours may each swing by less than the allowed
+      angle, in opposite directions, and between them fold shut.
     """
-    face_offsets, face_of_corner = faces_around                        # from vertex_faces()
-    owners, corner_lists, movers = [], [], []
-    for end, other in ((keep, remove), (remove, keep)):
-        owner, face = expand(face_offsets, face_of_corner, end)
-        corners = faces[face]                                           # (j, 3)
-        survives = ~(corners == other[owner, None]).any(axis=1)        # faces holding both vanish
-        owners.append(owner[survives])
-        corner_lists.append(corners[survives])
-        movers.append(end[owner[survives]])
-    owner = np.concatenate(owners)
-    corners = np.concatenate(corner_lists)
-    mover = np.concatenate(movers)
-    before = vertices[corners]                                          # (j, 3 corners, 3)
-    after = before.copy()
-    after[corners == mover[:, None]] = points[owner]
-    n_before = cross_rows(before[:, 1] - before[:, 0], before[:, 2] - before[:, 0])
-    n_after = cross_rows(after[:, 1] - after[:, 0], after[:, 2] - after[:, 0])
+    moved = _moved_faces(vertices, faces, faces_around, points, keep, remove)
+    owner, corners, moving_corner = moved.owner, moved.corners, moved.moving_corner
+    n_before, n_after = moved.normal_before, moved.normal_after
     length_before = np.sqrt(np.einsum("ij,ij->i", n_before, n_before))
     length_after = np.sqrt(np.einsum("ij,ij->i", n_after, n_after))
+    had_normal = length_before > 1e-12 * length_after
     cosine = np.einsum("ij,ij->i", n_before, n_after) / np.maximum(length_before * length_after, 1e-300)
-    turned = (cosine < max_normal_cos) | (length_after <= 1e-12 * np.maximum(length_before, 1e-300))
+    turned = had_normal & (cosine < max_normal_cos)
+    turned |= length_after <= 1e-12 * np.maximum(length_before, 1e-300)
+    unit_after = _unit(n_after)
+    fold_cos = float(np.cos(np.radians(FOLD_ANGLE)))
+
+    # Moved faces that share an edge at the new vertex: after the collapse both faces
+    # hold the kept vertex (the removed one renamed) and one more common vertex.
+    spoke_end = corners[~moving_corner].reshape(-1, 2)                  # (j, 2) the other two corners
+    rows = np.repeat(np.arange(len(owner)), 2)
+    key = owner[rows] * len(vertices) + spoke_end.reshape(-1)          # (2j,) owner and far end
+    order = np.argsort(key, kind="stable")
+    same = key[order][1:] == key[order][:-1]
+    first, second = rows[order][:-1][same], rows[order][1:][same]
+    folded = np.einsum("ij,ij->i", unit_after[first], unit_after[second]) < fold_cos
+    turned[first[folded]] = True
+
+    # A moved face and the unmoved face across its far edge (u, w), the face holding
+    # u and w but neither end of the collapse.
+    face_offsets, face_of_corner = faces_around
+    position = np.argmax(moving_corner, axis=1)
+    u = corners[np.arange(len(corners)), (position + 1) % 3]
+    w = corners[np.arange(len(corners)), (position + 2) % 3]
+    row, neighbour = expand(face_offsets, face_of_corner, w)
+    beyond = faces[neighbour]                                           # (r, 3)
+    across = (beyond == u[row, None]).any(axis=1)
+    across &= ~(beyond == keep[owner[row], None]).any(axis=1) & ~(beyond == remove[owner[row], None]).any(axis=1)
+    row, neighbour = row[across], neighbour[across]
+    beyond_corners = vertices[faces[neighbour]]
+    n_beyond = _unit(cross_rows(beyond_corners[:, 1] - beyond_corners[:, 0],
+                                beyond_corners[:, 2] - beyond_corners[:, 0]))
+    folded = np.einsum("ij,ij->i", unit_after[row], n_beyond) < fold_cos
+    turned[row[folded]] = True
+
     ok = np.ones(len(keep), dtype=bool)
     ok[owner[turned]] = False
+    return ok
+
+
+def drop_folding_neighbours(vertices: np.ndarray, faces: np.ndarray, faces_around: tuple[np.ndarray, np.ndarray],
+                            points: np.ndarray, keep: np.ndarray, remove: np.ndarray) -> np.ndarray:
+    """(k,) False for collapses of one round that would fold a face of another's shut.
+
+    :func:`no_turned_faces` judges each collapse against the faces around it as they
+    were. Two collapses of one round are never neighbours, but they can be two edges
+    apart: a face moved by one then borders, across its far edge, a face moved by the
+    other, and each was checked against the other's face unmoved. Here all of a
+    round's collapses are applied at once and every such pair is measured; where a pair
+    folds (normals more than :data:`FOLD_ANGLE` apart), both collapses are dropped,
+    which puts each back to a state its own check accepted.
+    """
+    moved = _moved_faces(vertices, faces, faces_around, points, keep, remove)
+    position = np.argmax(moved.moving_corner, axis=1)
+    rows = np.arange(len(moved.owner))
+    u = moved.corners[rows, (position + 1) % 3]
+    w = moved.corners[rows, (position + 2) % 3]
+    key = np.minimum(u, w) * len(vertices) + np.maximum(u, w)          # each face's far edge
+    order = np.argsort(key, kind="stable")
+    same = key[order][1:] == key[order][:-1]
+    first, second = order[:-1][same], order[1:][same]
+    apart = moved.owner[first] != moved.owner[second]
+    first, second = first[apart], second[apart]
+    unit_after = _unit(moved.normal_after)
+    folded = np.einsum("ij,ij->i", unit_after[first], unit_after[second]) < float(np.cos(np.radians(FOLD_ANGLE)))
+    ok = np.ones(len(keep), dtype=bool)
+    ok[moved.owner[first[folded]]] = False
+    ok[moved.owner[second[folded]]] = False
     return ok
 
 

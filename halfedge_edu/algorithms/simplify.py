@@ -22,8 +22,11 @@ close to the queue's, and tens of rounds replace tens of thousands of Python ste
 Every collapse must pass the same checks as :func:`halfedge_edu.core.ops.can_collapse`: the
 link condition (the endpoints share exactly the two opposite vertices, one on the
 boundary), no interior edge between two boundary vertices, no opposite vertex left with
-too few edges; and a geometric check the topology does not see: no face around the
-edge may turn over (its normal may not swing by more than ``max_normal_angle``).
+too few edges; and a geometric check the topology does not see: no face the collapse
+moves may turn over (its normal may not swing by more than ``max_normal_angle``, nor its
+area vanish), and no two neighbouring faces may fold shut (normals more than
+:data:`~.collapse_rounds.FOLD_ANGLE` degrees apart), not even two faces moved by two
+different collapses of one round. The check covers the fallback placements too.
 Both checks run only on the edges a round picks, not on every candidate: a round
 collapses about one candidate in ten. The checks and the choice of a round live in
 :mod:`.collapse_rounds`, shared with ``remesh``; the array tools (edge tables, CSR
@@ -45,7 +48,7 @@ from ..core.arrays import (
 from ..core.errors import MeshWarning
 from ..core.mesh import HalfedgeMesh
 from .arguments import check_simplify
-from .collapse_rounds import choose_round, collapse_topology_ok, no_turned_faces
+from .collapse_rounds import choose_round, collapse_topology_ok, drop_folding_neighbours, no_turned_faces
 
 
 @dataclass
@@ -417,6 +420,8 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         # Stop exactly at the target: take chosen edges in cost order until enough faces go.
         removes_faces = np.where(boundary_edge[chosen], 1, 2)
         chosen = chosen[np.cumsum(removes_faces) <= faces_to_remove]
+        chosen = chosen[drop_folding_neighbours(vertices, faces, faces_around, points[chosen],
+                                                keep[chosen], remove[chosen])]
         if len(chosen) == 0:
             # Nothing passed the geometric check, or only interior collapses are left with
             # one face to go (then one more collapse is the nearest we can get).

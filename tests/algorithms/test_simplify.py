@@ -19,6 +19,7 @@ from halfedge_edu.algorithms.simplify import (
     simplify_with_report,
     solve_symmetric_3x3,
 )
+from halfedge_edu.algorithms.collapse_rounds import FOLD_ANGLE
 from halfedge_edu.algorithms.simplify_queue import _best_point
 from tests import strategies as shapes
 
@@ -274,3 +275,40 @@ def test_a_nearly_flat_mesh_keeps_its_shape():
     result.validate()
     _, distance, _ = trimesh.proximity.closest_point(spot, result.to_arrays()[0])
     assert distance.max() < 1e-5 * np.linalg.norm(spot.extents)
+
+
+def _largest_fold(mesh: hx.HalfedgeMesh) -> float:
+    """The largest angle, in degrees, between the normals of two faces that share an edge."""
+    from halfedge_edu.core.arrays import edge_table
+
+    vertices, faces = mesh.to_arrays()
+    table = edge_table(faces, len(vertices))
+    inner = table.count == 2
+    first, second = table.first[inner] // 3, table.second[inner] // 3
+    cross = np.cross(vertices[faces[:, 1]] - vertices[faces[:, 0]], vertices[faces[:, 2]] - vertices[faces[:, 0]])
+    normal = cross / np.maximum(np.linalg.norm(cross, axis=1), 1e-300)[:, None]
+    cosine = np.clip(np.einsum("ij,ij->i", normal[first], normal[second]), -1.0, 1.0)
+    return float(np.degrees(np.arccos(cosine)).max()) if len(cosine) else 0.0
+
+
+@given(
+    shape=st.sampled_from(["torus", "sphere", "grid"]),
+    size=st.tuples(st.integers(6, 12), st.integers(5, 10)),
+    creases=st.tuples(st.floats(-0.5, 0.5), st.floats(-0.5, 0.5), st.floats(0.5, 4.0), st.floats(0.5, 4.0)),
+    fraction=st.sampled_from([0.5, 0.1]),
+)
+def test_simplify_never_folds_a_pair_that_was_not_folded(shape, size, creases, fraction):
+    # Two sharp creases (|x - a| and |y - b| ridges) across a closed or open surface:
+    # the faces on either side of a crease are tempted to swing towards each other.
+    make = {"torus": shapes.torus, "sphere": shapes.uv_sphere, "grid": shapes.grid}[shape]
+    vertices, faces = make(*size)
+    at_x, at_y, slope_x, slope_y = creases
+    vertices = vertices.copy()
+    vertices[:, 2] += slope_x * np.abs(vertices[:, 0] - at_x) + slope_y * np.abs(vertices[:, 1] - at_y)
+    mesh = hx.HalfedgeMesh.from_faces(vertices, faces)
+    before = _largest_fold(mesh)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", hx.MeshWarning)
+        result = simplify(mesh, max(4, int(fraction * mesh.n_faces)))
+    result.validate()
+    assert _largest_fold(result) <= max(before, FOLD_ANGLE) + 1e-6

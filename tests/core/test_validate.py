@@ -339,3 +339,103 @@ def test_a_flag_moved_by_hand_after_a_real_deletion_is_caught(two_spheres):
     with pytest.raises(hx.MeshInvariantError) as caught:
         two_spheres.validate()
     assert caught.value.rule == "deleted-reference"
+
+
+# ---- validate_around: the local check after one operation ----------------------------------
+
+def _operate(mesh: hx.HalfedgeMesh, kind: str, pick: int) -> dict | None:
+    """Apply one allowed flip, split or collapse (the edge chosen by ``pick``); return what it touched."""
+    live_edges = np.flatnonzero(~mesh.edge_deleted)
+    edge = int(live_edges[pick % len(live_edges)])
+    if kind == "flip" and mesh.can_flip(edge):
+        return {"edges": [mesh.flip(edge)]}
+    if kind == "split" and mesh.can_split(edge):
+        return {"vertices": [mesh.split(edge)]}
+    if kind == "collapse" and mesh.can_collapse(edge):
+        return {"vertices": [mesh.collapse(edge)]}
+    return None
+
+
+def _raises(check) -> bool:
+    try:
+        check()
+    except hx.MeshInvariantError:
+        return True
+    return False
+
+
+POINTERS = {
+    "next": lambda mesh: mesh.halfedge_next,
+    "prev": lambda mesh: mesh.halfedge_prev,
+    "vertex": lambda mesh: mesh.halfedge_vertex,
+    "face": lambda mesh: mesh.halfedge_face,
+}
+
+
+@pytest.mark.parametrize("field", sorted(POINTERS))
+@pytest.mark.parametrize("kind", ["flip", "split", "collapse"])
+def test_one_pointer_broken_next_to_an_operation_is_caught_by_the_local_check(kind, field):
+    mesh = _mesh(shapes.torus(8, 6))
+    touched = _operate(mesh, kind, 17)
+    assert touched is not None
+    validate_module.validate_around(mesh, **touched)          # sound after the operation
+    # Break a pointer of a halfedge that leaves the vertex the operation worked on.
+    vertex = int(touched["vertices"][0]) if "vertices" in touched else int(mesh.halfedge_vertex[2 * int(touched["edges"][0])])
+    h = int(mesh.vertex_halfedge[vertex])
+    array = POINTERS[field](mesh)
+    array[h] = array[h ^ 1]                                     # its twin's: wrong for every field
+    assert _raises(mesh.validate)
+    with pytest.raises(hx.MeshInvariantError):
+        validate_module.validate_around(mesh, **touched)
+
+
+def test_the_local_check_reaches_the_one_ring_of_the_touched_vertex():
+    mesh = _mesh(shapes.torus(8, 6))
+    v = int(mesh.split(5))
+    neighbour = int(mesh.halfedge_vertex[int(mesh.vertex_halfedge[v]) ^ 1])
+    far_side = int(mesh.vertex_halfedge[neighbour])
+    mesh.vertex_halfedge[neighbour] = far_side ^ 1             # now it leaves another vertex
+    with pytest.raises(hx.MeshInvariantError) as caught:
+        validate_module.validate_around(mesh, vertices=[v])
+    assert caught.value.rule == "vertex-halfedge-origin"
+    assert caught.value.element == ("vertex", neighbour)
+
+
+def test_the_local_check_refuses_elements_that_are_not_in_the_mesh():
+    mesh = _mesh(shapes.tetrahedron())
+    with pytest.raises(hx.MeshInputError, match="vertex 99"):
+        validate_module.validate_around(mesh, vertices=[99])
+
+
+@given(
+    drawn=meshes(),
+    steps=st.lists(st.tuples(st.sampled_from(["flip", "split", "collapse"]), st.integers(0, 10**6)),
+                   min_size=1, max_size=8),
+    corrupt=st.one_of(st.none(), st.tuples(st.sampled_from(sorted(POINTERS)), st.integers(0, 10**6),
+                                           st.integers(0, 10**6))),
+)
+def test_the_local_and_the_full_check_agree_after_random_operations(drawn, steps, corrupt):
+    mesh = build(drawn)
+    touched = None
+    for kind, pick in steps:
+        done = _operate(mesh, kind, pick)
+        if done is not None:
+            touched = done
+            validate_module.validate_around(mesh, **touched)   # every operation leaves it sound
+    if touched is None:
+        return
+    if corrupt is not None:
+        # One pointer of a halfedge near the last operation gets a value of the same kind.
+        field, which, value = corrupt
+        vertex = (int(touched["vertices"][0]) if "vertices" in touched
+                  else int(mesh.halfedge_vertex[2 * int(touched["edges"][0])]))
+        ring = [int(mesh.vertex_halfedge[vertex])]
+        for _ in range(20):
+            following = int(mesh.halfedge_prev[ring[-1]]) ^ 1
+            if following == ring[0]:
+                break
+            ring.append(following)
+        h = ring[which % len(ring)] ^ (value & 1)
+        array = POINTERS[field](mesh)
+        array[h] = array[int(np.flatnonzero(~mesh.halfedge_deleted)[value % mesh.n_halfedges])]
+    assert _raises(lambda: validate_module.validate_around(mesh, **touched)) == _raises(mesh.validate)
