@@ -257,7 +257,8 @@ def drop_unreferenced(positions: np.ndarray, faces: np.ndarray, *, warn: bool = 
         dropped = np.flatnonzero(~used)
         shown = ", ".join(str(v) for v in dropped[:8]) + (", ..." if len(dropped) > 8 else "")
         warnings.warn(
-            f"dropped {len(dropped)} unreferenced vertices (no face uses them): {shown}",
+            f"dropped {len(dropped)} unreferenced {'vertex' if len(dropped) == 1 else 'vertices'} "
+            f"(no face uses {'it' if len(dropped) == 1 else 'them'}): {shown}",
             MeshWarning,
             stacklevel=3,
         )

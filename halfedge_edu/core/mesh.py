@@ -35,6 +35,7 @@ from .build import INDEX, HalfedgeArrays, build_arrays, check_input, restore_unr
 from .build import drop_unreferenced as _drop_unreferenced
 from . import ops
 from .elements import Edge, Face, Halfedge, Vertex
+from .errors import MeshInvariantError
 from .ops.check import OpCheck
 from .rings import RingWalk, walk_rings
 
@@ -317,7 +318,8 @@ class HalfedgeMesh:
     def _check_index(self, kind: str, index: int, n_slots: int, deleted: np.ndarray) -> int:
         index = int(index)
         if not 0 <= index < n_slots:
-            raise IndexError(f"there is no {kind} {index}: {kind}s are numbered 0 to {n_slots - 1}")
+            plural = {"vertex": "vertices"}.get(kind, kind + "s")
+            raise IndexError(f"there is no {kind} {index}: {plural} are numbered 0 to {n_slots - 1}")
         if deleted[index]:
             raise IndexError(f"{kind} {index} was deleted (indices are compacted by garbage_collect())")
         return index
@@ -472,14 +474,23 @@ class HalfedgeMesh:
         Isolated vertices (no halfedge, e.g. a file's vertices that no face uses) stay,
         so a mesh loaded from a file without deletions gives back the file's numbering;
         ``compact=True`` leaves them out too.
+
+        Raises ``MeshInvariantError`` ("deleted-reference") when a live face uses a
+        deleted vertex (a flag set by hand), instead of returning a face with -1 in it.
         """
         live_vertices = ~self.vertex_deleted
         if compact:
             live_vertices &= self.vertex_halfedge >= 0
         new_index = np.full(self._n_vertex_slots, -1, dtype=np.int64)
         new_index[live_vertices] = np.arange(int(live_vertices.sum()))
-        faces = self.face_vertices()[~self.face_deleted]
-        return self.positions[live_vertices].copy(), new_index[faces]
+        live_faces = np.flatnonzero(~self.face_deleted)
+        faces = new_index[self.face_vertices()[live_faces]]  # (m, 3) int64
+        broken = np.flatnonzero((faces < 0).any(axis=1))
+        if len(broken):
+            face = int(live_faces[broken[0]])
+            raise MeshInvariantError("deleted-reference", ("face", face),
+                                     f"face {face} uses a deleted vertex; run mesh.validate() to see where")
+        return self.positions[live_vertices].copy(), faces
 
     def to_trimesh(self):
         """A ``trimesh.Trimesh`` of the live mesh (``process=False``: nothing merged)."""

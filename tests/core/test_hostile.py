@@ -156,3 +156,19 @@ def test_a_source_that_is_not_text_is_refused_by_name():
     with pytest.raises(hx.MeshInputError, match="source must be a file name") as caught:
         hx.HalfedgeMesh.from_faces(TRIANGLE, [[0, 1, 2]], source=Path("a.obj"))
     assert caught.value.element == ("argument", "source")
+
+
+def test_to_arrays_refuses_a_face_that_uses_a_vertex_deleted_by_hand():
+    # A flag set by hand, with no earlier deletions: never a face holding -1.
+    mesh = hx.sample("cube")
+    mesh.vertex_deleted[0] = True
+    with pytest.raises(hx.MeshInvariantError, match="uses a deleted vertex") as caught:
+        mesh.to_arrays()
+    assert caught.value.rule == "deleted-reference" and caught.value.element[0] == "face"
+
+
+def test_counts_of_one_read_in_the_singular():
+    with pytest.warns(hx.MeshWarning, match="dropped 1 unreferenced vertex \\(no face uses it\\)"):
+        hx.HalfedgeMesh.from_faces(np.vstack([TRIANGLE, [[5.0, 5.0, 5.0]]]), [[0, 1, 2]], drop_unreferenced=True)
+    with pytest.raises(IndexError, match="vertices are numbered 0 to 2"):
+        hx.HalfedgeMesh.from_faces(TRIANGLE, [[0, 1, 2]]).vertex(7)
