@@ -24,7 +24,8 @@ extensions = ["myst_nb", "sphinx.ext.autodoc", "sphinx.ext.viewcode", "sphinxarg
 source_suffix = {".md": "myst-nb", ".ipynb": "myst-nb"}
 # Only the chapter notebooks: not their Jupytext sources, checkpoints or scratch files.
 exclude_patterns = ["_build", "chapters/src", "chapters/student", "**/.ipynb_checkpoints"]
-include_patterns = ["index.md", "cli.md", "api.md", "chapters/[0-9][0-9]_*.ipynb"]
+include_patterns = ["index.md", "cli.md", "api.md", "instructors.md", "coming_from_your_course.md",
+                    "chapters/[0-9][0-9]*_*.ipynb"]
 
 # Never run a notebook here: the stored outputs come from tools/build_notebooks.py.
 nb_execution_mode = "off"
