@@ -195,6 +195,14 @@ def _drive_chapter03(page, lab, shots: Path, console: list[str]) -> None:
     noise = changed_share(before, again)
     assert noise < MIN_CHANGED_SHARE / 4, f"the view changes by itself ({noise:.2%} of pixels)"
 
+    # Known open problem (issue 11, measured 2026-11-25): in a fresh Lab session the very
+    # first widget click after "run all" is lost (the kernel never runs it; the second
+    # click works). Until that is fixed, one harmless click ("go to" the current halfedge)
+    # comes first, so that this test checks what every later click does.
+    explorer.output.get_by_role("button", name="go to", exact=True).click()
+    time.sleep(3)
+    assert explorer.current_halfedge() == start, "'go to' the current halfedge moved the explorer"
+
     expected = start
     for step, move in enumerate(["next", "twin"], start=1):
         expected = getattr(patch.halfedge(expected), move).index
