@@ -10,25 +10,14 @@ reader, ``process=False`` so it does no more than read), and their ratio.
 from __future__ import annotations
 
 import argparse
-import statistics
-import time
 from pathlib import Path
 
 import trimesh
 
 import halfedge_edu as hx
+from _common import median_of
 
 DATA = Path(hx.__file__).resolve().parent / "data"
-
-
-def median_seconds(function, repeat: int) -> float:
-    """The median of ``repeat`` timed calls (the middle run, robust to a noisy neighbour)."""
-    runs = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        function()
-        runs.append(time.perf_counter() - start)
-    return statistics.median(runs)
 
 
 def main() -> None:
@@ -42,9 +31,9 @@ def main() -> None:
     print(f"{'mesh':<22}{'faces':>8}{'read_obj':>11}{'hx.load':>11}{'trimesh':>11}{'read ratio':>12}")
     for path in sorted(DATA.glob("*.obj")):
         faces = len(hx.read_obj(path).faces)
-        ours = median_seconds(lambda: hx.read_obj(path), repeat)
-        loaded = median_seconds(lambda: hx.load(path), repeat)
-        peer = median_seconds(lambda: trimesh.load(path, process=False, force="mesh"), repeat)
+        ours, _ = median_of(repeat, hx.read_obj, path)
+        loaded, _ = median_of(repeat, hx.load, path)
+        peer, _ = median_of(repeat, lambda: trimesh.load(path, process=False, force="mesh"))
         print(f"{path.name:<22}{faces:>8}{ours:>10.3f}s{loaded:>10.3f}s{peer:>10.3f}s{ours / peer:>11.2f}x")
 
 
