@@ -338,12 +338,17 @@ def atomic_output(path: str | os.PathLike, mode: str = "w") -> Iterator[IO]:
     """
     path = Path(path)
     temporary = path.with_name(f".halfedge_edu-{secrets.token_hex(4)}.tmp")
+    # One try from the moment the file may exist: a signal (Ctrl-C, SIGTERM) that lands
+    # just after os.open made it must still remove it. ``ours`` is False only when
+    # os.open itself failed, so a file we did not make is never removed.
+    ours = True
     try:
-        # os.open with 0o666 lets the umask set the permissions, as for a plain open().
-        descriptor = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
-    except OSError as error:
-        raise OSError(error.errno, error.strerror, str(path)) from None
-    try:
+        try:
+            # os.open with 0o666 lets the umask set the permissions, as for a plain open().
+            descriptor = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
+        except OSError as error:
+            ours = False
+            raise OSError(error.errno, error.strerror, str(path)) from None
         with os.fdopen(descriptor, mode, **({} if "b" in mode else {"encoding": "utf-8", "newline": "\n"})) as file:
             yield file
         try:
@@ -351,7 +356,8 @@ def atomic_output(path: str | os.PathLike, mode: str = "w") -> Iterator[IO]:
         except OSError as error:
             raise OSError(error.errno, error.strerror, str(path)) from None
     except BaseException:
-        temporary.unlink(missing_ok=True)
+        if ours:
+            temporary.unlink(missing_ok=True)
         raise
 
 
