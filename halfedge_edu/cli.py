@@ -61,7 +61,7 @@ DEFAULT_MAX_FACES = 10_000_000
 
 #: The largest coordinate (in absolute value) a computing command accepts: the same
 #: limit every public algorithm checks (its reason is written where it is defined).
-from halfedge_edu.algorithms.arguments import MAX_COORDINATE  # noqa: E402
+from halfedge_edu.algorithms.arguments import MAX_COORDINATE, MIN_EXTENT  # noqa: E402
 
 
 class InputProblem(Exception):
@@ -631,7 +631,8 @@ def _transform(
 
 
 def _check_coordinate_size(mesh, path: Path) -> None:
-    """Raise ``InputProblem`` if a coordinate is beyond ``MAX_COORDINATE`` (products would overflow)."""
+    """Raise ``InputProblem`` if a coordinate is beyond ``MAX_COORDINATE`` (products would
+    overflow) or the mesh is smaller across than ``MIN_EXTENT`` (products would round to zero)."""
     import numpy as np
 
     vertices = mesh.to_arrays()[0]  # (n, 3)
@@ -640,6 +641,12 @@ def _check_coordinate_size(mesh, path: Path) -> None:
         raise InputProblem(
             f"{path}: coordinates up to {largest:.3g} are too large for the computation "
             f"(at most {MAX_COORDINATE:.0e}, so that the products the algorithms take stay finite); scale the mesh down"
+        )
+    extent = float(np.ptp(vertices, axis=0).max()) if mesh.n_faces else MIN_EXTENT
+    if extent < MIN_EXTENT:
+        raise InputProblem(
+            f"{path}: the mesh is {extent:.3g} across, too small for the computation "
+            f"(at least {MIN_EXTENT:.0e}, so that the products the algorithms take do not round to zero); scale the mesh up"
         )
 
 

@@ -851,6 +851,17 @@ def test_coordinates_just_below_the_limit_are_computed_with(capsys, tmp_path, co
     assert status == 0 and err == ""
 
 
+@pytest.mark.parametrize("command", ["subdivide", "simplify", "smooth", "remesh"])
+@pytest.mark.parametrize("extent", [1e-200, 0.0])
+def test_a_mesh_too_small_to_compute_with_is_one_line(capsys, tmp_path, command, extent):
+    vertices = [(0, 0, 0), (extent, 0, 0), (0, extent, 0), (0, 0, extent)]
+    path = write_obj(tmp_path / "tiny.obj", vertices, TETRA_F)
+    status, out, err = run(capsys, command, path, tmp_path / "out.obj", *WRITERS[command])
+    assert_one_line_error(status, err)
+    assert f"the mesh is {extent:.3g} across, too small for the computation" in err
+    assert_only(tmp_path, "tiny.obj")
+
+
 def test_info_and_check_read_huge_coordinates_as_they_are(capsys, tmp_path):
     path = write_obj(tmp_path / "huge.obj", [(0, 0, 0), (1e308, 0, 0), (0, 1e308, 0), (0, 0, 1e308)], TETRA_F)
     assert run(capsys, "info", path)[0] == 0

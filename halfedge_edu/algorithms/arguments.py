@@ -31,6 +31,13 @@ from ..core.mesh import HalfedgeMesh
 #: limit of about 1.8e308, with room for the sums. The command line uses the same limit.
 MAX_COORDINATE = 1e40
 
+#: Smallest extent (the longest side of the bounding box of the live vertices) the
+#: algorithms accept for a mesh with faces. The same products of four coordinate
+#: differences underflow at the other end: ``(1e-40) ** 4 = 1e-160`` stays far above the
+#: smallest normal float64 (about 2.2e-308), while a mesh scaled to 1e-200 has edge
+#: lengths whose squares are 0 and normals of (0, 0, 0). The command line uses the same limit.
+MIN_EXTENT = 1e-40
+
 
 class ArgumentTypeError(MeshInputError, TypeError):
     """An argument of the wrong type: a string for a number, a list for a mesh.
@@ -58,7 +65,8 @@ def check_mesh(mesh, name: str = "mesh") -> None:
         ArgumentTypeError: ``mesh`` is not a :class:`HalfedgeMesh`.
         MeshInputError: a live vertex has a coordinate that is not finite (set by hand
             after construction) or larger in size than :data:`MAX_COORDINATE`; the error
-            names the vertex, with ``element=("vertex", index)``.
+            names the vertex, with ``element=("vertex", index)``. Or a mesh with faces
+            whose extent is below :data:`MIN_EXTENT` (``element=("argument", name)``).
     """
     if not isinstance(mesh, HalfedgeMesh):
         raise _wrong_type(name, "a HalfedgeMesh (build one with HalfedgeMesh.from_faces or hx.load)", mesh)
@@ -80,6 +88,14 @@ def check_mesh(mesh, name: str = "mesh") -> None:
             f"products the algorithms take stay finite); scale the mesh down",
             element=("vertex", vertex),
         )
+    if mesh.n_faces:
+        extent = float(np.ptp(mesh.positions[live], axis=0).max())
+        if extent < MIN_EXTENT:
+            raise MeshInputError(
+                f"the mesh is {extent:.3g} across: too small for the computation (at least {MIN_EXTENT:.0e}, so that "
+                f"the products the algorithms take do not round to zero); scale the mesh up",
+                element=("argument", name),
+            )
 
 
 def refuse_pillows(mesh: HalfedgeMesh, what: str) -> None:

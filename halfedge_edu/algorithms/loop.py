@@ -103,6 +103,13 @@ def loop_positions(mesh: HalfedgeMesh, weights: str = "warren") -> tuple[np.ndar
     """
     check_mesh(mesh)
     choice(weights, "weights", VERTEX_WEIGHTS)
+    return _positions(mesh, weights)
+
+
+def _positions(mesh: HalfedgeMesh, weights: str) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`loop_positions` without the argument checks, for the levels after the first:
+    each level shrinks a curved mesh a little, so a mesh at ``MIN_EXTENT`` would be
+    refused at its second level although its input was accepted."""
     positions = mesh.positions                                      # (V, 3)
     n_vertices = len(positions)
     origin = mesh.halfedge_vertex                                   # (H,)
@@ -158,7 +165,7 @@ def _refined_arrays(mesh: HalfedgeMesh, weights: str) -> HalfedgeArrays:
     """The halfedge arrays of one Loop level of a compact ``mesh`` (see the module docstring)."""
     n_vertices, n_edges, n_faces = mesh.n_vertex_slots, mesh.n_edge_slots, mesh.n_face_slots
     n_halfedges = 2 * n_edges
-    vertex_points, edge_points = loop_positions(mesh, weights)
+    vertex_points, edge_points = _positions(mesh, weights)
 
     old_origin = mesh.halfedge_vertex.astype(np.int64)              # (H,)
     old_next = mesh.halfedge_next.astype(np.int64)

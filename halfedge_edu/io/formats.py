@@ -126,10 +126,15 @@ def _load_with_trimesh(path: Path) -> tuple[np.ndarray, np.ndarray]:
         loaded = trimesh.load(path, force="mesh", process=False)
     except Exception as error:  # trimesh raises many kinds; all mean "cannot read this file"
         raise MeshInputError(f"{path.name}: trimesh could not read the file ({type(error).__name__}: {error})") from error
-    faces = np.asarray(getattr(loaded, "faces", np.zeros((0, 3))), dtype=np.int64)
+    faces = np.asarray(getattr(loaded, "faces", np.zeros((0, 3))), dtype=np.int64).reshape(-1, 3)
+    vertices = np.asarray(getattr(loaded, "vertices", np.zeros((0, 3))), dtype=np.float64).reshape(-1, 3)
     if len(faces) == 0:
-        raise MeshInputError(f"{path.name}: the file has no triangles")
-    vertices = np.asarray(loaded.vertices, dtype=np.float64)
+        # The same rule as the OBJ reader: a file with neither vertices nor faces is the
+        # empty mesh (what ``save`` writes for one), one with points only is not a mesh.
+        # ``force="mesh"`` turns a point cloud into an empty mesh, so count its points as read.
+        points = len(getattr(trimesh.load(path, process=False), "vertices", ()))
+        if points:
+            raise MeshInputError(f"{path.name}: {points} vertices but no triangles: a point cloud, not a mesh")
     if path.suffix.lower() == ".stl":
         # STL stores each triangle's three corners by value, with no shared vertices:
         # corners at exactly the same position are one vertex.

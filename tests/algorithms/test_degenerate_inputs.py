@@ -186,6 +186,45 @@ def test_coordinates_beyond_the_limit_are_refused_as_too_large(algorithm, size):
     assert np.abs(mesh.positions[caught.value.element[1]]).max() > arguments.MAX_COORDINATE
 
 
+# ---- tiny coordinates: the other end of the range -------------------------------------------
+
+def shrunk(extent: float) -> hx.HalfedgeMesh:
+    """The icosphere, shrunk until its bounding box is ``extent`` across."""
+    vertices, faces = hx.sample("icosphere").to_arrays()
+    return hx.HalfedgeMesh.from_faces(vertices * (extent / np.ptp(vertices, axis=0).max()), faces)
+
+
+@pytest.mark.parametrize("algorithm", ALL_ALGORITHMS)
+def test_a_mesh_as_small_as_the_limit_gives_finite_results(algorithm):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", hx.MeshWarning)
+        result = ALL_ALGORITHMS[algorithm](shrunk(arguments.MIN_EXTENT))
+    if isinstance(result, hx.HalfedgeMesh):
+        result.validate()
+        assert np.isfinite(result.to_arrays()[0]).all()
+    elif isinstance(result, tuple):
+        assert all(np.isfinite(part).all() for part in result)
+    elif isinstance(result, np.ndarray):
+        assert np.isfinite(result).all()
+    else:
+        assert result.edge_length_mean > 0
+
+
+@pytest.mark.parametrize("kind", ["face", "vertex"])
+def test_normals_of_a_mesh_as_small_as_the_limit_are_unit_vectors(kind):
+    # Below the limit the cross products round to zero and every normal would be (0, 0, 0).
+    normals = (hx.face_normals if kind == "face" else hx.vertex_normals)(shrunk(arguments.MIN_EXTENT))
+    assert np.allclose(np.linalg.norm(normals, axis=1), 1.0)
+
+
+@pytest.mark.parametrize("extent", [1e-41, 1e-100, 1e-200, 1e-320, 0.0])
+@pytest.mark.parametrize("algorithm", ALL_ALGORITHMS)
+def test_a_mesh_smaller_than_the_limit_is_refused_as_too_small(algorithm, extent):
+    with pytest.raises(hx.MeshInputError, match="too small for the computation") as caught:
+        ALL_ALGORITHMS[algorithm](shrunk(extent))
+    assert caught.value.element[0] == "argument"
+
+
 def test_a_coordinate_set_to_nan_after_construction_is_named():
     mesh = small_mesh("cube")
     mesh.positions[5, 1] = np.nan
@@ -196,6 +235,7 @@ def test_a_coordinate_set_to_nan_after_construction_is_named():
 
 def test_the_command_line_and_the_library_share_one_coordinate_limit():
     assert cli.MAX_COORDINATE == arguments.MAX_COORDINATE
+    assert cli.MIN_EXTENT == arguments.MIN_EXTENT
 
 
 # ---- hostile arguments ------------------------------------------------------------------------

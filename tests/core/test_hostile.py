@@ -56,6 +56,26 @@ def test_the_empty_mesh_round_trips_through_obj(tmp_path):
     assert (loaded.n_vertices, loaded.n_faces) == (0, 0)
 
 
+@pytest.mark.parametrize("suffix", [".ply", ".off", ".stl", ".glb"])
+def test_the_empty_mesh_round_trips_through_every_format(tmp_path, suffix):
+    # What ``save`` writes for the empty mesh, ``load`` must read back (trimesh writes a
+    # file with zero vertices and zero faces; the OBJ reader's rule applies to it).
+    path = tmp_path / f"empty{suffix}"
+    hx.save(hx.HalfedgeMesh.from_faces([], []), path)
+    loaded = hx.load(path)
+    loaded.validate()
+    assert (loaded.n_vertices, loaded.n_faces) == (0, 0)
+
+
+def test_a_ply_of_points_only_is_refused_as_a_point_cloud(tmp_path):
+    path = tmp_path / "cloud.ply"
+    path.write_text("ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n"
+                    "0 0 0\n1 0 0\n")
+    with pytest.raises(hx.MeshInputError, match="2 vertices but no triangles: a point cloud"):
+        hx.load(path)
+
+
 def test_an_obj_of_comments_only_is_the_empty_mesh():
     assert hx.load(EDGE_CASES / "only_comments.obj").n_faces == 0
 
