@@ -2,6 +2,7 @@
 
     from halfedge_edu.exercises.chapter_checks import check_fan, check_cut, check_laplacian_step, check_collapse_is_safe
     check_fan(fan)                          # chapter 01: cut a polygon into a fan like the OBJ reader
+    check_obj_io(read_obj, write_obj)       # chapter 01: an OBJ reader and writer (see io_checks)
     check_cut(cut_bowtie)                   # chapter 04: give the bowtie's second fan its own vertex
     check_laplacian_step(laplacian_step)    # chapter 05: one Jacobi step of uniform smoothing
     check_collapse_is_safe(collapse_is_safe)   # chapter 08: the link condition from one-rings
@@ -31,9 +32,10 @@ from halfedge_edu.data import sample
 from halfedge_edu.io import read_obj
 
 from .harness import TIME_LIMIT, CheckResult, failed, passed, run, trouble, unfinished
+from .io_checks import check_obj_io, check_obj_reader, check_obj_writer
 
 __all__ = ["BOWTIE_FACES", "BOWTIE_VERTICES", "check_collapse_is_safe", "check_cut", "check_fan",
-           "check_laplacian_step", "smooth_once_in_place"]
+           "check_laplacian_step", "check_obj_io", "check_obj_reader", "check_obj_writer", "smooth_once_in_place"]
 
 #: Chapter 04's bowtie: two triangles that share only vertex 0.
 BOWTIE_VERTICES = np.array([[0, 0, 0], [1, -0.5, 0], [1, 0.5, 0], [-1, 0.5, 0], [-1, -0.5, 0]], dtype=float)
