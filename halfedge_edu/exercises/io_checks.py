@@ -199,7 +199,8 @@ def _judge_reader_answer(case: ReaderCase, answer) -> str | None:
     if your_vertices.size == 0 and len(vertices):
         your_vertices = your_vertices.reshape(0, 3)
     if your_vertices.ndim != 2 or your_vertices.shape[1] != 3:
-        return f"the vertices should be an (n, 3) array, one row x y z per 'v' line; yours have shape {your_vertices.shape}."
+        return (f"the vertices should be an (n, 3) array, one row x y z per 'v' line; yours have shape "
+                f"{your_vertices.shape}.")
     records = case.text.splitlines()
     if len(your_vertices) != len(vertices):
         others = sum(1 for r in records if r.split()[:1] in (["vt"], ["vn"]))
