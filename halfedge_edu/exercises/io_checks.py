@@ -326,26 +326,23 @@ def _writer_failure(write_obj: Callable, checked: list[str]) -> CheckResult | No
     return None
 
 
-def check_obj_reader(read_obj: Callable) -> CheckResult:
-    """``read_obj(text or Path) -> (vertices, faces)`` against ``hx.read_obj`` on the cases of this module."""
-    if words := unfinished(read_obj, "read_obj"):
+def _check_one(function: Callable, name: str, find_failure: Callable, praise: str) -> CheckResult:
+    """Run one of the two finders (``_reader_failure``, ``_writer_failure``) on ``function``."""
+    if words := unfinished(function, name):
         return failed("obj_io", [], None, words)
     checked: list[str] = []
-    failure = _reader_failure(read_obj, checked)
-    if failure is not None:
-        return failure
-    return all_good("obj_io", checked, "cases", "Your reader reads what hx.read_obj reads.")
+    failure = find_failure(function, checked)
+    return failure if failure is not None else all_good("obj_io", checked, "cases", praise)
+
+
+def check_obj_reader(read_obj: Callable) -> CheckResult:
+    """``read_obj(text or Path) -> (vertices, faces)`` against ``hx.read_obj`` on the cases of this module."""
+    return _check_one(read_obj, "read_obj", _reader_failure, "Your reader reads what hx.read_obj reads.")
 
 
 def check_obj_writer(write_obj: Callable) -> CheckResult:
     """``write_obj(vertices, faces) -> str`` read back with ``hx.read_obj``: the same vertices and faces."""
-    if words := unfinished(write_obj, "write_obj"):
-        return failed("obj_io", [], None, words)
-    checked: list[str] = []
-    failure = _writer_failure(write_obj, checked)
-    if failure is not None:
-        return failure
-    return all_good("obj_io", checked, "cases", "hx.read_obj reads your files back as they were written.")
+    return _check_one(write_obj, "write_obj", _writer_failure, "hx.read_obj reads your files back as they were written.")
 
 
 def check_obj_io(read_obj: Callable, write_obj: Callable) -> CheckResult:
