@@ -2,9 +2,10 @@
 
     from halfedge_edu.exercises.chapter_checks import check_fan, check_cut, check_laplacian_step, check_collapse_is_safe
     check_fan(fan)                          # chapter 01: cut a polygon into a fan like the OBJ reader
+    check_obj_io(read_obj, write_obj)       # chapter 01: an OBJ reader and writer (see io_checks)
     check_cut(cut_bowtie)                   # chapter 04: give the bowtie's second fan its own vertex
     check_laplacian_step(laplacian_step)    # chapter 05: one Jacobi step of uniform smoothing
-    check_collapse_is_safe(collapse_is_safe)   # chapter 08: the link condition from one-rings
+    check_collapse_is_safe(collapse_is_safe)   # chapter 08: the link condition from one-rings (each course's statement)
 
 They live in the package so that the grader (``halfedge_edu.exercises.grading``) can
 run them on a learner's function; each returns a :class:`CheckResult` like the other
@@ -31,9 +32,10 @@ from halfedge_edu.data import sample
 from halfedge_edu.io import read_obj
 
 from .harness import TIME_LIMIT, CheckResult, failed, passed, run, trouble, unfinished
+from .io_checks import check_obj_io, check_obj_reader, check_obj_writer
 
 __all__ = ["BOWTIE_FACES", "BOWTIE_VERTICES", "check_collapse_is_safe", "check_cut", "check_fan",
-           "check_laplacian_step", "smooth_once_in_place"]
+           "check_laplacian_step", "check_obj_io", "check_obj_reader", "check_obj_writer", "smooth_once_in_place"]
 
 #: Chapter 04's bowtie: two triangles that share only vertex 0.
 BOWTIE_VERTICES = np.array([[0, 0, 0], [1, -0.5, 0], [1, 0.5, 0], [-1, 0.5, 0], [-1, -0.5, 0]], dtype=float)
@@ -167,18 +169,24 @@ def _vertex_set(vertices) -> str:
     return "{" + ", ".join("∂" if v == BOUNDARY else str(v) for v in sorted(vertices)) + "}"
 
 
-def _edge_set(edges) -> str:
-    return "{" + ", ".join(("∂" if i == BOUNDARY else str(i)) + "-" + str(j) for i, j in sorted(edges)) + "}"
+#: What the check adds when a learner's answer follows a course's own rule where the package's differs.
+_TETRAHEDRON_NOTE = (
+    "On the tetrahedron your function calls the collapse safe: that is the link condition as UChicago's "
+    "assignment states it (the one-rings of a and b share exactly two vertices), and it is accepted. This "
+    "package also compares the links' edges and refuses it (can_collapse's rule 'tetrahedron'): the edge "
+    "between the two opposite vertices lies in both links, and the collapse would leave two triangles glued "
+    "back to back on three vertices, a two-face 'pillow' with no inside on which no flip, split or collapse "
+    "works any more (pmp-library and OpenMesh allow it)."
+)
+_BOUNDARY_NOTE = (
+    "Your function refuses boundary edges that the link condition allows, as CMU's assignment asks (ignore "
+    "requests to collapse boundary edges): accepted. This package collapses a boundary edge when the link "
+    "condition holds with the boundary counted as one more vertex, as chapter 08 shows."
+)
 
 
-def check_collapse_is_safe(is_safe: Callable) -> CheckResult:
-    """``is_safe(mesh, e) -> bool`` against ``link_condition`` on every edge of four closed meshes.
-
-    The last mesh is an icosphere after 25 random collapses, which leaves vertices of
-    low degree, where the interesting cases live.
-    """
-    if (blanks := _blanks_left("collapse_is_safe", "collapse_is_safe", is_safe)) is not None:
-        return blanks
+def _collapse_meshes(with_boundary: bool) -> dict[str, HalfedgeMesh]:
+    """The meshes of :func:`check_collapse_is_safe`: four closed ones, and four with boundary on request."""
     sphere = sample("icosphere", subdivisions=1)
     rng = np.random.default_rng(8)
     for _ in range(25):
@@ -186,8 +194,61 @@ def check_collapse_is_safe(is_safe: Callable) -> CheckResult:
         collapse(sphere, int(rng.choice(allowed)))
     meshes = {"tetrahedron": sample("tetrahedron"), "cube": sample("cube"),
               "octahedron": sample("octahedron"), "icosphere after 25 collapses": sphere}
+    if with_boundary:
+        cube_vertices, cube_faces = sample("cube").to_arrays()
+        meshes.update({"cube without its first triangle": HalfedgeMesh.from_faces(cube_vertices, cube_faces[1:]),
+                       "open_patch": sample("open_patch"), "figure8": sample("figure8"),
+                       "lone_triangle": sample("lone_triangle")})
+    return meshes
+
+
+def _unsafe_words(lc, on_boundary: bool) -> str:
+    """Why the collapse of an edge that the learner called safe is not, naming the likely mistake."""
+    others = sorted(v for v in lc.shared.vertices - lc.link_ab.vertices if v != BOUNDARY)
+    if BOUNDARY in lc.extra.vertices:
+        return (", and the edge has a triangle on each side but both its ends lie on the boundary: the merged "
+                "vertex would lie on the boundary twice (a figure-8 pinch), so the collapse is NOT safe. This is "
+                "the boundary case: count the boundary as one more neighbour ∂ of every boundary vertex (chapter "
+                "08, section 4), or refuse an interior edge whose two ends are on the boundary.")
+    if not others:   # what is left of the link condition: an edge from ∂ in both links
+        return (", and its triangle has all three edges on the boundary (a lone triangle): collapsing it would "
+                "leave a bare edge with no face, so the collapse is NOT safe. This is a boundary case: with the "
+                "boundary counted as a vertex ∂, the edge from ∂ to the opposite vertex lies in both links.")
+    words = (f", so they also share {_vertex_set(others)}: its edges to a and to b would become one doubled edge, "
+             f"and the collapse is NOT safe.")
+    if on_boundary:
+        return words + (" On a boundary edge there is only one opposite vertex: 'the rings share exactly two "
+                        "vertices' (UChicago's statement) assumes an edge with a triangle on each side; compare "
+                        "WHICH vertices are shared with the opposite ones, not how many.")
+    return words + " Only the vertices opposite the edge may be shared."
+
+
+def check_collapse_is_safe(is_safe: Callable, *, with_boundary: bool = False) -> CheckResult:
+    """``is_safe(mesh, e) -> bool`` against ``link_condition`` on every edge of four closed meshes.
+
+    The last closed mesh is an icosphere after 25 random collapses, which leaves
+    vertices of low degree, where the interesting cases live. ``with_boundary=True``
+    adds four meshes with boundary (a cube without one triangle, ``open_patch``,
+    ``figure8``, ``lone_triangle``).
+
+    Each course's stated rule is accepted where it differs from the package's alone:
+
+    * UChicago's "the two one-rings share exactly two vertices" looks at vertices only
+      and calls the tetrahedron's edges safe; the package also compares the links'
+      edges and refuses them. Accepted, and the passing message says why the package
+      refuses (the two-face pillow).
+    * CMU's "ignore requests to collapse boundary edges" refuses boundary edges the
+      package allows. Accepted, and said.
+
+    Everything else must agree with ``link_condition`` (the boundary counted as ∂):
+    a shared neighbour besides the opposite vertices, an interior edge with both ends
+    on the boundary, a lone triangle are each named when called safe.
+    """
+    if (blanks := _blanks_left("collapse_is_safe", "collapse_is_safe", is_safe)) is not None:
+        return blanks
     checked: list[str] = []
-    for name, mesh in meshes.items():
+    notes: dict[str, None] = {}   # the course rules the learner's function followed, in order, once each
+    for name, mesh in _collapse_meshes(with_boundary).items():
         for edge in mesh.edges:
             answer, failure = _call("collapse_is_safe", "collapse_is_safe", is_safe, mesh, edge.index,
                                     mesh_name=name, checked=checked)
@@ -196,16 +257,21 @@ def check_collapse_is_safe(is_safe: Callable) -> CheckResult:
             lc = link_condition(mesh, edge.index)
             if bool(answer) == bool(lc):
                 continue
+            if answer and not lc.extra.vertices and all(BOUNDARY not in pair for pair in lc.extra.edges):
+                notes[_TETRAHEDRON_NOTE] = None        # the vertex part holds: UChicago's rule
+                continue
+            if not answer and edge.is_boundary:
+                notes[_BOUNDARY_NOTE] = None           # CMU refuses every boundary edge
+                continue
             words = (f"edge {edge.index} (a = {lc.a}, b = {lc.b}): the rings share {_vertex_set(lc.shared.vertices)}, "
                      f"the opposite vertices are {_vertex_set(lc.link_ab.vertices)}")
-            element = ("halfedge", 2 * edge.index)
-            if lc.extra.edges and not lc.extra.vertices:
-                return failed("collapse_is_safe", checked, name, words + (
-                    f", so the vertex part holds; but the edge {_edge_set(lc.extra.edges)} lies in both links "
-                    "(both a and b make a triangle with it), so the collapse is NOT safe. Also test whether the "
-                    "two opposite vertices are joined by an edge whose triangles reach both a and b."), element, mesh)
-            verdict = "safe" if lc else "NOT safe"
-            return failed("collapse_is_safe", checked, name, words + (
-                f", so the collapse is {verdict}; yours says {'safe' if answer else 'not safe'}."), element, mesh)
+            if answer:
+                words += _unsafe_words(lc, edge.is_boundary)
+            else:
+                words += (", exactly the vertices opposite the edge, so the collapse is safe; yours says not safe. "
+                          "A one-ring holds a vertex's neighbours, not the vertex itself, and the opposite vertices "
+                          "are those of the edge's own triangles (h.prev.vertex for h and h.twin).")
+            return failed("collapse_is_safe", checked, name, words, ("halfedge", 2 * edge.index), mesh)
         checked.append(name)
-    return passed("collapse_is_safe", checked, "It agrees with link_condition on every edge.")
+    return passed("collapse_is_safe", checked, " ".join(["It agrees with link_condition on every edge." if not notes
+                  else "It follows a course's own rule where the package's differs.", *notes]))

@@ -76,6 +76,7 @@ class Exercise:
 #: chapter's exercise cell asks the learner to fill in.
 EXERCISES: tuple[Exercise, ...] = (
     Exercise("fan", "01", ("fan",), "check_fan"),
+    Exercise("obj_io", "01", ("read_obj", "write_obj"), "check_obj_io"),
     Exercise("build", "02", ("build",), "check_build"),
     Exercise("one_ring", "03", ("one_ring",), "check_one_ring"),
     Exercise("cut", "04", ("cut_bowtie",), "check_cut"),

@@ -12,6 +12,8 @@
 # - say why `f 1 2 3` means the vertices numbered 0, 1 and 2 in Python;
 # - use comments, negative indices and polygons, and say what the reader does with each;
 # - read an error message and go straight to the line of the file it names;
+# - write a small OBJ reader and writer of your own (the Loop-subdivision assignment's
+#   first task);
 # - explain why a *polygon soup* (faces only) answers "who are my neighbours?" slowly,
 #   and why that is the reason for the halfedge structure of chapter 02.
 
@@ -417,6 +419,70 @@ from halfedge_edu.exercises.chapter_checks import check_fan
 
 check_fan(fan)
 
+# %% [markdown]
+# **3. Your own reader and writer.** This is the first task of the Loop-subdivision
+# assignment: read and write OBJ files yourself, as a polygon soup.
+#
+# - `read_obj(source)` takes the file's text (a `str`) or a `pathlib.Path` to the file,
+#   and returns `(vertices, faces)`: `vertices` an `(n, 3)` float array, one row per `v`
+#   line in the file's order, and `faces` a list with one entry per `f` line, its
+#   **0-based** corners in the file's order. **Keep polygons whole**: a quad is a list of
+#   four corners. (Cutting it into a fan as `hx.read_obj` does is accepted too; the
+#   Loop assignment would let you skip or refuse polygons, but the check's files have a
+#   quad, so do not.)
+# - Everything this chapter showed must work: comments and blank lines, words separated
+#   by any whitespace, records you skip (`vt`, `vn`, `o`, `g`, `usemtl`, `s` ...),
+#   corners `v/vt/vn`, `v//vn` and `v/vt` (the vertex is the number before the first
+#   `/`), negative indices (counted back from the last vertex defined *above* the line),
+#   Windows line ends, and a last line without a line break.
+# - `write_obj(vertices, faces)` returns the text of the file: a `v x y z` line per
+#   vertex, then an `f` line per face with 1-based indices, corners in the order given.
+#
+# Skip error handling here: the check's files are all valid. The check reads nine small
+# texts and `spot.obj` (as a `Path`) and compares with `hx.read_obj`, reads your
+# writer's text back with `hx.read_obj`, and finally sends the pyramid through your
+# writer and your reader.
+
+# %%
+from pathlib import Path
+
+
+def read_obj(source):
+    """(vertices, faces) of an OBJ file; ``source`` is its text, or a pathlib.Path to it."""
+    ### BEGIN SOLUTION
+    text = source.read_text() if isinstance(source, Path) else source
+    vertices, faces = [], []
+    for line in text.splitlines():               # also splits at "\r\n" and keeps a last line without "\n"
+        words = line.split("#", 1)[0].split()    # drop the comment, split on any whitespace
+        if not words:
+            continue
+        if words[0] == "v":
+            vertices.append([float(x) for x in words[1:4]])
+        elif words[0] == "f":
+            corners = []
+            for corner in words[1:]:
+                index = int(corner.split("/")[0])    # "3/7/2", "3//2", "3/7" and "3" are all vertex 3
+                corners.append(index - 1 if index > 0 else len(vertices) + index)
+            faces.append(corners)
+    return np.array(vertices, dtype=float).reshape(-1, 3), faces
+    ### END SOLUTION
+
+
+# %%
+def write_obj(vertices, faces):
+    """The text of an OBJ file with these vertices ((n, 3) floats) and faces (0-based corner lists)."""
+    ### BEGIN SOLUTION
+    lines = [f"v {x!r} {y!r} {z!r}" for x, y, z in np.asarray(vertices, dtype=float).tolist()]
+    for face in faces:
+        lines.append("f " + " ".join(str(int(corner) + 1) for corner in face))
+    return "\n".join(lines) + "\n"
+    ### END SOLUTION
+
+# %%
+from halfedge_edu.exercises.chapter_checks import check_obj_io
+
+check_obj_io(read_obj, write_obj)
+
 # %% [markdown] tags=["solution"]
 # ### Answers
 #
@@ -430,6 +496,11 @@ check_fan(fan)
 # ```
 #
 # **2.** The answer is in the exercise cell: every triangle shares the first corner.
+#
+# **3.** The answer is in the exercise cells. `repr(x)` writes the shortest text that
+# reads back as exactly the same float, so a file written and read again gives the same
+# numbers; the reader turns a negative index into a 0-based one with the count of
+# vertices read so far, which is why it must be done while reading, not at the end.
 
 # %% tags=["solution"]
 data = hx.read_obj(io.StringIO(my_tetrahedron_obj + "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"))

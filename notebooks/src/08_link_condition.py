@@ -391,8 +391,10 @@ check_collapse_is_safe(collapse_is_safe)
 # %% [markdown]
 # ### The vertex part alone
 #
-# Here is the first half of the answer, the one-rings only. Most edges agree; the
-# check names the one that does not:
+# Here is the first half of the answer, the one-rings only. It is the link condition as
+# the UChicago assignment states it ("the one-rings of `a` and `b` share exactly two
+# vertices"), so the check accepts it, and says where this package refuses one more
+# collapse, and why:
 
 # %%
 def rings_only(mesh, e):

@@ -250,3 +250,17 @@ def test_bad_grade_arguments_are_one_line_and_exit_2(tmp_path, capsys, arguments
     err = capsys.readouterr().err
     assert err.startswith("halfedge-edu: error: ") and said in err and err.count("\n") == 1, err
     assert not (tmp_path / "r").exists()
+
+
+def test_chapter_01s_obj_exercise_earns_its_point_in_the_solution_edition(tmp_path):
+    grade = grade_notebook(_edition(tmp_path, "01_polygon_soup_and_obj.py", "solution"))
+    points = {exercise.name: (exercise.score, exercise.output) for exercise in grade.exercises}
+    assert points["obj_io"][0] == 1.0 and points["obj_io"][1].startswith("All good!"), points
+    assert grade.score == grade.max_score, grade.to_json()
+
+
+def test_chapter_01s_obj_exercise_earns_nothing_in_the_student_edition_because_it_is_not_implemented(tmp_path):
+    grade = grade_notebook(_edition(tmp_path, "01_polygon_soup_and_obj.py", "student"))
+    obj_io = next(exercise for exercise in grade.exercises if exercise.name == "obj_io")
+    assert obj_io.score == 0.0 and obj_io.output.startswith("Not yet.")
+    assert "read_obj is not finished yet (NotImplementedError: write read_obj" in obj_io.output

@@ -1,0 +1,373 @@
+"""The check of chapter 01's OBJ exercise: a reader and a writer of your own.
+
+    from halfedge_edu.exercises.chapter_checks import check_obj_io, check_obj_reader, check_obj_writer
+    check_obj_reader(read_obj)          # read_obj(text or pathlib.Path) -> (vertices, faces)
+    check_obj_writer(write_obj)         # write_obj(vertices, faces) -> the OBJ text
+    check_obj_io(read_obj, write_obj)   # both, then your writer's text back through your reader
+
+This is the first task of the Loop-subdivision assignment (read and write Wavefront OBJ).
+The reference is the package's own reader, :func:`halfedge_edu.io.read_obj`: each case
+is a small OBJ text made to show one thing a reader must get right (comments, blank
+lines, ``vt``/``vn`` records, ``v/vt/vn`` and ``v//vn`` corners, negative indices, a
+quad, Windows line ends, a last line without a line break), and a difference is told
+as the file line, what it should give, what the learner's function gave and, where the
+answer shows it, the mistake by name.
+
+**Faces.** The exercise expects each ``f`` record as one face, its 0-based corners in
+the file's order, so a quad stays a list of four. Faces cut into fans the way
+``hx.read_obj`` cuts them, ``(a, b, c), (a, c, d), ...``, are accepted too. The Loop
+assignment lets a reader skip or refuse polygons; these files have a quad, so skipping
+or refusing it is reported, with that said.
+
+**Writer.** ``write_obj(vertices, faces)`` returns the file's text; it is judged by
+reading that text with ``hx.read_obj``: the same vertices (to 1e-6, the six decimals
+many exporters write; ``repr(x)`` writes each float exactly) and the same faces in the
+same corner order (the order is the face's orientation).
+"""
+
+from __future__ import annotations
+
+import io
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from halfedge_edu.core.errors import MeshInputError
+from halfedge_edu.io import read_obj as reference_read_obj
+
+from .harness import CheckResult, all_good, failed, run, trouble, unfinished
+
+__all__ = ["READER_CASES", "ReaderCase", "check_obj_io", "check_obj_reader", "check_obj_writer"]
+
+#: How close a written coordinate must read back (six decimals, as many exporters write).
+COORDINATE_TOLERANCE = 1e-6
+
+
+@dataclass(frozen=True)
+class ReaderCase:
+    """One OBJ text for the reader, and the rule it is there to test, in words (the hint)."""
+
+    name: str
+    text: str
+    rule: str
+
+
+def _grid_text(corner: Callable[[int, int, int], str]) -> str:
+    """Twelve vertices, six texture coordinates, two normals, and two faces whose corners
+    ``corner(vertex, texture, normal)`` writes (1-based): vertex numbers up to 12, so a
+    reader that takes one character of a corner gets them wrong."""
+    vertices = "".join(f"v {x} {y} 0\n" for y in range(3) for x in range(4))
+    records = "vt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\nvt 0.5 0\nvt 0 0.5\nvn 0 0 1\nvn 0 0 -1\n"
+    faces = (f"f {corner(10, 4, 2)} {corner(11, 3, 2)} {corner(7, 6, 2)}\n"
+             f"f {corner(11, 1, 2)} {corner(12, 5, 2)} {corner(8, 2, 2)}\n")
+    return "o grid\nmtllib grid.mtl\n" + vertices + records + "g top\nusemtl red\ns off\n" + faces
+
+
+_PYRAMID = """\
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+v 0.5 0.5 0.8
+f 1 4 3 2
+f 1 2 5
+f 2 3 5
+f 3 4 5
+f 4 1 5
+"""
+
+_COMMENTED = """\
+# a square of two triangles
+
+v 0 0 0   # the origin
+v 1 0 0
+v 0 1 0
+
+v 1 1 0
+# the faces
+f 1 2 3   # the first one
+   \t
+f 2 4 3
+"""
+
+#: The reader's cases, in the order they are checked.
+READER_CASES: tuple[ReaderCase, ...] = (
+    ReaderCase("one triangle", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+               "'f 1 2 3' names the first three vertices, 0, 1 and 2 in Python (OBJ counts from 1)"),
+    ReaderCase("comments and blank lines", _COMMENTED,
+               "skip blank lines and everything from a '#' to the end of its line"),
+    ReaderCase("spaces and tabs", "v  0\t0 0\nv 1   0 0\nv\t0 1 0\nf 1  2\t3\n",
+               "the words of a record may be separated by several spaces or tabs: split on any whitespace"),
+    ReaderCase("vt/vn records and v/vt/vn corners", _grid_text(lambda v, t, n: f"{v}/{t}/{n}"),
+               "only a line whose first word is exactly 'v' is a vertex ('vt', 'vn', 'o', 'g', 'usemtl', 's', "
+               "'mtllib' are other records), and in a corner 'v/vt/vn' the vertex is the number before the "
+               "first '/'"),
+    ReaderCase("v//vn and v/vt corners", _grid_text(lambda v, t, n: f"{v}//{n}" if v != 11 else f"{v}/{t}"),
+               "in a corner 'v//vn' or 'v/vt' the vertex is the number before the first '/'"),
+    ReaderCase("negative indices", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nv 1 1 0\nv 2 1 0\nf 2 -2 -1\nv 5 5 5\n",
+               "a negative index counts back from the last vertex defined ABOVE its line (-1 is the newest "
+               "so far), not from the end of the file"),
+    ReaderCase("a quad", _PYRAMID,
+               "a face may have more than three corners: keep the polygon as one face (what this exercise "
+               "expects), or cut it into the fan (a, b, c), (a, c, d) as hx.read_obj does"),
+    ReaderCase("Windows line ends (CRLF)", _COMMENTED.replace("\n", "\r\n"),
+               "a line may end in '\\r\\n': str.splitlines() and str.split() take the '\\r' away"),
+    ReaderCase("no line break at the end", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3",
+               "the last line may have no line break after it and is a record all the same"),
+)
+
+
+def _reference(text: str) -> tuple[np.ndarray, list[tuple[int, list[int]]], list[list[int]]]:
+    """What ``hx.read_obj`` makes of ``text``: vertices, (line, polygon) per ``f`` record, fan triangles.
+
+    The reader cuts each polygon into a fan ``(a, b, c), (a, c, d), ...`` and keeps the
+    line of each triangle; the polygon ``a, b, c, d, ...`` is put back together from them.
+    """
+    data = reference_read_obj(io.StringIO(text))
+    polygons: dict[int, list[int]] = {}
+    for (a, b, c), line in zip(data.faces.tolist(), data.face_lines.tolist()):
+        polygons.setdefault(line, [a, b]).append(c)
+    return data.vertices, list(polygons.items()), data.faces.tolist()
+
+
+def _vertices_above(text: str, line: int) -> int:
+    """How many ``v`` records come before 1-based ``line`` of ``text``."""
+    return sum(1 for record in text.splitlines()[: line - 1] if record.split()[:1] == ["v"])
+
+
+def _faces_of(answer) -> list[list[int]] | None:
+    """The learner's faces as lists of ints, or None if they are not a list of index lists."""
+    try:
+        return [[int(corner) for corner in face] for face in answer]
+    except (TypeError, ValueError):
+        return None
+
+
+def _shifted(faces: list[list[int]], by: int) -> list[list[int]]:
+    return [[corner + by for corner in face] for face in faces]
+
+
+def _corner_numbers(record: str, part: int) -> list[int] | None:
+    """The ``part``-th number (0 vertex, 1 texture, 2 normal) of each corner of an ``f`` record, 0-based."""
+    numbers = []
+    for corner in record.split("#", 1)[0].split()[1:]:
+        pieces = corner.split("/")
+        if len(pieces) <= part or not pieces[part]:
+            return None
+        numbers.append(int(pieces[part]) - 1)
+    return numbers
+
+
+def _face_mistake(case: ReaderCase, line: int, expected: list[int], yours: list[int]) -> str:
+    """The mistake one wrong face shows, in words (the case's rule when none is recognised)."""
+    record = case.text.splitlines()[line - 1].strip()
+    if yours == [corner + 1 for corner in expected]:
+        return "your indices are the file's, counted from 1: subtract 1 (OBJ's 'f 1 2 3' is vertices 0, 1, 2)."
+    for part, what in ((1, "texture coordinate"), (2, "normal")):
+        if "/" in record and yours == _corner_numbers(record, part):
+            return (f"yours took the {what} index of each corner: in 'v/vt/vn', 'v//vn' and 'v/vt' the vertex "
+                    f"index is the number before the first '/'.")
+    if any(word.startswith("-") for word in record.split()[1:]):
+        above = _vertices_above(case.text, line)
+        total = sum(1 for r in case.text.splitlines() if r.split()[:1] == ["v"])
+        from_the_end = [total + int(w.split("/")[0]) if w.startswith("-") else int(w.split("/")[0]) - 1
+                        for w in record.split("#", 1)[0].split()[1:]]
+        words = (f"a negative index counts back from the last vertex defined above its line: {above} vertices "
+                 f"are defined above line {line}, so -1 there is vertex {above - 1}.")
+        if yours == from_the_end:
+            words += (f" Yours counted back from the end of the whole file ({total} vertices), as Python's "
+                      f"list[-1] does; vertices defined below the face do not count.")
+        return words
+    return f"{case.rule}."
+
+
+def _judge_reader_answer(case: ReaderCase, answer) -> str | None:
+    """What is wrong with ``read_obj``'s answer for ``case``, in words; None if it is right."""
+    vertices, polygons, fans = _reference(case.text)
+    try:
+        your_vertices, your_faces = answer
+        your_vertices = np.asarray(your_vertices, dtype=float)
+    except (TypeError, ValueError):
+        return (f"read_obj should return (vertices, faces), an (n, 3) array of floats and a list of faces; "
+                f"yours returned {answer!r:.80}.")
+    faces = _faces_of(your_faces)
+    if faces is None:
+        return f"the faces should be a list of faces, each a list of vertex indices; yours are {your_faces!r:.80}."
+    if your_vertices.size == 0 and len(vertices):
+        your_vertices = your_vertices.reshape(0, 3)
+    if your_vertices.ndim != 2 or your_vertices.shape[1] != 3:
+        return (f"the vertices should be an (n, 3) array, one row x y z per 'v' line; yours have shape "
+                f"{your_vertices.shape}.")
+    records = case.text.splitlines()
+    if len(your_vertices) != len(vertices):
+        others = sum(1 for r in records if r.split()[:1] in (["vt"], ["vn"]))
+        words = f"the file has {len(vertices)} 'v' lines, your read_obj returned {len(your_vertices)} vertices."
+        if others and len(your_vertices) == len(vertices) + others:
+            return words + (" It also read the 'vt' and 'vn' lines as vertices: a vertex is a line whose first "
+                            "word is exactly 'v'.")
+        return words + f" Here: {case.rule}."
+    wrong = np.flatnonzero(~np.isclose(your_vertices, vertices).all(axis=1))
+    if len(wrong):
+        i = int(wrong[0])
+        return (f"vertex {i} should be {vertices[i].tolist()}, yours is {your_vertices[i].tolist()}: each 'v' "
+                f"line's three numbers, x y z, in the file's order.")
+    wanted = [corners for _, corners in polygons]
+    if faces in (wanted, fans):
+        return None
+    if _shifted(faces, -1) in (wanted, fans):
+        return "your indices are the file's, counted from 1: subtract 1 (OBJ's 'f 1 2 3' is vertices 0, 1, 2)."
+    if len(faces) != len(wanted) and len(faces) != len(fans):
+        lines = [line for line, _ in polygons]
+        if faces in (wanted[:-1], fans[: -(len(polygons[-1][1]) - 2)]) and not case.text.endswith("\n"):
+            return (f"the last line, {records[-1]!r}, has no line break after it, and your read_obj dropped it: "
+                    f"read every line, the last one too (str.splitlines() gives it).")
+        skipped = [line for line, corners in polygons if len(corners) > 3]
+        if skipped and faces == [corners for corners in wanted if len(corners) == 3]:
+            return (f"your read_obj skipped the quad on line {skipped[0]} ({records[skipped[0] - 1].strip()!r}). "
+                    f"The Loop assignment allows that; this exercise has polygons: keep it as one face of four "
+                    f"corners (expected), or cut it into a fan as hx.read_obj does (also accepted).")
+        return (f"the file has {len(wanted)} 'f' lines (on lines {', '.join(map(str, lines))}), your read_obj "
+                f"returned {len(faces)} faces. Here: {case.rule}.")
+    # Compare face by face in the learner's own form: polygons kept, or fans.
+    as_polygons = (len(faces) == len(wanted) and any(len(face) > 3 for face in faces)) or len(faces) != len(fans)
+    reference, lines = (wanted, [line for line, _ in polygons]) if as_polygons else (
+        fans, [line for line, corners in polygons for _ in range(len(corners) - 2)])
+    k = next(k for k, (mine, right) in enumerate(zip(faces, reference)) if mine != right)
+    record = records[lines[k] - 1].strip()
+    return (f"line {lines[k]}, {record!r}, should give the face {reference[k]}, yours is {faces[k]}: "
+            + _face_mistake(case, lines[k], reference[k], faces[k]))
+
+
+def _reader_failure(read_obj: Callable, checked: list[str]) -> CheckResult | None:
+    """Run ``read_obj`` on every case and on a real file; the first failure, or None."""
+    for case in READER_CASES:
+        status, answer = run(read_obj, case.text)
+        problem = trouble(status, answer, "read_obj")
+        if problem is not None:
+            if status == "error" and not isinstance(answer, NotImplementedError):
+                problem += f" Here: {case.rule}."
+            return failed("obj_io", checked, case.name, problem)
+        words = _judge_reader_answer(case, answer)
+        if words is not None:
+            return failed("obj_io", checked, case.name, words)
+        checked.append(case.name)
+    with resources.as_file(resources.files("halfedge_edu.data").joinpath("spot.obj")) as spot:
+        status, answer = run(read_obj, Path(spot))
+        name = "spot.obj, given as a pathlib.Path"
+        problem = trouble(status, answer, "read_obj")
+        if problem is not None:
+            return failed("obj_io", checked, name, problem + " read_obj should also read a file given as a "
+                          "pathlib.Path (Path.read_text() gives its text).")
+        words = _judge_reader_answer(ReaderCase(name, spot.read_text(), "a real exporter's file: v and "
+                                                "v/vt corners"), answer)
+    if words is not None:
+        return failed("obj_io", checked, name, words)
+    checked.append("spot.obj")
+    return None
+
+
+#: The writer's cases: (name, vertices, faces as the learner gets them).
+WRITER_CASES = (
+    ("tetrahedron with awkward coordinates",
+     np.array([[0.0, 0.0, 0.0], [1 / 3, 0.0, 0.0], [0.0, 2 / 3, 1e-7], [0.1, 0.2, 0.3]]),
+     np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])),
+    ("pyramid with a square floor", reference_read_obj(io.StringIO(_PYRAMID)).vertices,
+     [[0, 3, 2, 1], [0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]]),
+)
+
+
+def _fans(faces) -> list[list[int]]:
+    return [[int(face[0]), int(face[k]), int(face[k + 1])] for face in faces for k in range(1, len(face) - 1)]
+
+
+def _writer_failure(write_obj: Callable, checked: list[str]) -> CheckResult | None:
+    """Run ``write_obj`` on every case and read its text with ``hx.read_obj``; the first failure, or None."""
+    for name, vertices, faces in WRITER_CASES:
+        status, text = run(write_obj, vertices.copy(), [list(face) for face in faces]
+                           if isinstance(faces, list) else faces.copy())
+        problem = trouble(status, text, "write_obj")
+        if problem is not None:
+            return failed("obj_io", checked, name, problem)
+        if not isinstance(text, str):
+            return failed("obj_io", checked, name, f"write_obj should return the file's text (a str); yours "
+                          f"returned {type(text).__name__}.")
+        try:
+            again = reference_read_obj(io.StringIO(text))
+        except MeshInputError as error:
+            words = f"hx.read_obj cannot read your file: {error}."
+            if "index 0" in str(error):
+                words += " OBJ counts from 1: write each index + 1."
+            return failed("obj_io", checked, name, words)
+        if again.vertices.shape != vertices.shape:
+            return failed("obj_io", checked, name, f"your file has {len(again.vertices)} 'v' lines for "
+                          f"{len(vertices)} vertices: one line 'v x y z' per vertex.")
+        wrong = np.flatnonzero(~np.isclose(again.vertices, vertices, rtol=0, atol=COORDINATE_TOLERANCE).all(axis=1))
+        if len(wrong):
+            i = int(wrong[0])
+            return failed("obj_io", checked, name, f"vertex {i} is {vertices[i].tolist()}, but your file gives "
+                          f"{again.vertices[i].tolist()}: write enough digits (repr(x) writes the float exactly).")
+        wanted, read_back = _fans(faces), again.faces.tolist()
+        if read_back == wanted:
+            checked.append(name)
+            continue
+        if read_back == _shifted(wanted, -1):
+            words = "your file has the 0-based indices: OBJ counts from 1, write each index + 1."
+        elif len(read_back) != len(wanted):
+            words = (f"your file gives {len(read_back)} triangles for faces {[list(map(int, f)) for f in faces]}: "
+                     f"write each face as one 'f' line with all its corners, a quad too.")
+        else:
+            k = next(k for k, (mine, right) in enumerate(zip(read_back, wanted)) if mine != right)
+            words = (f"triangle {k} should read back as {wanted[k]}, yours is {read_back[k]}: write each face's "
+                     f"corners in the order given (the order is the face's orientation), each index + 1.")
+        return failed("obj_io", checked, name, words)
+    return None
+
+
+def _check_one(function: Callable, name: str, find_failure: Callable, praise: str) -> CheckResult:
+    """Run one of the two finders (``_reader_failure``, ``_writer_failure``) on ``function``."""
+    if words := unfinished(function, name):
+        return failed("obj_io", [], None, words)
+    checked: list[str] = []
+    failure = find_failure(function, checked)
+    return failure if failure is not None else all_good("obj_io", checked, "cases", praise)
+
+
+def check_obj_reader(read_obj: Callable) -> CheckResult:
+    """``read_obj(text or Path) -> (vertices, faces)`` against ``hx.read_obj`` on the cases of this module."""
+    return _check_one(read_obj, "read_obj", _reader_failure, "Your reader reads what hx.read_obj reads.")
+
+
+def check_obj_writer(write_obj: Callable) -> CheckResult:
+    """``write_obj(vertices, faces) -> str`` read back with ``hx.read_obj``: the same vertices and faces."""
+    return _check_one(write_obj, "write_obj", _writer_failure, "hx.read_obj reads your files back as they were written.")
+
+
+def check_obj_io(read_obj: Callable, write_obj: Callable) -> CheckResult:
+    """The reader, the writer, then the writer's text read back by the learner's own reader."""
+    for name, function in (("read_obj", read_obj), ("write_obj", write_obj)):
+        if words := unfinished(function, name):
+            return failed("obj_io", [], None, words)
+    checked: list[str] = []
+    for find_failure, function in ((_reader_failure, read_obj), (_writer_failure, write_obj)):
+        failure = find_failure(function, checked)
+        if failure is not None:
+            return failure
+    name = "round trip: the pyramid through your write_obj and your read_obj"
+    pyramid_vertices, pyramid_polygons, _ = _reference(_PYRAMID)
+    pyramid_faces = [corners for _, corners in pyramid_polygons]
+    status, answer = run(write_obj, pyramid_vertices.copy(), [list(face) for face in pyramid_faces])
+    if status == "ok":
+        status, answer = run(read_obj, answer)
+    if (problem := trouble(status, answer, "read_obj or write_obj")) is not None:
+        return failed("obj_io", checked, name, problem)
+    vertices, faces = answer
+    faces = _faces_of(faces)
+    same = np.allclose(np.asarray(vertices, dtype=float), pyramid_vertices, rtol=0, atol=COORDINATE_TOLERANCE)
+    if not same or faces not in (pyramid_faces, _fans(pyramid_faces)):
+        return failed("obj_io", checked, name, f"writing the pyramid and reading it back gives {faces} (faces), "
+                      f"not {pyramid_faces}: the writer and the reader should be inverses.")
+    checked.append("round trip")
+    return all_good("obj_io", checked, "cases", "Your reader and writer agree with hx.read_obj and with each other.")
