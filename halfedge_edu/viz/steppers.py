@@ -548,8 +548,9 @@ class CollapseAtlas:
     Each case is a :class:`CollapseStepper` (``atlas.steppers``) and can also be
     stepped on its own.
 
-    Keys (mouse pointer over the cases): → space or PgDn the next phase, ← one back,
-    Home the start, End the end; ``atlas.key_area.press(key)`` from code.
+    Keys (mouse pointer over the two lines under the buttons: the keys and the phase):
+    → space or PgDn the next phase, ← one back, Home the start, End the end;
+    ``atlas.key_area.press(key)`` from code.
     """
 
     KEYS = {"ArrowRight": "phase", "Space": "phase", "PageDown": "phase", "ArrowLeft": "back",
@@ -611,9 +612,9 @@ class CollapseAtlas:
             for title, stepper in zip(self.refused_titles, self.refused)
         ])
         heading = f'<b style="font-size:calc({css["font"]} * 1.25)">{html.escape(self.title)}</b>'
-        self.key_area = KeyArea([self._status, columns], self.buttons, self.KEYS, self.look)
+        self.key_area = KeyArea([self._status], self.buttons, self.KEYS, self.look)
         self.widget = widgets.VBox([
-            widgets.HTML(heading), buttons, self.key_area.widget,
+            widgets.HTML(heading), buttons, self.key_area.widget, columns,
             widgets.HTML(f'<b style="font-size:calc({css["font"]} * 1.15)">Refused: the link condition and '
                          f"the boundary rules</b>"),
             refusals,
