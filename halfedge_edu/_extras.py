@@ -15,7 +15,7 @@ PACKAGE = "halfedge_edu"
 
 # The modules each extra provides that the package imports, by extra.
 EXTRA_MODULES: dict[str, tuple[str, ...]] = {
-    "notebooks": ("pyvista", "ipywidgets"),
+    "notebooks": ("pyvista", "ipywidgets", "ipyevents"),
 }
 
 

@@ -72,9 +72,13 @@ class LoopStepper(StepperWidget):
     Drive it with ``step()``, ``back()`` and ``go(...)``; ``describe()`` says the state in
     words. ``records`` (phase, number, element, mesh) is every step; ``state`` the mesh
     shown now; ``result`` the subdivided mesh, the same as ``loop_subdivide`` gives.
+
+    Keys (mouse pointer over the panel below the buttons): → or space the next split or
+    flip, ← one back, PgDn the next phase, Home the start, End the end.
     """
 
     title = "Loop subdivision: step by step"
+    KEYS = {**StepperWidget.KEYS, "PageDown": "phase"}
 
     def __init__(self, mesh, *, weights: str = "warren", mode: str | None = None, preset="default",
                  window_size=None, view_direction=None, vertex_labels="auto"):

@@ -86,9 +86,13 @@ class QEMStepper(StepperWidget):
     ``steps`` holds the :class:`CollapseStep` records; ``step()``, ``back()``,
     ``jump(n)`` and ``go(k | "start" | "end")`` move; ``state`` is the mesh now,
     ``costs`` the heat-map's numbers, ``result`` the simplified mesh.
+
+    Keys (mouse pointer over the panel below the buttons): → or space one collapse,
+    ← one back, PgDn ten collapses, ``+`` a hundred, Home the start, End the end.
     """
 
     title = "Quadric error simplification: the queue"
+    KEYS = {**StepperWidget.KEYS, "PageDown": "+10", "+": "+100"}
 
     def __init__(self, mesh, target_faces: int, *, max_normal_angle: float = 80.0, mode: str | None = None,
                  preset="default", window_size=None, view_direction=None, checkpoint_every: int = 64):

@@ -210,9 +210,13 @@ class RemeshStepper(StepperWidget):
 
     ``snapshots`` holds every ``(iteration, phase, mesh, quality)``; ``step()``,
     ``back()`` and ``go(...)`` move; ``state`` is the mesh shown, ``result`` the last.
+
+    Keys (mouse pointer over the panel below the buttons): → or space the next phase,
+    ← one back, PgDn the same phase one iteration on, Home the input, End the result.
     """
 
     title = "Isotropic remeshing: phase by phase"
+    KEYS = {**StepperWidget.KEYS, "PageDown": "iteration"}
 
     def __init__(self, mesh, target_length: float | None = None, iterations: int = 2, *, project: bool = True,
                  mode: str | None = None, preset="default", window_size=None, view_direction=None,

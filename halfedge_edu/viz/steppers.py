@@ -28,6 +28,7 @@ from collections import defaultdict
 import numpy as np
 
 from ..core.elements import Halfedge
+from .keys import KeyArea
 from .neighbourhood import ring_window
 from .palette import panel_css, preset as _preset
 from .pictures import grid_png, legend_png
@@ -88,9 +89,13 @@ class OperationStepper(StepperWidget):
         position: for split and collapse, where the new or merged vertex goes
             (the midpoint by default).
         mode, preset, rings, window_size: as for every widget.
+
+    Keys (mouse pointer over the panel below the buttons): → or space the next change,
+    ← one back, PgDn the next phase, Home the start, End the end.
     """
 
     operation = ""
+    KEYS = {**StepperWidget.KEYS, "PageDown": "phase"}
 
     def __init__(self, mesh, edge, *, position=None, mode: str | None = None, preset="default",
                  rings: int = 2, window_size=None):
@@ -542,7 +547,14 @@ class CollapseAtlas:
     of the collapse; ``go("start")``, ``go("end")``, ``go("back")`` or a phase number.
     Each case is a :class:`CollapseStepper` (``atlas.steppers``) and can also be
     stepped on its own.
+
+    Keys (mouse pointer over the two lines under the buttons: the keys and the phase):
+    → space or PgDn the next phase, ← one back, Home the start, End the end;
+    ``atlas.key_area.press(key)`` from code.
     """
+
+    KEYS = {"ArrowRight": "phase", "Space": "phase", "PageDown": "phase", "ArrowLeft": "back",
+            "Home": "start", "End": "end"}
 
     title = "Edge collapse: the cases side by side"
 
@@ -600,8 +612,9 @@ class CollapseAtlas:
             for title, stepper in zip(self.refused_titles, self.refused)
         ])
         heading = f'<b style="font-size:calc({css["font"]} * 1.25)">{html.escape(self.title)}</b>'
+        self.key_area = KeyArea([self._status], self.buttons, self.KEYS, self.look)
         self.widget = widgets.VBox([
-            widgets.HTML(heading), buttons, self._status, columns,
+            widgets.HTML(heading), buttons, self.key_area.widget, columns,
             widgets.HTML(f'<b style="font-size:calc({css["font"]} * 1.15)">Refused: the link condition and '
                          f"the boundary rules</b>"),
             refusals,
@@ -736,6 +749,7 @@ class CollapseAtlas:
                          [f"refused: {title}" for title in self.refused_titles]], path=path)
 
     def close(self) -> None:
+        self.key_area.close()
         self.widget.close()
         for stepper in self.steppers + self.refused:
             stepper.close()

@@ -5,6 +5,7 @@
     w                       # the view with next / prev / twin buttons and a pointer table
     w.go("twin")            # the same as clicking "twin"
     w.go("next.twin")       # several moves, read left to right like h.next.twin
+    w.press("n")            # the key n, as pressed in the Lab: the same as clicking "next"
     print(w.describe())     # "current: halfedge 3 (4 -> 0, face 1); next ...", for nbval
 
 Every widget shows a 3D view beside a side panel of buttons and tables. The view is
@@ -12,6 +13,10 @@ live in JupyterLab and a static image everywhere else (see :mod:`.renderer`); th
 code path is the same. Displayed in a notebook, a widget also carries its
 ``describe()`` text as ``text/plain`` and a PNG of its view, so a static export or
 GitHub's preview still shows something faithful.
+
+Every widget also answers keys in a live Lab (the explorer ``n`` / ``p`` / ``t``, the
+steppers the arrows, space, Home and End) while the mouse pointer is over the panel
+below its buttons; a hint line there lists them (see :mod:`.keys`).
 
 Attention: callbacks never print (under nbval a print inside a callback lands in the
 cell's output); messages go to the panel's status line.
@@ -23,6 +28,7 @@ import base64
 import html
 from collections.abc import Callable
 
+from .keys import KeyArea
 from .main_thread import on_main_thread
 from .palette import ROLES, Preset, panel_css, preset as _preset
 from .renderer import View, choose_mode, make_plotter
@@ -96,9 +102,13 @@ class SceneWidget:
 
     Subclasses build their controls in ``_controls()``, put their state into the scene
     in ``_show()``, fill the panel in ``_panel_html()`` and say it in ``describe()``.
+    ``KEYS`` binds keys to their buttons (key -> button label, see :mod:`.keys`): in a
+    live Lab, with the mouse pointer over the panel below the buttons, a key does what
+    its button does; ``w.press(key)`` does the same from code.
     """
 
     title = ""
+    KEYS: dict[str, str] = {}
 
     def __init__(self, mesh, *, mode: str | None = None, preset="default", labels="auto",
                  rings: int = 2, window_size=None):
@@ -116,7 +126,11 @@ class SceneWidget:
         heading = widgets.HTML(f'<b style="font-size:calc({css["font"]} * 1.25)">{html.escape(self.title)}</b>')
         self._show()
         self.view = View(self.scene, self.mode)
-        side = widgets.VBox([heading, *self._controls(), self._status, self._info, self._legend],
+        controls = self._controls()
+        # Below the buttons: the part of the panel that answers the widget's KEYS.
+        self.key_area = KeyArea([self._status, self._info, self._legend], getattr(self, "buttons", {}),
+                                self.KEYS, self.look)
+        side = widgets.VBox([heading, *controls, self.key_area.widget],
                             layout=widgets.Layout(padding="0 0 0 16px", flex="1 1 auto"))
         # Where the notebook is too narrow for both, the panel goes below the view instead
         # of being cut off on the right.
@@ -172,6 +186,11 @@ class SceneWidget:
         box.style.description_width = "auto"
         return box
 
+    def press(self, key: str) -> str | None:
+        """What pressing ``key`` does in the Lab: click the button it is bound to (see
+        ``KEYS``). Returns that button's label, or None for a key the widget does not use."""
+        return self.key_area.press(key)
+
     def _say(self, text: str, *, error: bool = False) -> None:
         color = "#B00020" if error else "#333333"
         size = panel_css(self.look)["font"]
@@ -195,6 +214,7 @@ class SceneWidget:
 
     def close(self) -> None:
         """Close the widgets and free the render window."""
+        self.key_area.close()
         self.widget.close()
         self.scene.close()
 
@@ -215,9 +235,13 @@ class StepperWidget(SceneWidget):
     ``step()`` and ``back()``. A subclass defines ``n_steps`` and may add named moves
     (``_named_moves``), accept other kinds of target such as a phase name
     (``_resolve``), and bring its state to a step (``_show_step``).
+
+    Keys (``KEYS``; a subclass adds its own): → or space one step, ← one step back,
+    Home the start, End the end.
     """
 
     _step = 0
+    KEYS = {"ArrowRight": "step", "Space": "step", "ArrowLeft": "back", "Home": "start", "End": "end"}
     _moves_help = "a step number"
 
     @property
@@ -298,6 +322,11 @@ class HalfedgeExplorer(SceneWidget):
     ``w.step()`` (the same as next), ``w.back()``; ``w.halfedge`` is the current
     halfedge, ``w.trail`` the visited ones.
 
+    Keys, as in the CMU MeshEdit viewer (N next, T twin), with the mouse pointer over
+    the panel below the buttons: ``n`` next, ``p`` prev, ``t`` twin, → or space next
+    (``step()``), ← back (``back()``: undo the last move). ``w.press("t")`` does the
+    same from code.
+
     The explorer holds its own copy of the mesh (``w.mesh``): a later cell that edits
     the mesh passed in does not change what the explorer shows (make a new explorer to
     walk the edited mesh).
@@ -305,6 +334,7 @@ class HalfedgeExplorer(SceneWidget):
 
     title = "Halfedge explorer"
     MOVES = ("next", "prev", "twin")
+    KEYS = {"n": "next", "ArrowRight": "next", "Space": "next", "p": "prev", "t": "twin", "ArrowLeft": "back"}
 
     def __init__(self, mesh, halfedge: int = 0, *, mode: str | None = None, preset="default",
                  labels="auto", rings: int = 2, window_size=None):
@@ -429,6 +459,9 @@ class OneRingViewer(SceneWidget):
     ``w.go("tip")`` moves to the neighbour the current halfedge points at, and
     ``w.pick(v)`` to any vertex; ``w.step()`` is one CCW turn.
 
+    Keys, with the mouse pointer over the panel below the buttons: → or space one CCW
+    turn (``step()``), ← one CW turn, ``t`` to the tip; ``w.press(key)`` from code.
+
     The viewer holds its own copy of the mesh (``w.mesh``): a later cell that edits the
     mesh passed in (a collapse, say) does not change what the viewer shows (make a new
     viewer to look at the edited mesh).
@@ -436,6 +469,7 @@ class OneRingViewer(SceneWidget):
 
     title = "One-ring viewer"
     MOVES = ("ccw", "cw", "tip")
+    KEYS = {"ArrowRight": "ccw", "Space": "ccw", "ArrowLeft": "cw", "t": "to tip"}
 
     def __init__(self, mesh, vertex: int = 0, *, mode: str | None = None, preset="default",
                  labels="auto", rings: int = 2, window_size=None):

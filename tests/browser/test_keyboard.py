@@ -1,0 +1,137 @@
+"""Keyboard stepping in a real JupyterLab (issue 13): with the mouse pointer over a
+widget's panel, ``n`` and ``t`` move the explorer and the arrows step a flip stepper;
+the panel's text and the live 3D view both follow, and JupyterLab does not take the keys.
+
+The Lab is the shared ``lab`` fixture; this test writes its own small notebook into the
+Lab's folder (an explorer and a flip stepper on the open patch), so it does not wait for
+a whole chapter to run. The expected halfedges come from the library (``h.next``,
+``h.twin``). Screenshots go to ``$HALFEDGE_EDU_SCREENSHOTS`` (or pytest's temporary folder).
+"""
+
+from __future__ import annotations
+
+import re
+import time
+from pathlib import Path
+
+import nbformat
+import pytest
+
+import halfedge_edu as hx
+from tests.browser.test_lab_chapter03 import (
+    FRAME_TIMEOUT,
+    MIN_CHANGED_SHARE,
+    ExplorerInLab,
+    changed_share,
+    open_and_run_all,
+    wait_for,
+)
+from tests.browser.test_lab_chapter09 import StepperInLab
+
+pytestmark = pytest.mark.browser
+
+NOTEBOOK = "keyboard_stepping.ipynb"
+START = 7           # the explorer's first halfedge (as chapter 03's)
+FLIP_EDGE = 12      # an interior edge of the open patch
+KEY_TIMEOUT = 30    # seconds for the panel to answer a key
+
+
+def write_notebook(folder: Path) -> None:
+    notebook = nbformat.v4.new_notebook()
+    notebook.cells = [
+        nbformat.v4.new_code_cell("import halfedge_edu as hx\nfrom halfedge_edu.viz import FlipStepper, HalfedgeExplorer"),
+        nbformat.v4.new_code_cell(f'explorer = HalfedgeExplorer(hx.sample("open_patch"), halfedge={START})\nexplorer'),
+        nbformat.v4.new_code_cell(f'stepper = FlipStepper(hx.sample("open_patch"), {FLIP_EDGE}, window_size=(480, 360))\n'
+                                  "stepper"),
+    ]
+    notebook.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3", "language": "python"}
+    nbformat.write(notebook, folder / NOTEBOOK)
+
+
+class FlipStepperInLab(StepperInLab):
+    """The "Edge flip: step by step" output of the open notebook."""
+
+    def __init__(self, page):
+        self.output = page.locator(".jp-OutputArea-output").filter(has_text="Edge flip: step by step").first
+        self.frame = self.output.locator("iframe").first
+
+
+def notebook_state(page) -> tuple[int, int]:
+    """(number of cells, index of the active cell): what a key taken by JupyterLab would change."""
+    return tuple(page.evaluate(
+        "() => { const nb = window.jupyterapp.shell.currentWidget.content;"
+        " return [nb.widgets.length, nb.activeCellIndex]; }"))
+
+
+def test_keys_move_the_explorer_and_step_the_stepper_in_a_live_lab(lab, browser_context, screenshot_dir):
+    write_notebook(lab.root)
+    page = browser_context.new_page()
+    console = []
+    page.on("console", lambda message: console.append(f"{message.type}: {message.text}"))
+    page.on("pageerror", lambda error: console.append(f"pageerror: {error}"))
+    try:
+        _drive(page, lab, screenshot_dir)
+    except BaseException:
+        try:
+            page.screenshot(path=str(screenshot_dir / "keyboard-failure-page.png"), full_page=False)
+        except Exception:  # noqa: BLE001 - the original failure matters more
+            pass
+        print(f"screenshots so far, and keyboard-failure-page.png: {screenshot_dir}")
+        print("browser console:\n" + "\n".join(console[-40:]))
+        print("JupyterLab log:\n" + lab.log_tail())
+        raise
+    finally:
+        page.close()
+
+
+def _drive(page, lab, shots: Path) -> None:
+    clock = time.monotonic()
+    open_and_run_all(page, lab, NOTEBOOK)
+    explorer = ExplorerInLab(page, shots)
+    explorer.output.scroll_into_view_if_needed(timeout=30_000)
+    explorer.output.locator("iframe, img").first.wait_for(state="visible", timeout=FRAME_TIMEOUT * 1000)
+    if explorer.frame.count() == 0:
+        pytest.fail("the explorer shows a static image, not the live trame view")
+    assert "keys (pointer over here)" in explorer.output.inner_text(), "no key hint under the buttons"
+    wait_for(lambda: explorer.current_halfedge() == START, 30, "the explorer's pointer table")
+    png, before = explorer.settled_picture(None, "the live view's first frame")
+    explorer.save("keys-0-start.png", png)
+
+    # The pointer over the pointer table: the key area takes the keyboard focus (which
+    # makes the explorer's cell the active one, as a click in its output would).
+    explorer.output.locator("table").first.hover()
+    cells = wait_for(lambda: notebook_state(page) if notebook_state(page)[1] == 1 else None, 10,
+                     "the explorer's cell to become the active one")
+    patch = hx.sample("open_patch")
+    expected = START
+    for step, key, move in [(1, "n", "next"), (2, "t", "twin")]:
+        expected = getattr(patch.halfedge(expected), move).index
+        page.keyboard.press(key)
+        wait_for(lambda: explorer.current_halfedge() == expected, KEY_TIMEOUT,
+                 f"the pointer table to show h = {expected} after the key {key}")
+        assert explorer.trail().endswith(f"-{move}-> h{expected}")
+        png, after = explorer.settled_picture(before, f"the live view to redraw after the key {key}")
+        share = changed_share(before, after)
+        assert share >= MIN_CHANGED_SHARE, f"the key {key} changed only {share:.2%} of the view"
+        explorer.save(f"keys-{step}-{key}.png", png)
+        print(f"key {key}: h {expected}, {share:.2%} of the view changed")
+        before = after
+    assert notebook_state(page) == cells, "JupyterLab took a key (a cell was added or the active cell moved)"
+    explorer.save("keys-3-explorer-with-panel.png", explorer.output.screenshot(timeout=30_000))
+
+    stepper = FlipStepperInLab(page)
+    stepper.output.scroll_into_view_if_needed(timeout=30_000)
+    wait_for(lambda: stepper.step_shown() == 0, 30, "the flip stepper's step counter")
+    _, shown = stepper.settled_picture(None, "the flip stepper's first frame")
+    stepper.output.locator("table").first.hover()
+    cells = wait_for(lambda: notebook_state(page) if notebook_state(page)[1] == 2 else None, 10,
+                     "the stepper's cell to become the active one")
+    for key, expected_step in [("ArrowRight", 1), ("ArrowRight", 2), ("ArrowLeft", 1)]:
+        page.keyboard.press(key)
+        wait_for(lambda: stepper.step_shown() == expected_step, KEY_TIMEOUT,
+                 f"the step counter to show step {expected_step} after {key}")
+        png, shown = stepper.settled_picture(shown, f"the flip stepper's view to redraw after {key}")
+        (shots / f"keys-flip-{expected_step}-{key}.png").write_bytes(png)
+    assert re.search(r"step 1 of \d+", stepper.output.inner_text())
+    assert notebook_state(page) == cells, "JupyterLab took an arrow key"
+    print(f"keyboard test: {time.monotonic() - clock:.0f} s; screenshots in {shots}")
