@@ -621,8 +621,9 @@ def _check_feature_angle(feature_angle) -> float | None:
 
 
 def _phases(mesh: HalfedgeMesh, target_length, iterations, project, progress,
-            feature_angle: float | None) -> Iterator[tuple[int, str, np.ndarray, np.ndarray]]:
-    """Yield ``(iteration, phase, vertices, faces)`` after every phase (arrays, not meshes)."""
+            feature_angle: float | None) -> Iterator[tuple[int, str, np.ndarray, np.ndarray, Features | None]]:
+    """Yield ``(iteration, phase, vertices, faces, features)`` after every phase (arrays,
+    not meshes; ``features`` None without ``feature_angle``)."""
     vertices, faces = mesh.to_arrays()
     if target_length is None:
         target_length = float(_edge_lengths(vertices, edge_table(faces, len(vertices)).edges).mean())
@@ -631,16 +632,16 @@ def _phases(mesh: HalfedgeMesh, target_length, iterations, project, progress,
     rng = np.random.default_rng(0)
     for iteration in progress_range(iterations, progress, "remesh"):
         vertices, faces, features = _split_long_edges(vertices, faces, target_length, features)
-        yield iteration + 1, "split", vertices, faces
+        yield iteration + 1, "split", vertices, faces, features
         vertices, faces, features = _collapse_short_edges(vertices, faces, target_length, features)
-        yield iteration + 1, "collapse", vertices, faces
+        yield iteration + 1, "collapse", vertices, faces, features
         faces = _flip_to_regular_degrees(vertices, faces, rng, features)
-        yield iteration + 1, "flip", vertices, faces
+        yield iteration + 1, "flip", vertices, faces, features
         vertices = tangential_smoothing(vertices, faces, features)
-        yield iteration + 1, "smooth", vertices, faces
+        yield iteration + 1, "smooth", vertices, faces, features
         if surface is not None:
             vertices = _project(vertices, faces, surface, features)
-            yield iteration + 1, "project", vertices, faces
+            yield iteration + 1, "project", vertices, faces, features
 
 
 def remesh(
@@ -699,7 +700,7 @@ def remesh(
         return _to_mesh(*mesh.to_arrays())
     target_length, iterations = _check_arguments(target_length, iterations)
     vertices, faces = mesh.to_arrays()
-    for _, _, vertices, faces in _phases(mesh, target_length, iterations, project, progress, feature_angle):
+    for _, _, vertices, faces, _ in _phases(mesh, target_length, iterations, project, progress, feature_angle):
         pass
     return _to_mesh(vertices, faces)
 
@@ -750,8 +751,8 @@ def remesh_step_by_step(
 
 def _steps(mesh, target_length, iterations, project, progress, feature_angle) -> Iterator[RemeshStep]:
     yield RemeshStep(0, "input", mesh.copy())
-    for iteration, phase, vertices, faces in _phases(mesh, target_length, iterations, project, progress,
-                                                     feature_angle):
+    for iteration, phase, vertices, faces, _ in _phases(mesh, target_length, iterations, project, progress,
+                                                        feature_angle):
         yield RemeshStep(iteration, phase, _to_mesh(vertices, faces))
 
 
