@@ -187,6 +187,21 @@ def test_smoothing_slides_line_vertices_along_their_line_and_leaves_corners():
     assert np.array_equal(remesh_module.tangential_smoothing(moved, faces)[boundary], moved[boundary])
 
 
+def test_smoothing_step_zero_leaves_the_smoothing_phase_still_and_one_is_the_default():
+    spot = hx.sample("spot")
+    history = remesh_module.remesh_history(spot, iterations=1, smoothing_step=0.0)
+    by_phase = {step.phase: step.mesh.to_arrays()[0] for step in history}
+    assert np.array_equal(by_phase["flip"], by_phase["smooth"])
+    default, full = (remesh(spot, iterations=1, **options).to_arrays()[0] for options in ({}, {"smoothing_step": 1.0}))
+    assert np.array_equal(default, full)
+
+
+@pytest.mark.parametrize("bad", [-0.1, 1.5, float("inf")])
+def test_a_smoothing_step_outside_0_to_1_is_refused_by_name(bad):
+    with pytest.raises(hx.MeshInputError, match="smoothing_step"):
+        remesh(hx.sample("cube"), smoothing_step=bad)
+
+
 # ---- properties on random creased meshes ---------------------------------------------------
 
 @given(case=shapes.cases(), where=st.floats(-0.5, 0.5), slope=st.floats(0.5, 3.0),
