@@ -361,18 +361,23 @@ def _flip_pass(vertices, faces, rng, max_crease_cos, features: Features | None =
     boundary_vertex = table.boundary_vertices(n)
     degree = np.bincount(table.edges.reshape(-1), minlength=n)
     ideal = np.where(boundary_vertex, 4, 6)
-    dev = lambda v, change: np.abs(degree[v] + change - ideal[v])  # noqa: E731
-    gain = (dev(a, 0) + dev(b, 0) + dev(c, 0) + dev(d, 0)) - (dev(a, -1) + dev(b, -1) + dev(c, 1) + dev(d, 1))
+    # What each vertex gains (in |degree - ideal|) by losing an edge, and by gaining one:
+    # per vertex first, so each edge's gain is four look-ups.
+    deviation = np.abs(degree - ideal)
+    gain_by_losing = deviation - np.abs(degree - 1 - ideal)
+    gain_by_gaining = deviation - np.abs(degree + 1 - ideal)
+    gain = gain_by_losing[a] + gain_by_losing[b] + gain_by_gaining[c] + gain_by_gaining[d]
     ok = (gain > 0) & (degree[a] > 3) & (degree[b] > 3) & (c != d)
     if features is not None:
         # Never flip a line's edge, and never make an edge across from one line to
         # another: both its ends would be held on lines, where smoothing cannot even it out.
         on_line = features.counts() > 0
         ok &= ~features.mask(table)[inner] & ~(on_line[c] & on_line[d])
-    # The new edge c-d must not exist already.
-    new_key = np.minimum(c, d) * n + np.maximum(c, d)
+    # The new edge c-d must not exist already (looked up only for the flips still wanted).
+    wanted = np.flatnonzero(ok)
+    new_key = np.minimum(c[wanted], d[wanted]) * n + np.maximum(c[wanted], d[wanted])
     at = np.minimum(np.searchsorted(table.keys, new_key), len(table.keys) - 1)
-    ok &= table.keys[at] != new_key
+    ok[wanted[table.keys[at] == new_key]] = False
 
     # Geometry: no flip across a crease, and the new triangles may not fold over.
     which = np.flatnonzero(ok)
@@ -481,21 +486,30 @@ def closest_points_on_triangles(points: np.ndarray, a: np.ndarray, b: np.ndarray
     d1, d2, d3, d4, d5, d6 = dot(ab, ap), dot(ac, ap), dot(ab, bp), dot(ac, bp), dot(ab, cp), dot(ac, cp)
     va, vb, vc = d3 * d6 - d5 * d4, d5 * d2 - d1 * d6, d1 * d4 - d3 * d2
     safe = lambda x: np.where(np.abs(x) > 1e-300, x, 1e-300)  # noqa: E731
-    denominator = safe(va + vb + vc)
-    result = a + ab * (vb / denominator)[:, None] + ac * (vc / denominator)[:, None]   # inside
-    # Regions in reverse order of Ericson's tests, so the earlier tests win.
-    on_bc = (va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0)
-    t = (d4 - d3) / safe((d4 - d3) + (d5 - d6))
-    result[on_bc] = (b + (c - b) * t[:, None])[on_bc]
-    on_ac = (vb <= 0) & (d2 >= 0) & (d6 <= 0)
-    t = d2 / safe(d2 - d6)
-    result[on_ac] = (a + ac * t[:, None])[on_ac]
-    result[(d6 >= 0) & (d5 <= d6)] = c[(d6 >= 0) & (d5 <= d6)]
-    on_ab = (vc <= 0) & (d1 >= 0) & (d3 <= 0)
-    t = d1 / safe(d1 - d3)
-    result[on_ab] = (a + ab * t[:, None])[on_ab]
-    result[(d3 >= 0) & (d4 <= d3)] = b[(d3 >= 0) & (d4 <= d3)]
-    result[(d1 <= 0) & (d2 <= 0)] = a[(d1 <= 0) & (d2 <= 0)]
+    # Which region each point falls in; where several tests hold, the one Ericson makes
+    # first wins, so they are written here last. Each region's formula is then worked
+    # out only for its own rows.
+    region = np.zeros(len(points), dtype=np.int8)                     # 0: inside
+    region[(va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0)] = 1          # on edge bc
+    region[(vb <= 0) & (d2 >= 0) & (d6 <= 0)] = 2                     # on edge ac
+    region[(d6 >= 0) & (d5 <= d6)] = 3                                # at corner c
+    region[(vc <= 0) & (d1 >= 0) & (d3 <= 0)] = 4                     # on edge ab
+    region[(d3 >= 0) & (d4 <= d3)] = 5                                # at corner b
+    region[(d1 <= 0) & (d2 <= 0)] = 6                                 # at corner a
+    result = np.empty_like(points)
+    rows = np.flatnonzero(region == 0)
+    denominator = safe(va[rows] + vb[rows] + vc[rows])
+    result[rows] = a[rows] + ab[rows] * (vb[rows] / denominator)[:, None] + ac[rows] * (vc[rows] / denominator)[:, None]
+    rows = np.flatnonzero(region == 1)
+    t = (d4[rows] - d3[rows]) / safe((d4[rows] - d3[rows]) + (d5[rows] - d6[rows]))
+    result[rows] = b[rows] + (c[rows] - b[rows]) * t[:, None]
+    rows = np.flatnonzero(region == 2)
+    result[rows] = a[rows] + ac[rows] * (d2[rows] / safe(d2[rows] - d6[rows]))[:, None]
+    rows = np.flatnonzero(region == 4)
+    result[rows] = a[rows] + ab[rows] * (d1[rows] / safe(d1[rows] - d3[rows]))[:, None]
+    for code, corner in ((3, c), (5, b), (6, a)):
+        rows = np.flatnonzero(region == code)
+        result[rows] = corner[rows]
     return result
 
 
