@@ -15,6 +15,14 @@ Each iteration runs four phases, then puts the vertices back on the input surfac
    input's boundary polyline): splitting at chord midpoints and smoothing in a plane
    both step a little off a curved surface.
 
+**Features** (``feature_angle``, :mod:`.features`): creases sharper than the angle, and
+the boundary, are feature lines, found once on the input and carried through every
+phase. A feature edge is split into two feature edges, collapses only along its line
+(never across from one line to another, never removing a corner), and is never
+flipped; in phase 4 a vertex on a line moves only along it (corners not at all), and in
+phase 5 it goes back onto the input's lines. With ``feature_angle=None`` only the
+boundary is kept, as described above.
+
 Why 4/3 and 4/5: splitting an edge of length ``l`` leaves two of ``l/2``, which are
 nearer to L than ``l`` was exactly when ``l > 4/3 L``; 4/5 is Botsch and Kobbelt's
 matching bound below L. The "no new edge longer than 4/3 L" rule keeps a collapse from
