@@ -258,6 +258,11 @@ def build_parser() -> argparse.ArgumentParser:
     remesh.add_argument(
         "--iterations", type=_whole_number(0), default=5, metavar="N", help="how many rounds (default 5)"
     )
+    remesh.add_argument(
+        "--feature-angle", type=_feature_angle, default=argparse.SUPPRESS, metavar="DEG",
+        help=("keep creases whose faces meet at more than DEG degrees, and the boundary "
+              "(default: remesh's, 45; 'none': keep only the boundary, round the creases)"),
+    )
     _add_max_faces(remesh)
 
     _add_transform(
@@ -554,13 +559,28 @@ def run_smooth(args: argparse.Namespace) -> int:
     return _transform(args, algorithm)
 
 
+def _feature_angle(text: str) -> float | None:
+    """An argparse type: an angle from 0 to 180 degrees, or ``none`` (no creases kept)."""
+    if text.strip().lower() == "none":
+        return None
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is neither a number nor 'none'") from None
+    if not 0 <= value <= 180:
+        raise argparse.ArgumentTypeError(f"must be an angle from 0 to 180 degrees, got {text}")
+    return value
+
+
 def run_remesh(args: argparse.Namespace) -> int:
-    """``remesh IN OUT [--length L] [--iterations N]``: isotropic remeshing."""
+    """``remesh IN OUT [--length L] [--iterations N] [--feature-angle DEG]``: isotropic remeshing."""
 
     def algorithm(mesh):
         from halfedge_edu.algorithms.remesh import remesh
 
-        return remesh(mesh, args.length, args.iterations, progress=_progress(args))
+        # Not given: remesh's own default (the library is not imported to parse arguments).
+        features = {"feature_angle": args.feature_angle} if "feature_angle" in vars(args) else {}
+        return remesh(mesh, args.length, args.iterations, progress=_progress(args), **features)
 
     def estimate(mesh) -> tuple[float, str]:
         if args.length is None:  # the input's mean edge length: about the input's face count

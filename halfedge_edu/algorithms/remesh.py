@@ -15,6 +15,14 @@ Each iteration runs four phases, then puts the vertices back on the input surfac
    input's boundary polyline): splitting at chord midpoints and smoothing in a plane
    both step a little off a curved surface.
 
+**Features** (``feature_angle``, :mod:`.features`): creases sharper than the angle, and
+the boundary, are feature lines, found once on the input and carried through every
+phase. A feature edge is split into two feature edges, collapses only along its line
+(never across from one line to another, never removing a corner), and is never
+flipped; in phase 4 a vertex on a line moves only along it (corners not at all), and in
+phase 5 it goes back onto the input's lines. With ``feature_angle=None`` only the
+boundary is kept, as described above.
+
 Why 4/3 and 4/5: splitting an edge of length ``l`` leaves two of ``l/2``, which are
 nearer to L than ``l`` was exactly when ``l > 4/3 L``; 4/5 is Botsch and Kobbelt's
 matching bound below L. The "no new edge longer than 4/3 L" rule keeps a collapse from
@@ -54,8 +62,9 @@ from ..core.arrays import (
     EdgeTable, compact, cross_rows, edge_table, expand, face_cross, merge_vertices, vertex_faces,
     vertex_neighbours,
 )
-from .arguments import check_mesh, check_remesh, whole_number
+from .arguments import check_mesh, check_remesh, real_number, whole_number
 from .collapse_rounds import choose_round, collapse_topology_ok, no_turned_faces
+from .features import DEFAULT_FEATURE_ANGLE, Features, feature_arrays
 from .normals import area_weighted_vertex_normals
 
 #: Split edges longer than this times L; collapse edges shorter than ``COLLAPSE_BELOW * L``.
@@ -103,21 +112,24 @@ def _edge_lengths(vertices: np.ndarray, edges: np.ndarray) -> np.ndarray:
 # Phase 1: split
 # ----------------------------------------------------------------------------------------
 
-def _split_pass(vertices: np.ndarray, faces: np.ndarray, max_length: float):
+def _split_pass(vertices: np.ndarray, faces: np.ndarray, max_length: float, features: Features | None = None):
     """Split every edge longer than ``max_length`` at its midpoint, all at once.
 
-    Returns ``(vertices, faces, n_split)``. Each face is cut by the template for its
-    number of split edges; rotating the face first puts the split edges in front, so
-    one template per count covers all cases. Orientation is kept.
+    Returns ``(vertices, faces, features, n_split)``. Each face is cut by the template
+    for its number of split edges; rotating the face first puts the split edges in
+    front, so one template per count covers all cases. Orientation is kept. A split
+    feature edge leaves two feature halves (``features`` None: none are tracked).
     """
     n = len(vertices)
     table = edge_table(faces, n)
     long = _edge_lengths(vertices, table.edges) > max_length
     n_split = int(long.sum())
     if n_split == 0:
-        return vertices, faces, 0
+        return vertices, faces, features, 0
     midpoint_of = np.full(len(table.edges), -1, dtype=np.int64)
     midpoint_of[long] = n + np.arange(n_split)
+    if features is not None:
+        features = features.split(table, midpoint_of)
     split_edges = table.edges[long]
     vertices = np.concatenate([vertices, 0.5 * (vertices[split_edges[:, 0]] + vertices[split_edges[:, 1]])])
 
@@ -148,31 +160,31 @@ def _split_pass(vertices: np.ndarray, faces: np.ndarray, max_length: float):
     three = n_cut == 3
     v0, v1, v2, m0, m1, m2 = (v[three, 0], v[three, 1], v[three, 2], m[three, 0], m[three, 1], m[three, 2])
     pieces += [np.stack(corner, axis=1) for corner in ((v0, m0, m2), (m0, v1, m1), (m2, m1, v2), (m0, m1, m2))]
-    return vertices, np.concatenate(pieces), n_split
+    return vertices, np.concatenate(pieces), features, n_split
 
 
-def _split_long_edges(vertices, faces, target_length):
+def _split_long_edges(vertices, faces, target_length, features: Features | None):
     """Split passes until no edge is longer than 4/3 L (at most ``MAX_SPLIT_PASSES``)."""
     for _ in range(MAX_SPLIT_PASSES):
-        vertices, faces, n_split = _split_pass(vertices, faces, SPLIT_ABOVE * target_length)
+        vertices, faces, features, n_split = _split_pass(vertices, faces, SPLIT_ABOVE * target_length, features)
         if n_split == 0:
             break
-    return vertices, faces
+    return vertices, faces, features
 
 
 # ----------------------------------------------------------------------------------------
 # Phase 2: collapse
 # ----------------------------------------------------------------------------------------
 
-def _boundary_corner(vertices, table: EdgeTable, n: int) -> np.ndarray:
-    """(n,) how sharply the boundary turns at each vertex: ``|u1 + u2|`` for the unit
-    vectors to its two boundary neighbours (0 on a straight boundary, up to 2)."""
-    b_edges = table.edges[table.count == 1]
-    d = vertices[b_edges[:, 1]] - vertices[b_edges[:, 0]]
+def _line_turning(vertices, line_edges: np.ndarray, n: int) -> np.ndarray:
+    """(n,) how sharply a line of edges (the boundary, or the feature lines) turns at
+    each vertex: ``|u1 + u2|`` for the unit vectors to its two neighbours on the line
+    (0 where the line runs straight, up to 2)."""
+    d = vertices[line_edges[:, 1]] - vertices[line_edges[:, 0]]
     d /= np.maximum(np.linalg.norm(d, axis=1), 1e-300)[:, None]
     total = np.zeros((n, 3))
-    np.add.at(total, b_edges[:, 0], d)
-    np.add.at(total, b_edges[:, 1], -d)
+    np.add.at(total, line_edges[:, 0], d)
+    np.add.at(total, line_edges[:, 1], -d)
     return np.linalg.norm(total, axis=1)
 
 
@@ -204,46 +216,56 @@ class _Refused:
         self.dirty[faces[around].reshape(-1)] = True
 
 
-def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Refused):
-    """One round of collapses of short edges. Returns ``(vertices, faces, n_collapsed)``.
+def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Refused, features: Features | None):
+    """One round of collapses of short edges. Returns ``(vertices, faces, features, n_collapsed)``.
 
-    Where a collapse may put the merged vertex, in order of preference:
+    The *lines* are the boundary, and with ``features`` the feature lines too (the
+    boundary is one of them). Where a collapse may put the merged vertex, in order of
+    preference:
 
-    * an interior edge between interior vertices: its midpoint, else either end;
-    * an interior edge with one end on the boundary: that end (the outline stays);
-    * a boundary edge: the end where the boundary turns more (a corner stays), else
-      the other end.
+    * an edge between two vertices off the lines: its midpoint, else either end;
+    * an edge with one end on a line: that end (the line stays where it is);
+    * an edge along a line: the end where the line turns more (a corner stays), else
+      the other end; never removing a corner of ``features``.
 
-    The first place that leaves no edge longer than 4/3 L is taken; an edge with
-    none is not collapsed this time.
+    An edge that is not on a line but joins two vertices on lines is never collapsed:
+    it would pull a line across the surface. The first place that leaves no edge
+    longer than 4/3 L is taken; an edge with none is not collapsed this time.
     """
     n = len(vertices)
     table = edge_table(faces, n)
     edges = table.edges
     boundary_edge = table.count == 1
     boundary_vertex = table.boundary_vertices(n)
+    if features is None:
+        line_edge, on_line, corner = boundary_edge, boundary_vertex, np.zeros(n, dtype=bool)
+    else:
+        line_edge, on_line, corner = features.mask(table), features.counts() > 0, features.corners
     length = _edge_lengths(vertices, edges)
     short = np.flatnonzero(length < COLLAPSE_BELOW * target_length)
     stale = refused.still_refused(table.keys[short], edges[short, 0], edges[short, 1])
     candidates = short[~stale]
     if len(candidates) == 0:
-        return vertices, faces, 0
+        return vertices, faces, features, 0
     candidates = candidates[np.argsort(length[candidates], kind="stable")]   # shortest first
     a, b = edges[candidates, 0], edges[candidates, 1]
-    along = boundary_edge[candidates]
-    free = ~boundary_vertex[a] & ~boundary_vertex[b]
-    # Name the ends so that ``first`` is the preferred end to keep.
-    swap = boundary_vertex[b] & ~boundary_vertex[a]
+    along = line_edge[candidates]
+    free = ~on_line[a] & ~on_line[b]
+    # Name the ends so that ``first`` is the preferred end to keep: the one on a line,
+    # along a line a corner, else the one where the line turns more.
+    swap = on_line[b] & ~on_line[a]
     if along.any():
-        corner = _boundary_corner(vertices, table, n)
-        swap |= along & (corner[b] > corner[a])
+        turning = _line_turning(vertices, edges[line_edge], n)
+        swap |= along & ((corner[b] & ~corner[a]) | ((corner[b] == corner[a]) & (turning[b] > turning[a])))
     first, second = np.where(swap, b, a), np.where(swap, a, b)
 
     degree = np.bincount(edges.reshape(-1), minlength=n)
     neighbours = vertex_neighbours(edges, n)
     valid, opposite_owner, opposite_vertex = collapse_topology_ok(
-        n, edges[candidates], along, boundary_vertex, degree, neighbours
+        n, edges[candidates], boundary_edge[candidates], boundary_vertex, degree, neighbours
     )
+    # Across from one line to another (or to the same one further on), or between two corners.
+    valid &= ~(on_line[a] & on_line[b] & ~along) & ~(corner[a] & corner[b])
 
     # Try the places in turn; the first one that makes no edge longer than 4/3 L wins.
     keep, remove = first.copy(), second.copy()
@@ -252,7 +274,7 @@ def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Re
         (0.5 * (vertices[a] + vertices[b]), first, free),
         (vertices[first], first, ~free),
         (vertices[first], first, free),
-        (vertices[second], second, free | along),
+        (vertices[second], second, free | (along & ~corner[first])),
     )
     for place, kept, allowed in options:
         todo = np.flatnonzero(valid & allowed & np.isnan(points[:, 0]))
@@ -293,19 +315,27 @@ def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Re
         vertices = vertices.copy()
         vertices[keep[chosen]] = points[chosen]
         faces = merge_vertices(faces, remove[chosen], keep[chosen], n)
+        if features is not None:
+            features = features.merge(remove[chosen], keep[chosen])
     refused.update(refused_keys, keep[chosen], faces)
-    return vertices, faces, int(chosen.sum())
+    return vertices, faces, features, int(chosen.sum())
 
 
-def _collapse_short_edges(vertices, faces, target_length):
-    """Collapse rounds until (almost) no short edge can go (at most ``MAX_COLLAPSE_ROUNDS``)."""
+def _collapse_short_edges(vertices, faces, target_length, features: Features | None = None):
+    """Collapse rounds until (almost) no short edge can go (at most ``MAX_COLLAPSE_ROUNDS``).
+
+    Returns ``(vertices, faces, features)``, compacted (unused vertices dropped)."""
     max_normal_cos = math.cos(math.radians(MAX_COLLAPSE_NORMAL_ANGLE))
     refused = _Refused(len(vertices))
     for _ in range(MAX_COLLAPSE_ROUNDS):
-        vertices, faces, n_collapsed = _collapse_round(vertices, faces, target_length, max_normal_cos, refused)
+        vertices, faces, features, n_collapsed = _collapse_round(
+            vertices, faces, target_length, max_normal_cos, refused, features)
         if n_collapsed <= MIN_COLLAPSE_FRACTION * len(faces):
             break
-    return compact(vertices, faces)[:2]
+    vertices, faces, kept = compact(vertices, faces)
+    if features is not None:
+        features = features.renumber(kept)
+    return vertices, faces, features
 
 
 # ----------------------------------------------------------------------------------------
@@ -316,11 +346,13 @@ def _unit(vectors: np.ndarray) -> np.ndarray:
     return vectors / np.maximum(np.linalg.norm(vectors, axis=1), 1e-300)[:, None]
 
 
-def _flip_pass(vertices, faces, rng, max_crease_cos, selection_passes: int = 4):
+def _flip_pass(vertices, faces, rng, max_crease_cos, features: Features | None = None, selection_passes: int = 4):
     """Flip a vertex-disjoint set of degree-improving edges. Returns ``(faces, n_flipped)``.
 
     Edge ``a-b`` with faces ``[a, b, c]`` and ``[b, a, d]`` becomes ``c-d`` with faces
-    ``[c, a, d]`` and ``[d, b, c]``: a and b lose an edge, c and d gain one.
+    ``[c, a, d]`` and ``[d, b, c]``: a and b lose an edge, c and d gain one. With
+    ``features``, a feature edge is never flipped (the lines keep their edges), and no
+    flip makes an edge between two vertices on lines (c and d).
 
     The flips done together share no vertex, not merely no face: each gain is computed
     as if its flip were alone, and two flips at one vertex could both take an edge from
@@ -337,13 +369,23 @@ def _flip_pass(vertices, faces, rng, max_crease_cos, selection_passes: int = 4):
     boundary_vertex = table.boundary_vertices(n)
     degree = np.bincount(table.edges.reshape(-1), minlength=n)
     ideal = np.where(boundary_vertex, 4, 6)
-    dev = lambda v, change: np.abs(degree[v] + change - ideal[v])  # noqa: E731
-    gain = (dev(a, 0) + dev(b, 0) + dev(c, 0) + dev(d, 0)) - (dev(a, -1) + dev(b, -1) + dev(c, 1) + dev(d, 1))
+    # What each vertex gains (in |degree - ideal|) by losing an edge, and by gaining one:
+    # per vertex first, so each edge's gain is four look-ups.
+    deviation = np.abs(degree - ideal)
+    gain_by_losing = deviation - np.abs(degree - 1 - ideal)
+    gain_by_gaining = deviation - np.abs(degree + 1 - ideal)
+    gain = gain_by_losing[a] + gain_by_losing[b] + gain_by_gaining[c] + gain_by_gaining[d]
     ok = (gain > 0) & (degree[a] > 3) & (degree[b] > 3) & (c != d)
-    # The new edge c-d must not exist already.
-    new_key = np.minimum(c, d) * n + np.maximum(c, d)
+    if features is not None:
+        # Never flip a line's edge, and never make an edge across from one line to
+        # another: both its ends would be held on lines, where smoothing cannot even it out.
+        on_line = features.counts() > 0
+        ok &= ~features.mask(table)[inner] & ~(on_line[c] & on_line[d])
+    # The new edge c-d must not exist already (looked up only for the flips still wanted).
+    wanted = np.flatnonzero(ok)
+    new_key = np.minimum(c[wanted], d[wanted]) * n + np.maximum(c[wanted], d[wanted])
     at = np.minimum(np.searchsorted(table.keys, new_key), len(table.keys) - 1)
-    ok &= table.keys[at] != new_key
+    ok[wanted[table.keys[at] == new_key]] = False
 
     # Geometry: no flip across a crease, and the new triangles may not fold over.
     which = np.flatnonzero(ok)
@@ -387,10 +429,10 @@ def _flip_pass(vertices, faces, rng, max_crease_cos, selection_passes: int = 4):
     return faces, len(take)
 
 
-def _flip_to_regular_degrees(vertices, faces, rng):
+def _flip_to_regular_degrees(vertices, faces, rng, features: Features | None):
     max_crease_cos = math.cos(math.radians(MAX_FLIP_DIHEDRAL))
     for _ in range(MAX_FLIP_PASSES):
-        faces, n_flipped = _flip_pass(vertices, faces, rng, max_crease_cos)
+        faces, n_flipped = _flip_pass(vertices, faces, rng, max_crease_cos, features)
         if n_flipped == 0:
             break
     return faces
@@ -400,8 +442,15 @@ def _flip_to_regular_degrees(vertices, faces, rng):
 # Phase 4: tangential smoothing
 # ----------------------------------------------------------------------------------------
 
-def tangential_smoothing(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
-    """Move every interior vertex to its neighbours' centroid, in its tangent plane only."""
+def tangential_smoothing(vertices: np.ndarray, faces: np.ndarray, features: Features | None = None,
+                         fraction: float = 1.0) -> np.ndarray:
+    """Move every interior vertex to its neighbours' centroid, in its tangent plane only.
+
+    Without ``features`` the boundary vertices stay. With them, vertices on a feature
+    line (the boundary is one) move only along it: towards the midpoint of their two
+    neighbours on the line, along the direction from one to the other (smoothing in 1D);
+    corners stay. ``fraction``: how much of each step is taken (1: all the way).
+    """
     n = len(vertices)
     table = edge_table(faces, n)
     edges = table.edges
@@ -415,8 +464,17 @@ def tangential_smoothing(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     normal = area_weighted_vertex_normals(vertices, faces)
     step = centroid - vertices
     step -= normal * np.einsum("ij,ij->i", step, normal)[:, None]     # drop the normal part
-    step[table.boundary_vertices(n)] = 0.0
-    return vertices + step
+    if features is None:
+        step[table.boundary_vertices(n)] = 0.0
+        return vertices + fraction * step
+    step[features.counts() > 0] = 0.0
+    on_line, before, after = features.line_neighbours()
+    moving = ~features.corners[on_line]
+    on_line, before, after = on_line[moving], before[moving], after[moving]
+    direction = _unit(vertices[after] - vertices[before])                # (j, 3) the line's direction
+    towards = 0.5 * (vertices[before] + vertices[after]) - vertices[on_line]
+    step[on_line] = direction * np.einsum("ij,ij->i", towards, direction)[:, None]
+    return vertices + fraction * step
 
 
 # ----------------------------------------------------------------------------------------
@@ -436,21 +494,30 @@ def closest_points_on_triangles(points: np.ndarray, a: np.ndarray, b: np.ndarray
     d1, d2, d3, d4, d5, d6 = dot(ab, ap), dot(ac, ap), dot(ab, bp), dot(ac, bp), dot(ab, cp), dot(ac, cp)
     va, vb, vc = d3 * d6 - d5 * d4, d5 * d2 - d1 * d6, d1 * d4 - d3 * d2
     safe = lambda x: np.where(np.abs(x) > 1e-300, x, 1e-300)  # noqa: E731
-    denominator = safe(va + vb + vc)
-    result = a + ab * (vb / denominator)[:, None] + ac * (vc / denominator)[:, None]   # inside
-    # Regions in reverse order of Ericson's tests, so the earlier tests win.
-    on_bc = (va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0)
-    t = (d4 - d3) / safe((d4 - d3) + (d5 - d6))
-    result[on_bc] = (b + (c - b) * t[:, None])[on_bc]
-    on_ac = (vb <= 0) & (d2 >= 0) & (d6 <= 0)
-    t = d2 / safe(d2 - d6)
-    result[on_ac] = (a + ac * t[:, None])[on_ac]
-    result[(d6 >= 0) & (d5 <= d6)] = c[(d6 >= 0) & (d5 <= d6)]
-    on_ab = (vc <= 0) & (d1 >= 0) & (d3 <= 0)
-    t = d1 / safe(d1 - d3)
-    result[on_ab] = (a + ab * t[:, None])[on_ab]
-    result[(d3 >= 0) & (d4 <= d3)] = b[(d3 >= 0) & (d4 <= d3)]
-    result[(d1 <= 0) & (d2 <= 0)] = a[(d1 <= 0) & (d2 <= 0)]
+    # Which region each point falls in; where several tests hold, the one Ericson makes
+    # first wins, so they are written here last. Each region's formula is then worked
+    # out only for its own rows.
+    region = np.zeros(len(points), dtype=np.int8)                     # 0: inside
+    region[(va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0)] = 1          # on edge bc
+    region[(vb <= 0) & (d2 >= 0) & (d6 <= 0)] = 2                     # on edge ac
+    region[(d6 >= 0) & (d5 <= d6)] = 3                                # at corner c
+    region[(vc <= 0) & (d1 >= 0) & (d3 <= 0)] = 4                     # on edge ab
+    region[(d3 >= 0) & (d4 <= d3)] = 5                                # at corner b
+    region[(d1 <= 0) & (d2 <= 0)] = 6                                 # at corner a
+    result = np.empty_like(points)
+    rows = np.flatnonzero(region == 0)
+    denominator = safe(va[rows] + vb[rows] + vc[rows])
+    result[rows] = a[rows] + ab[rows] * (vb[rows] / denominator)[:, None] + ac[rows] * (vc[rows] / denominator)[:, None]
+    rows = np.flatnonzero(region == 1)
+    t = (d4[rows] - d3[rows]) / safe((d4[rows] - d3[rows]) + (d5[rows] - d6[rows]))
+    result[rows] = b[rows] + (c[rows] - b[rows]) * t[:, None]
+    rows = np.flatnonzero(region == 2)
+    result[rows] = a[rows] + ac[rows] * (d2[rows] / safe(d2[rows] - d6[rows]))[:, None]
+    rows = np.flatnonzero(region == 4)
+    result[rows] = a[rows] + ab[rows] * (d1[rows] / safe(d1[rows] - d3[rows]))[:, None]
+    for code, corner in ((3, c), (5, b), (6, a)):
+        rows = np.flatnonzero(region == code)
+        result[rows] = corner[rows]
     return result
 
 
@@ -462,9 +529,10 @@ def closest_points_on_segments(points: np.ndarray, a: np.ndarray, b: np.ndarray)
 
 
 class _Surface:
-    """The input surface, ready for "nearest point" queries (a k-d tree of centroids)."""
+    """The input surface, ready for "nearest point" queries (a k-d tree of centroids),
+    with its boundary polyline and, given ``features``, its crease polylines."""
 
-    def __init__(self, vertices: np.ndarray, faces: np.ndarray):
+    def __init__(self, vertices: np.ndarray, faces: np.ndarray, features: Features | None = None):
         from scipy.spatial import cKDTree
 
         self.corners = vertices[faces]                                 # (F, 3, 3)
@@ -473,6 +541,9 @@ class _Surface:
         segments = table.edges[table.count == 1]
         self.segments = vertices[segments]                             # (S, 2, 3)
         self.segment_tree = cKDTree(self.segments.mean(axis=1)) if len(segments) else None
+        creases = table.edges[features.mask(table) & (table.count == 2)] if features is not None else table.edges[:0]
+        self.crease_segments = vertices[creases]                       # (C, 2, 3)
+        self.crease_tree = cKDTree(self.crease_segments.mean(axis=1)) if len(creases) else None
 
     @staticmethod
     def _nearest(points, tree, k, closest):
@@ -492,8 +563,14 @@ class _Surface:
 
     def project_to_boundary(self, points: np.ndarray) -> np.ndarray:
         """Nearest points on the input's boundary polyline."""
-        segments = self.segments
-        return self._nearest(points, self.segment_tree, 4,
+        return self._nearest_on_segments(points, self.segments, self.segment_tree)
+
+    def project_to_creases(self, points: np.ndarray) -> np.ndarray:
+        """Nearest points on the input's crease polylines (feature edges off the boundary)."""
+        return self._nearest_on_segments(points, self.crease_segments, self.crease_tree)
+
+    def _nearest_on_segments(self, points, segments, tree):
+        return self._nearest(points, tree, 4,
                              lambda p, s: closest_points_on_segments(p, segments[s, 0], segments[s, 1]))
 
 
@@ -509,9 +586,12 @@ def _nearly_flat(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     return double_area <= MIN_RELATIVE_AREA * longest
 
 
-def _project(vertices, faces, surface: _Surface) -> np.ndarray:
+def _project(vertices, faces, surface: _Surface, features: Features | None = None) -> np.ndarray:
     """Put every vertex on the nearest point of the input surface (boundary vertices on
     its boundary), except where that would flatten a face.
+
+    With ``features``, vertices on a crease line go onto the input's crease lines and
+    corners stay exactly where they are.
 
     Where the input folds (a crease, a thin part), two corners of one face can land on
     the same nearest point, or three on one line, and the face would be left with no
@@ -521,7 +601,15 @@ def _project(vertices, faces, surface: _Surface) -> np.ndarray:
     """
     on_boundary = edge_table(faces, len(vertices)).boundary_vertices(len(vertices))
     result = vertices.copy()
-    inside = np.flatnonzero(~on_boundary)
+    if features is None:
+        inside = np.flatnonzero(~on_boundary)
+    else:
+        on_line = features.counts() > 0
+        inside = np.flatnonzero(~on_line)
+        on_crease = np.flatnonzero(on_line & ~on_boundary & ~features.corners)
+        on_boundary &= ~features.corners
+        if len(on_crease) and surface.crease_tree is not None:
+            result[on_crease] = surface.project_to_creases(vertices[on_crease])
     result[inside] = surface.project(vertices[inside])
     if on_boundary.any() and surface.segment_tree is not None:
         result[on_boundary] = surface.project_to_boundary(vertices[on_boundary])
@@ -548,25 +636,36 @@ def _check_arguments(target_length, iterations) -> tuple[float | None, int]:
     return target_length, int(iterations)
 
 
-def _phases(mesh: HalfedgeMesh, target_length, iterations, project, progress) -> Iterator[tuple[int, str, np.ndarray, np.ndarray]]:
-    """Yield ``(iteration, phase, vertices, faces)`` after every phase (arrays, not meshes)."""
+def _check_feature_options(feature_angle, smoothing_step) -> tuple[float | None, float]:
+    """``feature_angle`` as a float from 0 to 180 degrees or None (no creases), and
+    ``smoothing_step`` as a float from 0 to 1."""
+    if feature_angle is not None:
+        feature_angle = real_number(feature_angle, "feature_angle", minimum=0.0, maximum=180.0)
+    return feature_angle, real_number(smoothing_step, "smoothing_step", minimum=0.0, maximum=1.0)
+
+
+def _phases(mesh: HalfedgeMesh, target_length, iterations, project, progress,
+            feature_angle: float | None, smoothing_step: float = 1.0) -> Iterator[tuple[int, str, np.ndarray, np.ndarray, Features | None]]:
+    """Yield ``(iteration, phase, vertices, faces, features)`` after every phase (arrays,
+    not meshes; ``features`` None without ``feature_angle``)."""
     vertices, faces = mesh.to_arrays()
     if target_length is None:
         target_length = float(_edge_lengths(vertices, edge_table(faces, len(vertices)).edges).mean())
-    surface = _Surface(vertices, faces) if project else None
+    features = feature_arrays(vertices, faces, feature_angle) if feature_angle is not None else None
+    surface = _Surface(vertices, faces, features) if project else None
     rng = np.random.default_rng(0)
     for iteration in progress_range(iterations, progress, "remesh"):
-        vertices, faces = _split_long_edges(vertices, faces, target_length)
-        yield iteration + 1, "split", vertices, faces
-        vertices, faces = _collapse_short_edges(vertices, faces, target_length)
-        yield iteration + 1, "collapse", vertices, faces
-        faces = _flip_to_regular_degrees(vertices, faces, rng)
-        yield iteration + 1, "flip", vertices, faces
-        vertices = tangential_smoothing(vertices, faces)
-        yield iteration + 1, "smooth", vertices, faces
+        vertices, faces, features = _split_long_edges(vertices, faces, target_length, features)
+        yield iteration + 1, "split", vertices, faces, features
+        vertices, faces, features = _collapse_short_edges(vertices, faces, target_length, features)
+        yield iteration + 1, "collapse", vertices, faces, features
+        faces = _flip_to_regular_degrees(vertices, faces, rng, features)
+        yield iteration + 1, "flip", vertices, faces, features
+        vertices = tangential_smoothing(vertices, faces, features, smoothing_step)
+        yield iteration + 1, "smooth", vertices, faces, features
         if surface is not None:
-            vertices = _project(vertices, faces, surface)
-            yield iteration + 1, "project", vertices, faces
+            vertices = _project(vertices, faces, surface, features)
+            yield iteration + 1, "project", vertices, faces, features
 
 
 def remesh(
@@ -576,6 +675,8 @@ def remesh(
     *,
     project: bool = True,
     progress: bool = False,
+    feature_angle: float | None = DEFAULT_FEATURE_ANGLE,
+    smoothing_step: float = 1.0,
 ) -> HalfedgeMesh:
     """Isotropic remeshing: edges of about ``target_length``, vertex degrees near 6.
 
@@ -584,11 +685,23 @@ def remesh(
         target_length: the edge length ``L`` to aim for; default: the input's mean edge length.
         iterations: how many rounds of split / collapse / flip / smooth / project.
         project: put the vertices back on the input surface after each smoothing (the
-            boundary ones on the input's boundary polyline). Each vertex goes to the
-            nearest point of the few input triangles whose centroids are nearest (a
-            k-d tree), which is the true nearest point almost always. Without it,
-            midpoints of splits and tangential moves drift slightly inside curved regions.
+            boundary ones on the input's boundary polyline, the ones on a crease on the
+            input's creases). Each vertex goes to the nearest point of the few input
+            triangles (or segments) whose centroids are nearest (a k-d tree), which is
+            the true nearest point almost always. Without it, midpoints of splits and
+            tangential moves drift slightly inside curved regions.
         progress: show a progress bar (tqdm) over the iterations.
+        feature_angle: keep the creases: edges whose two faces' normals differ by more
+            than this many degrees (default :data:`~halfedge_edu.algorithms.features.DEFAULT_FEATURE_ANGLE`),
+            together with the boundary, are feature edges (see
+            :func:`~halfedge_edu.algorithms.features.detect_features`). None: no
+            creases, only the boundary is kept (and its vertices do not move at all).
+        smoothing_step: how much of the tangential step to its neighbours' centroid each
+            vertex takes per smoothing phase, from 0 to 1. 1 (Botsch and Kobbelt) makes
+            the most even triangles; smaller values leave the vertices nearer where
+            splits and collapses put them, which follows a noisy input (a scan) more
+            closely at the price of less even triangles (0.25 is about PyMeshLab's
+            balance on the bunny).
 
     Returns:
         A new :class:`HalfedgeMesh`. For the mesh after every phase, call
@@ -597,22 +710,29 @@ def remesh(
     What is kept: the genus, the number of boundary loops and components, orientation;
     boundary vertices only move along the input's boundary (boundary edges are split at
     their midpoints and collapse only along the boundary, onto one of their ends).
+    With ``feature_angle``, every feature line likewise: a feature edge is never
+    flipped, is split into two feature edges and collapses only along its line, its
+    vertices move only along the line and go back onto the input's feature lines, and
+    corners (where lines meet, end or turn by more than ``feature_angle``) stay exactly
+    where they are.
     Right after each split phase and each collapse phase no edge is longer than 4/3 L.
     What is aimed for, not guaranteed: edges between 4/5 L and 4/3 L at the end (a
     collapse that would make a long edge, fold a face or break the link condition is
     skipped, and smoothing moves vertices afterwards), degree 6 inside and 4 on the
     boundary.
 
-    Attention: sharp features are not detected. An edge whose faces meet at more than
-    20 degrees is never flipped, and no collapse may swing a face by more than 30
-    degrees, but smoothing may still move vertices across a crease and round it off.
+    Attention: with ``feature_angle=None`` creases are not kept. An edge whose faces meet
+    at more than 20 degrees is still never flipped, and no collapse may swing a face by
+    more than 30 degrees, but smoothing may move vertices across a crease and round it off.
     """
     check_remesh(mesh, target_length, iterations, project, progress)
+    feature_angle, smoothing_step = _check_feature_options(feature_angle, smoothing_step)
     if mesh.n_faces == 0:
         return _to_mesh(*mesh.to_arrays())
     target_length, iterations = _check_arguments(target_length, iterations)
     vertices, faces = mesh.to_arrays()
-    for _, _, vertices, faces in _phases(mesh, target_length, iterations, project, progress):
+    for _, _, vertices, faces, _ in _phases(mesh, target_length, iterations, project, progress, feature_angle,
+                                            smoothing_step):
         pass
     return _to_mesh(vertices, faces)
 
@@ -629,12 +749,14 @@ def remesh_history(mesh: HalfedgeMesh, target_length: float | None = None, **opt
     # and a misspelt option is a TypeError naming it.
     arguments = inspect.signature(remesh).bind(mesh, target_length, **options)
     arguments.apply_defaults()
-    given = arguments.arguments
+    given = dict(arguments.arguments)
+    feature_angle, smoothing_step = _check_feature_options(given.pop("feature_angle"), given.pop("smoothing_step"))
     check_remesh(**given)
     if mesh.n_faces == 0:
         return [RemeshStep(0, "input", mesh.copy())]
     target_length, iterations = _check_arguments(given["target_length"], given["iterations"])
-    return list(_steps(mesh, target_length, iterations, given["project"], given["progress"]))
+    return list(_steps(mesh, target_length, iterations, given["project"], given["progress"], feature_angle,
+                       smoothing_step))
 
 
 def remesh_step_by_step(
@@ -643,6 +765,8 @@ def remesh_step_by_step(
     iterations: int = 5,
     *,
     project: bool = True,
+    feature_angle: float | None = DEFAULT_FEATURE_ANGLE,
+    smoothing_step: float = 1.0,
 ) -> Iterator[RemeshStep]:
     """Yield a :class:`RemeshStep` ``(iteration, phase, mesh)`` after every phase.
 
@@ -652,15 +776,17 @@ def remesh_step_by_step(
     stepper can stop whenever it likes. The arguments are those of :func:`remesh`.
     """
     check_remesh(mesh, target_length, iterations, project)
+    feature_angle, smoothing_step = _check_feature_options(feature_angle, smoothing_step)
     if mesh.n_faces == 0:
         return iter([RemeshStep(0, "input", mesh.copy())])
     target_length, iterations = _check_arguments(target_length, iterations)
-    return _steps(mesh, target_length, iterations, project, False)
+    return _steps(mesh, target_length, iterations, project, False, feature_angle, smoothing_step)
 
 
-def _steps(mesh, target_length, iterations, project, progress) -> Iterator[RemeshStep]:
+def _steps(mesh, target_length, iterations, project, progress, feature_angle, smoothing_step) -> Iterator[RemeshStep]:
     yield RemeshStep(0, "input", mesh.copy())
-    for iteration, phase, vertices, faces in _phases(mesh, target_length, iterations, project, progress):
+    for iteration, phase, vertices, faces, _ in _phases(mesh, target_length, iterations, project, progress,
+                                                        feature_angle, smoothing_step):
         yield RemeshStep(iteration, phase, _to_mesh(vertices, faces))
 
 

@@ -245,7 +245,7 @@ def test_flips_and_smoothing_keep_the_connectivity_or_the_positions(spot_history
 ])
 def test_split_templates_cut_a_triangle_with_k_long_edges_into_k_plus_one(corners, long_edges):
     vertices = np.array(corners)
-    new_vertices, new_faces, n_split = remesh_module._split_pass(vertices, np.array([[0, 1, 2]]), 2.0)
+    new_vertices, new_faces, _, n_split = remesh_module._split_pass(vertices, np.array([[0, 1, 2]]), 2.0)
     assert n_split == long_edges
     assert len(new_faces) == long_edges + 1
     hx.HalfedgeMesh.from_faces(new_vertices, new_faces).validate()   # manifold and oriented, or it raises
@@ -259,7 +259,7 @@ def test_one_split_pass_cuts_every_long_edge_once_at_its_midpoint():
     vertices = np.array([[0.0, 0, 0], [3, 0, 0], [0, 1, 0], [3, 1, 0]])
     faces = np.array([[0, 1, 2], [1, 3, 2]])
     # Edges 0-1 and 2-3 (length 3) and the diagonal 1-2 (about 3.16) are long; 0-2, 1-3 are not.
-    new_vertices, new_faces, n_split = remesh_module._split_pass(vertices, faces, 2.0)
+    new_vertices, new_faces, _, n_split = remesh_module._split_pass(vertices, faces, 2.0)
     assert n_split == 3
     assert len(new_faces) == 3 + 3                      # each face has two long edges: 3 pieces
     hx.HalfedgeMesh.from_faces(new_vertices, new_faces).validate()
@@ -272,7 +272,7 @@ def test_collapse_phase_removes_short_edges_without_making_long_ones():
     mesh = hx.sample("icosphere", subdivisions=3)
     vertices, faces = mesh.to_arrays()
     length = 2.0 * mean_edge_length(mesh)              # every edge is short for this L
-    new_vertices, new_faces = remesh_module._collapse_short_edges(vertices, faces, length)
+    new_vertices, new_faces, _ = remesh_module._collapse_short_edges(vertices, faces, length)
     result = hx.HalfedgeMesh.from_faces(new_vertices, new_faces)
     result.validate()
     assert result.genus == 0

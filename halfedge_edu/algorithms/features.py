@@ -1,0 +1,177 @@
+"""Feature edges: the creases and the boundary that remeshing must keep where they are.
+
+A **feature edge** is a boundary edge, or an interior edge whose two faces meet at a
+dihedral angle above a threshold (their normals differ by more than ``feature_angle``
+degrees): the sharp edges of a CAD part, the rim of a hole. A **feature vertex** lies
+on at least one feature edge; a **corner** is a feature vertex with other than two
+feature edges (where three creases of a cube meet, or where a crease ends), or one
+where its line turns by more than the threshold (the corner of a square hole): it has
+no single straight line to move along, so it stays exactly where it is.
+
+Feature edges chain into **feature lines**. Remeshing (Botsch and Kobbelt 2004, as in
+pmp-library's ``uniform_remeshing``) keeps them by four rules: a feature edge is never
+flipped; a collapse never moves a feature vertex off its line; a split of a feature
+edge makes two feature halves; feature vertices are smoothed only along their line and
+projected back onto the input's feature lines.
+
+Everything here works on plain arrays, as :mod:`.remesh` does: :class:`Features` holds
+the feature edges as vertex pairs (k, 2) and the corners as a mask (n,), and has one
+method per change :mod:`.remesh` makes to the face array (a split pass, a round of
+merges, a compaction), so the features stay the same lines while vertices come, go and
+are renumbered. They are found once, on the input, and never again from the changing
+geometry: a vertex's status follows from the rules, not from angles that remeshing
+itself perturbs.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+
+from ..core.arrays import EdgeTable, csr, edge_table, face_cross
+from ..core.mesh import HalfedgeMesh
+from .arguments import check_mesh, real_number
+
+__all__ = ["DEFAULT_FEATURE_ANGLE", "Features", "detect_features", "feature_arrays"]
+
+#: Edges whose faces meet at more than this many degrees (between the normals) are
+#: creases by default. PyMeshLab's isotropic remeshing uses 30, CGAL's examples 60; 45
+#: keeps the folds of a machined part and of a low-polygon model, and leaves the
+#: small wrinkles of a scanned surface (the bunny's) to be smoothed.
+DEFAULT_FEATURE_ANGLE = 45.0
+
+
+def _keys(pairs: np.ndarray, n: int) -> np.ndarray:
+    """(k,) ``low * n + high`` of each pair (the pairs may come in either order)."""
+    return np.minimum(pairs[:, 0], pairs[:, 1]) * np.int64(n) + np.maximum(pairs[:, 0], pairs[:, 1])
+
+
+def _sorted_unique(pairs: np.ndarray) -> np.ndarray:
+    """Rows ``low, high`` without repeats, sorted (the form :class:`Features` keeps)."""
+    return np.unique(pairs, axis=0) if len(pairs) else pairs.reshape(0, 2)
+
+
+def _unit_rows(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(unit rows, nonzero)``: each row scaled to length 1, and which rows had a length."""
+    length = np.sqrt(np.einsum("ij,ij->i", rows, rows))
+    nonzero = length > 0.0
+    return rows / np.where(nonzero, length, 1.0)[:, None], nonzero
+
+
+class Features(NamedTuple):
+    """The feature edges of a face array, and the corners among their vertices.
+
+    ``edges`` (k, 2): each feature edge as ``low, high`` vertex indices, rows sorted.
+    ``corners`` (n,): True for the vertices that must not move at all: those with other
+    than two feature edges, and those where their line turns by more than the feature
+    angle (the corner of a square hole has two boundary edges, at 90 degrees). Corners
+    are found once, on the input, and carried along: a vertex made later (a midpoint)
+    is never a corner, and no collapse removes one.
+    """
+
+    edges: np.ndarray
+    corners: np.ndarray
+
+    def counts(self) -> np.ndarray:
+        """(n,) how many feature edges each vertex has (0: not a feature vertex)."""
+        return np.bincount(self.edges.reshape(-1), minlength=len(self.corners))
+
+    def mask(self, table: EdgeTable) -> np.ndarray:
+        """(E,) True for the edges of ``table`` (of the same vertices) that are feature edges."""
+        mask = np.zeros(len(table.keys), dtype=bool)
+        if len(self.edges):
+            mask[np.searchsorted(table.keys, _keys(self.edges, len(self.corners)))] = True
+        return mask
+
+    def line_neighbours(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The two neighbours along its line of every vertex with exactly two feature edges.
+
+        Returns ``(on_line, before, after)``, each (j,): those vertices, and their two
+        feature neighbours (in no particular order).
+        """
+        n = len(self.corners)
+        offsets, neighbours = csr(self.edges.reshape(-1), self.edges[:, ::-1].reshape(-1), n)
+        on_line = np.flatnonzero(np.diff(offsets) == 2)
+        return on_line, neighbours[offsets[on_line]], neighbours[offsets[on_line] + 1]
+
+    def split(self, table: EdgeTable, midpoint_of: np.ndarray) -> "Features":
+        """After a split pass: a feature edge split at midpoint m becomes ``a-m`` and ``m-b``.
+
+        ``table`` is the edge table the pass used, ``midpoint_of`` (E,) the new vertex on
+        each of its edges (-1 where the edge was not split); new vertices are numbered
+        after the old ones, and none is a corner.
+        """
+        n = len(self.corners)
+        corners = np.concatenate([self.corners, np.zeros(int((midpoint_of >= 0).sum()), dtype=bool)])
+        if len(self.edges) == 0:
+            return Features(self.edges, corners)
+        mid = midpoint_of[np.searchsorted(table.keys, _keys(self.edges, n))]
+        cut = mid >= 0
+        halves = np.concatenate([np.stack([self.edges[cut, 0], mid[cut]], axis=1),
+                                 np.stack([mid[cut], self.edges[cut, 1]], axis=1)])
+        halves.sort(axis=1)
+        return Features(_sorted_unique(np.concatenate([self.edges[~cut], halves])), corners)
+
+    def merge(self, remove: np.ndarray, keep: np.ndarray) -> "Features":
+        """After merging vertex ``remove[i]`` into ``keep[i]`` (collapses): a collapsed
+        feature edge vanishes and the next one along its line now ends at the kept
+        vertex, so the line stays one chain. Corners are never removed, so they stay."""
+        relabel = np.arange(len(self.corners))
+        relabel[remove] = keep
+        edges = relabel[self.edges]
+        edges = edges[edges[:, 0] != edges[:, 1]]
+        edges.sort(axis=1)
+        return Features(_sorted_unique(edges), self.corners)
+
+    def renumber(self, kept: np.ndarray) -> "Features":
+        """After :func:`halfedge_edu.core.arrays.compact` kept the vertices ``kept`` (old
+        indices, ascending): the same features in the new numbering."""
+        new_index = np.full(len(self.corners), -1, dtype=np.int64)
+        new_index[kept] = np.arange(len(kept))
+        return Features(new_index[self.edges], self.corners[kept])
+
+
+def feature_arrays(vertices: np.ndarray, faces: np.ndarray, feature_angle: float) -> Features:
+    """The :class:`Features` of a face array (positions (n, 3), faces (m, 3)).
+
+    Feature edges: every boundary edge, and every interior edge whose two face normals
+    differ by more than ``feature_angle`` degrees. An edge beside a face of no area is
+    not a crease (such a face has no normal to compare); it can still be a boundary edge.
+    """
+    n = len(vertices)
+    table = edge_table(faces, n)
+    unit, has_normal = _unit_rows(face_cross(vertices[faces]))            # (m, 3)
+    inner = table.count == 2
+    f1, f2 = table.first[inner] // 3, table.second[inner] // 3
+    limit = math.cos(math.radians(feature_angle))
+    sharp = np.zeros(len(table.edges), dtype=bool)
+    sharp[inner] = has_normal[f1] & has_normal[f2] & (np.einsum("ij,ij->i", unit[f1], unit[f2]) < limit)
+    edges = table.edges[sharp | (table.count == 1)]
+    # Corners: other than two feature edges, or a line that turns more than the angle.
+    corners = np.zeros(n, dtype=bool)
+    count = np.bincount(edges.reshape(-1), minlength=n)
+    corners[(count > 0) & (count != 2)] = True
+    on_line, before, after = Features(edges, corners).line_neighbours()
+    incoming, _ = _unit_rows(vertices[on_line] - vertices[before])
+    outgoing, _ = _unit_rows(vertices[after] - vertices[on_line])
+    corners[on_line[np.einsum("ij,ij->i", incoming, outgoing) < limit]] = True
+    return Features(edges, corners)
+
+
+def detect_features(mesh: HalfedgeMesh, feature_angle: float = DEFAULT_FEATURE_ANGLE) -> Features:
+    """The feature edges and corners of ``mesh`` that :func:`~halfedge_edu.algorithms.remesh.remesh` keeps.
+
+    Indices refer to ``mesh.to_arrays()[0]`` (the live vertices, in order). Feature
+    edges are the boundary edges and the creases sharper than ``feature_angle`` degrees
+    (the angle between the two face normals, 0 for a flat pair); see :class:`Features`
+    for the corners.
+
+    Raises:
+        MeshInputError: ``feature_angle`` is not a number from 0 to 180.
+    """
+    check_mesh(mesh)
+    feature_angle = real_number(feature_angle, "feature_angle", minimum=0.0, maximum=180.0)
+    vertices, faces = mesh.to_arrays()
+    return feature_arrays(vertices, faces, feature_angle)
