@@ -37,6 +37,7 @@ from __future__ import annotations
 import base64
 import html
 import io
+from collections.abc import Callable
 
 import numpy as np
 
@@ -44,7 +45,7 @@ from ..algorithms.bezier import bezier_curve, bezier_surface, bezier_surface_poi
 from .main_thread import call_on_main_thread, on_main_thread
 from .painted_scene import Layer, PaintedScene, legend_html
 from .palette import BLACK, BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, SKY_BLUE, VERMILLION, panel_css
-from .palette import preset as _preset, rgb
+from .palette import Preset, preset as _preset, rgb
 from .pictures import plotter_png
 from .renderer import View, choose_mode, make_plotter, prepare_plotter
 from .widgets import SceneWidget, panel_button
@@ -321,7 +322,8 @@ class _CurveScene:
     (``plotter``, ``window_size``, ``render()``, ``screenshot()``, ``close()``).
     """
 
-    def __init__(self, control_points: np.ndarray, window_size: tuple[int, int], look, on_drag):
+    def __init__(self, control_points: np.ndarray, window_size: tuple[int, int], look: Preset,
+                 on_drag: Callable[[int, tuple[float, float, float]], None]):
         self.window_size = tuple(window_size)
         self.look = look
         self.plotter = prepare_plotter(look, self.window_size, make_plotter("live", self.window_size))
@@ -394,12 +396,15 @@ class _CurveScene:
             handle.SetCenter(float(point[0]), float(point[1]), 0.0)
 
     def render(self) -> None:
+        """Push the current state to the render window."""
         self.plotter.render()
 
     def screenshot(self, path=None) -> bytes:
+        """The picture as PNG bytes (also written to ``path`` if given)."""
         return plotter_png(self.plotter, path, window_size=self.window_size)
 
     def close(self) -> None:
+        """Free the render window."""
         self.plotter.close()
 
 

@@ -359,10 +359,12 @@ def corner_row(columns, marked=(0, 7)):
     for column, (mesh, levels, title) in enumerate(columns):
         level = loop_subdivide(mesh, levels=levels)                            # corners keep the numbers 0 .. 7
         picture.subplot(0, column)
-        picture.add_mesh(level.to_pyvista(), color="#E8B96A", show_edges=levels == 0, edge_color="#6B5B45", line_width=1)
+        picture.add_mesh(level.to_pyvista(), color="#E8B96A", show_edges=levels == 0, edge_color="#6B5B45",
+                         line_width=1)
         picture.add_mesh(box, color="#555555", line_width=1)
-        picture.add_mesh(pv.PolyData(level.positions[list(marked)]), color="#D55E00", point_size=11, render_points_as_spheres=True)
-        picture.add_mesh(pv.PolyData(level.positions[others]), color="#0072B2", point_size=11, render_points_as_spheres=True)
+        for corners, colour in [(list(marked), "#D55E00"), (others, "#0072B2")]:
+            picture.add_mesh(pv.PolyData(level.positions[corners]), color=colour, point_size=11,
+                             render_points_as_spheres=True)
         picture.add_text(title, position=(6, 226), font_size=8)
     picture.link_views()
     picture.camera_position = [(3.3, -2.3, 0.5), (0.5, 0.5, 0.5), (-1.0, -1.0, 2.0)]   # up: across the 0-7 diagonal
@@ -462,7 +464,8 @@ def predicted_limit(mesh, vertex):
 for name, mesh, vertex in [("valence 3", cube, 0), ("valence 5", cube, 1), ("valence 6", centred, 0),
                            ("valence 6, split at 1/4", presplit, 0)]:
     measured = loop_subdivide(mesh, levels=7).positions[vertex]
-    print(f"{name:24s} vertex {vertex}: predicted {predicted_limit(mesh, vertex).round(4)}, after 7 levels {measured.round(4)}")
+    print(f"{name:24s} vertex {vertex}: predicted {predicted_limit(mesh, vertex).round(4)}, "
+          f"after 7 levels {measured.round(4)}")
 
 # %% [markdown]
 # So valence acts twice. It sets the share: 3/5 of the way at valence 3, 1/2 at every

@@ -151,7 +151,8 @@ before = viewer.point.copy()
 viewer.move_control_point(1, (1.0, 3.0))
 print(viewer.describe().splitlines()[-1])
 print("the point rose by", round(float(viewer.point[1] - before[1]), 4))
-print("de_casteljau on the moved points agrees:", np.allclose(viewer.point, de_casteljau(viewer.control_points, 0.25)[-1][0]))
+print("de_casteljau on the moved points agrees:",
+      np.allclose(viewer.point, de_casteljau(viewer.control_points, 0.25)[-1][0]))
 print("C(0) is still P_0:", de_casteljau(viewer.control_points, 0.0)[-1][0])
 viewer.reset()
 
