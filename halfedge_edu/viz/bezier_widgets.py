@@ -19,17 +19,16 @@ matplotlib PNG, the same on every run, and the control points move from code onl
 
 :class:`BezierSurfaceEditor` draws the surface of a control grid in 3D with PyVista (a
 live view in JupyterLab, a static image elsewhere, like every widget of
-:mod:`halfedge_edu.viz`); sliders pick a control point and move it, and in the live
-view every control point has a ball to drag.
+:mod:`halfedge_edu.viz`); sliders pick a control point and move it.
 
 Both can be driven from code and say their state in words (``describe()``); callbacks
 never print.
 
 Attention: in a live JupyterLab, a drag's callback may arrive on another thread than
 the one VTK draws on (issue 11); every callback here goes through
-:func:`.main_thread.call_on_main_thread` first. The drag balls (VTK sphere widgets) are
-made once and only moved afterwards: deleting one inside its own callback kills the
-kernel.
+:func:`.main_thread.call_on_main_thread` first. The curve's drag balls (VTK sphere
+widgets) are made once and only moved afterwards: deleting one inside its own callback
+kills the kernel.
 """
 
 from __future__ import annotations
@@ -45,7 +44,7 @@ from ..algorithms.bezier import bezier_curve, bezier_surface, bezier_surface_poi
 from .main_thread import call_on_main_thread, on_main_thread
 from .painted_scene import Layer, PaintedScene, legend_html
 from .palette import BLACK, BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, SKY_BLUE, VERMILLION, panel_css
-from .palette import Preset, preset as _preset, rgb
+from .palette import Preset, preset as _preset
 from .pictures import plotter_png
 from .renderer import View, choose_mode, make_plotter, prepare_plotter
 from .widgets import SceneWidget, panel_button
@@ -55,7 +54,7 @@ LEVEL_COLORS = (BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, SKY_BLUE, "#8C6D31")
 CONTROL = "#7A7A7A"
 CURVE_POINT = VERMILLION
 SURFACE = "#E8B96A"
-#: The balls a drag in the live view moves (the selected one of a surface is CURVE_POINT).
+#: The balls a drag in the curve's live view moves.
 HANDLE = "#555555"
 #: Samples of the drawn curve.
 CURVE_SAMPLES = 161
@@ -288,9 +287,16 @@ class DeCasteljauViewer:
         return entries
 
     def _dragged(self, index: int, centre) -> None:
-        """A ball was let go in the live view at ``centre`` (x, y, z): move its point in the plane."""
+        """A ball was let go in the live view at ``centre`` (x, y, z): move its point in the plane.
+
+        A release that did not move the ball changes nothing (VTK also reports the first
+        mouse release in the view to a ball that was never grabbed).
+        """
+        point = np.asarray(centre, dtype=np.float64)[:2]
+        if point.shape == (2,) and np.allclose(point, self.control_points[index]):
+            return
         try:
-            self.move_control_point(index, np.asarray(centre, dtype=np.float64)[:2])
+            self.move_control_point(index, point)
         except (IndexError, ValueError) as error:
             self.status.value = f'<span style="color:#B00020">{html.escape(str(error))}</span>'
 
@@ -422,9 +428,7 @@ class BezierSurfaceEditor(SceneWidget):
 
     ``select(i, j)``, ``move_to(position)`` (the selected point), ``move(i, j, position)``
     and ``reset()`` drive it from code; ``grid`` is the control grid now, ``surface`` the
-    sampled surface (a HalfedgeMesh), ``describe()`` says it in words. In the live view
-    every control point has a ball: dragging one selects its point and moves it there
-    when the mouse is let go (what ``move(i, j, position)`` does).
+    sampled surface (a HalfedgeMesh), ``describe()`` says it in words.
     """
 
     title = "Bezier surface: move a control point"
@@ -441,7 +445,6 @@ class BezierSurfaceEditor(SceneWidget):
         self._view_direction = view_direction
         self._view_up = view_up
         self._syncing = False
-        self._handles: dict[tuple[int, int], object] = {}    # (i, j) -> VTK sphere widget, live view only
         span = np.ptp(grid.reshape(-1, 3), axis=0).max() or 1.0
         self._slider_low = grid.reshape(-1, 3).min(axis=0) - 0.75 * span
         self._slider_high = grid.reshape(-1, 3).max(axis=0) + 0.75 * span
@@ -540,44 +543,23 @@ class BezierSurfaceEditor(SceneWidget):
         # A little see-through, so the parts of the net below the surface still show.
         self.scene.paint(surface, layers=layers, base_edges=False, smooth=True, surface_opacity=0.8,
                          surface_color=SURFACE)
-        if self.mode == "live":
-            self._place_handles()
-
-    def _place_handles(self) -> None:
-        """Live view: a ball on every control point (the selected one vermillion).
-
-        Made once, then only moved and recoloured: a drag's callback redraws, and
-        deleting the VTK widget inside its own callback kills the kernel.
-        """
-        if not self._handles:
-            radius = float(np.ptp(self.original.reshape(-1, 3), axis=0).max() or 1.0) / 40
-            for i, j in np.ndindex(*self.grid.shape[:2]):
-                self._handles[i, j] = self.scene.plotter.add_sphere_widget(
-                    lambda centre, i=i, j=j: call_on_main_thread(self._dragged, i, j, centre),
-                    center=tuple(self.grid[i, j]), radius=radius, color=HANDLE, selected_color=CURVE_POINT,
-                    test_callback=False, interaction_event="end")
-        for (i, j), handle in self._handles.items():
-            handle.SetCenter(*(float(c) for c in self.grid[i, j]))
-            colour = CURVE_POINT if (i, j) == self.selected else HANDLE
-            handle.GetSphereProperty().SetColor(*(rgb(colour) / 255.0))
-
-    def _dragged(self, i: int, j: int, centre) -> None:
-        """A ball was let go at ``centre``: move its control point there (errors go to the status line)."""
-        try:
-            self.move(i, j, centre)
-        except (IndexError, ValueError) as error:
-            self._say(str(error), error=True)
 
     def _controls(self) -> list:
         import ipywidgets as widgets
 
         rows, columns = self.grid.shape[:2]
-        self.row_slider = widgets.IntSlider(value=self.selected[0], min=0, max=rows - 1, description="row i")
-        self.column_slider = widgets.IntSlider(value=self.selected[1], min=0, max=columns - 1, description="column j")
+        # continuous_update=False: a slider tells the kernel only when the mouse lets go of it.
+        # With True, the browser's slider also reports every value it is *shown*, so a slider
+        # view that missed a move made from code sends its old value back and moves the
+        # point there (seen in a live Lab: P[0][1] jumped to x = 1 after chapter 12's cells).
+        self.row_slider = widgets.IntSlider(value=self.selected[0], min=0, max=rows - 1, description="row i",
+                                            continuous_update=False)
+        self.column_slider = widgets.IntSlider(value=self.selected[1], min=0, max=columns - 1,
+                                               description="column j", continuous_update=False)
         self.position_sliders = [
             widgets.FloatSlider(value=float(self.grid[self.selected][axis]), min=float(self._slider_low[axis]),
                                 max=float(self._slider_high[axis]), step=0.05, description=name,
-                                readout_format=".2f")
+                                readout_format=".2f", continuous_update=False)
             for axis, name in enumerate("xyz")
         ]
         self.row_slider.observe(on_main_thread(lambda change: self._picked()), names="value")
@@ -614,14 +596,9 @@ class BezierSurfaceEditor(SceneWidget):
 
     def _panel_html(self) -> str:
         size = panel_css(self.look)["font"]
-        how = ("drag a ball to move its control point, or use the sliders" if self.mode == "live" else
-               "a still picture: dragging needs the live view of JupyterLab; use the sliders, "
-               "or editor.move(i, j, (x, y, z)) from code")
-        return (f'<div style="font-size:{size};max-width:30em">' + "<br>".join(
+        return f'<div style="font-size:{size};max-width:30em">' + "<br>".join(
             html.escape(line) for line in self.describe().splitlines()) + "</div>"
-            f'<div style="font-size:{size};color:#555;max-width:30em;margin-top:4px">{html.escape(how)}</div>')
 
     def _refresh_panel(self) -> None:
         self._info.value = self._panel_html()
         self._legend.value = legend_html(self.scene.legend_entries(), self.look)
-

@@ -4,7 +4,9 @@ its live 3D view, and see the picture redraw and the point on the curve change.
 Run all cells, find the ball on ``P_1`` in the viewer's trame view, drag it up and to the
 right with the mouse, and wait for the panel's text: ``P_1`` has moved, the other
 control points have not, and ``C(t)`` is de Casteljau's point of the moved polygon.
-Then **reset** puts the arch back. Screenshots go to ``$HALFEDGE_EDU_SCREENSHOTS`` (or
+Then **reset** puts the arch back. Last, the surface editor must show what the
+chapter's cells did to it: its sliders once sent stale values back from the browser and
+moved a control point by themselves. Screenshots go to ``$HALFEDGE_EDU_SCREENSHOTS`` (or
 pytest's temporary folder).
 """
 
@@ -27,6 +29,17 @@ pytestmark = pytest.mark.browser
 NOTEBOOK = "12_bezier.ipynb"
 ARCH = [(0.0, 0.0), (1.0, 2.0), (3.0, 2.0), (4.0, 0.0)]     # the chapter's arch, as the viewer shows it
 DRAG = (40, -30)                                             # pixels: right and up
+
+
+class SurfaceEditorInLab:
+    """The last "Bezier surface: move a control point" output of the open notebook."""
+
+    def __init__(self, page):
+        self.output = page.locator(".jp-OutputArea-output").filter(has_text="Bezier surface: move a control point").last
+
+    def selected(self) -> str | None:
+        match = re.search(r"selected: (P\[\d\]\[\d\] at \([^()]*\))", self.output.inner_text())
+        return match.group(1) if match else None
 
 
 class CurveViewerInLab(StepperInLab):
@@ -110,9 +123,18 @@ def _drive(page, lab, shots: Path) -> None:
     png, back = viewer.settled_picture(dragged, "the live view to redraw after 'reset'")
     (shots / "bezier-2-reset.png").write_bytes(png)
     (shots / "bezier-3-panel.png").write_bytes(viewer.output.screenshot(timeout=30_000))
+    reset_at = time.monotonic()
+
+    # The surface editor shows the chapter's last move, not a value its sliders sent back.
+    editor = SurfaceEditorInLab(page)
+    editor.output.scroll_into_view_if_needed(timeout=30_000)
+    selected = wait_for(editor.selected, 30, "the surface editor's panel")
+    time.sleep(2)
+    assert editor.selected() == selected == "P[0][1] at (0, 1, 1)", \
+        f"the chapter left P[0][1] at (0, 1, 1); the editor shows {editor.selected()}"
     print(f"P_1 dragged to {moved[1]}, C({t}) {start_point} -> {point}; {share:.2%} of the view changed; "
           f"seconds: open and run {ran - started:.1f}, drag {dragged_at - ran:.1f}, "
-          f"reset {time.monotonic() - dragged_at:.1f}; screenshots in {shots}")
+          f"reset {reset_at - dragged_at:.1f}; screenshots in {shots}")
 
 
 def ball_centres(picture: np.ndarray) -> list[tuple[int, int]]:
@@ -129,3 +151,4 @@ def ball_centres(picture: np.ndarray) -> list[tuple[int, int]]:
     p0, p3 = sorted(low, key=lambda c: c[1])
     p1, p2 = sorted(high, key=lambda c: c[1])
     return [(int(round(c[1])), int(round(c[0]))) for c in (p0, p1, p2, p3)]
+

@@ -167,15 +167,13 @@ def test_the_live_view_has_a_ball_on_every_control_point_that_follows_it(closing
     assert "Drag a grey ball" in viewer.hint.value and "point on the curve" in viewer.legend.value
 
 
-def test_a_surface_ball_let_go_moves_its_control_point(closing):
-    widget = BezierSurfaceEditor(_grid(), mode="live", resolution=9)
-    closing(widget)
-    assert len(widget._handles) == 16
-    widget._dragged(2, 1, (2.0, 1.0, 2.0))
-    assert widget.selected == (2, 1) and np.array_equal(widget.grid[2, 1], [2.0, 1.0, 2.0])
-    assert widget._handles[2, 1].GetCenter() == (2.0, 1.0, 2.0)
-    assert np.allclose(widget.surface.positions.reshape(9, 9, 3), bezier_surface_points(widget.grid, 9))
+def test_a_release_that_did_not_move_a_ball_changes_nothing():
+    viewer = DeCasteljauViewer(CUBIC, t=0.5, mode="static")
+    viewer.move_control_point(1, (1.0, 2.5))
+    viewer._dragged(0, (0.0, 0.0, 0.0))            # VTK's first release, reported to P_0's ball
+    assert viewer.status.value.startswith("degree 3") and viewer.control_points[1, 1] == 2.5
 
 
-def test_the_static_surface_editor_says_dragging_needs_the_live_view(editor):
-    assert "dragging needs the live view" in editor._info.value
+def test_the_surface_sliders_report_to_the_kernel_only_when_let_go(editor):
+    sliders = [editor.row_slider, editor.column_slider, *editor.position_sliders]
+    assert [slider.continuous_update for slider in sliders] == [False] * 5
