@@ -17,6 +17,8 @@
 #   `beta` for an old vertex, and the rules on the boundary;
 # - explain why every new position is computed from the *old* mesh, before anything
 #   changes;
+# - explain why a subdivided cube can come out lopsided, and predict where a corner ends
+#   up: halfway to the average of its ring, 3/5 of the way at valence 3;
 # - write the two rules yourself and have `check_loop_rules` check them.
 
 # %%
@@ -327,6 +329,161 @@ print("corner vertex 0:", bumped.vertex(0).position, "->", low.vertex(0).positio
 # you need extra rules (creases and corners); Loop's basic scheme has none.
 
 # %% [markdown]
+# ## 7. The lopsided cube
+#
+# **Convention: Loop's rules see only the triangles and the positions, not the shape they
+# stand for; two triangulations of the same cube are two different inputs.**
+#
+# The Loop assignment and CS184 both have you subdivide a cube and look at it. Here is
+# the sample cube, each square face cut by one diagonal as in most OBJ files, beside the
+# same cube with every diagonal split at its midpoint by chapter 06's `split`: now each
+# face is four triangles around its centre. Four levels of each, seen from the side, so
+# that the diagonal through the cube from corner 0 to corner 7 runs across the picture.
+# Corners 0 and 7 are the orange dots, the other six corners blue.
+
+# %%
+cube = hx.sample("cube")
+ends = cube.edge_vertices()                                                    # (E, 2)
+edge_lengths = np.linalg.norm(cube.positions[ends[:, 0]] - cube.positions[ends[:, 1]], axis=1)
+centred = cube.copy()
+for diagonal in np.flatnonzero(edge_lengths > 1.1):                            # the six face diagonals, length sqrt(2)
+    centred.split(diagonal)                                                    # the midpoint: the face's centre
+
+
+def corner_row(columns, marked=(0, 7)):
+    """One row of cubes, ``columns`` = [(mesh, levels, title), ...], the box drawn around each;
+    the ``marked`` corners orange, the other corners blue."""
+    picture = pv.Plotter(off_screen=True, shape=(1, len(columns)), window_size=(230 * len(columns), 250), border=False)
+    box = pv.Box(bounds=(0, 1, 0, 1, 0, 1)).outline()
+    others = [v for v in range(8) if v not in marked]
+    for column, (mesh, levels, title) in enumerate(columns):
+        level = loop_subdivide(mesh, levels=levels)                            # corners keep the numbers 0 .. 7
+        picture.subplot(0, column)
+        picture.add_mesh(level.to_pyvista(), color="#E8B96A", show_edges=levels == 0, edge_color="#6B5B45",
+                         line_width=1)
+        picture.add_mesh(box, color="#555555", line_width=1)
+        for corners, colour in [(list(marked), "#D55E00"), (others, "#0072B2")]:
+            picture.add_mesh(pv.PolyData(level.positions[corners]), color=colour, point_size=11,
+                             render_points_as_spheres=True)
+        picture.add_text(title, position=(6, 226), font_size=8)
+    picture.link_views()
+    picture.camera_position = [(3.3, -2.3, 0.5), (0.5, 0.5, 0.5), (-1.0, -1.0, 2.0)]   # up: across the 0-7 diagonal
+    picture.show()
+
+
+corner_row([(cube, 0, "one diagonal: 0 levels"), (cube, 4, "one diagonal: 4 levels"),
+            (centred, 0, "face centres: 0 levels"), (centred, 4, "face centres: 4 levels")])
+
+# %% [markdown]
+# The cube on the right stays a rounded cube. The one on the left is drawn out towards
+# the orange corners, like a lemon.
+#
+# **Your turn.** Both start from the same eight corners. Count the edges at each corner of
+# the left cube (its picture at 0 levels helps): which corners differ from the others,
+# and why would Loop's weights care?
+#
+# The counts, and a number for the lopsidedness: the distance from the cube's centre
+# to each corner after five levels, along the 0-7 diagonal and along the other three.
+
+# %%
+for name, mesh in [("one diagonal", cube), ("face centres", centred)]:
+    finer = loop_subdivide(mesh, levels=5)
+    reach = np.linalg.norm(finer.positions[:8] - 0.5, axis=1)                  # (8,) corner distances from the centre
+    along, across = reach[[0, 7]].mean(), reach[1:7].mean()
+    print(f"{name:13s} corner degrees {mesh.vertex_degrees()[:8].tolist()}: "
+          f"corners 0, 7 at {along:.4f}, the other six at {across:.4f}, ratio {along / across:.3f}")
+
+# %% [markdown]
+# Each face diagonal ends at two corners: six diagonals, twelve ends, shared by six of the
+# eight corners. Corners 0 and 7 get none and keep degree 3; the other six get two each,
+# degree 5. A vertex's new place is a weighted average of its own ring, so corners with
+# different rings move differently: the degree-5 corners have two far neighbours across
+# the faces that pull them further in, and the two degree-3 corners are left standing
+# out. The left cube ends up about 11 % longer along its 0-7 diagonal than along the
+# other three (the ratio 1.107). Split around the face centres, every corner has the
+# same ring (three edges of the cube, three face centres, degree 6), all eight land at
+# the same distance (ratio 1.000), and the shape keeps every symmetry of the cube.
+#
+# Subdivision follows the triangulation, not the shape you meant. To get a symmetric
+# result, give it a symmetric triangulation.
+
+# %% [markdown]
+# ## 8. Sharp corners, and what valence does to them
+#
+# **Convention: the *valence* of a vertex is its degree, the number of edges at it; a
+# corner is *sharper* after subdivision the less of it is cut off.**
+#
+# Section 6 ended with Loop rounding corners off. CS184 asks what happens to sharp
+# corners, and whether splitting some edges beforehand changes it. Here is the same
+# corner 0 of the same cube three ways, each after four levels: valence 3 (the sample
+# cube), valence 6 (split around the face centres), and valence 6 with its six edges
+# split beforehand a quarter of the way from the corner. Corner 0 is the orange dot on
+# the left, the box's corner the place it started.
+
+# %%
+presplit = centred.copy()
+for neighbour in [v.index for v in presplit.vertex(0).neighbors()]:
+    edge = presplit.find_edge(0, neighbour)
+    presplit.split(edge, position=0.75 * presplit.positions[0] + 0.25 * presplit.positions[neighbour])
+
+corner_row([(cube, 4, "valence 3"), (centred, 4, "valence 6"), (presplit, 4, "valence 6, split at 1/4")], marked=(0,))
+
+# %% [markdown]
+# **Your turn.** Before running the next cell: which of the three corners is cut off the
+# most? And by how much should splitting at a quarter shrink the cut?
+
+# %%
+start = cube.positions[0]                                                      # (0, 0, 0): the cube's corner
+for name, mesh in [("valence 3", cube), ("valence 6", centred), ("valence 6, split at 1/4", presplit)]:
+    limit = loop_subdivide(mesh, levels=6).positions[0]
+    print(f"{name:24s} corner 0 goes to {limit.round(4)}, cut {np.linalg.norm(limit - start):.4f} deep")
+
+# %% [markdown]
+# The valence-3 corner is cut deepest, 0.346; at valence 6 the cut is 0.289; and with its
+# edges split at a quarter it is 0.072, exactly a quarter of 0.289. Where do these
+# numbers come from? (The valence-3 corner still looks like a tip in the picture only
+# because the valence-5 corners around it are cut deeper still.)
+#
+# Follow one vertex `v` of valence `n >= 4` and the average `a` of its ring. One level
+# moves `v` to `5/8 v + 3/8 a`. Its new ring is the edge points around it; averaging
+# `3/8 (v + u_i) + 1/8 (u_(i-1) + u_(i+1))` over the ring gives `3/8 v + 5/8 a`. So the
+# midpoint `(v + a) / 2` of the new pair is the midpoint of the old pair: it never moves,
+# while the gap `a - v` shrinks to a quarter each level. The vertex ends **halfway to
+# the average of its first ring**. With Warren's `3/16` at valence 3 the same argument
+# gives **3/5 of the way**. Let us predict corner 0 this way, and corner 1 of the sample
+# cube (valence 5) too:
+
+# %%
+def predicted_limit(mesh, vertex):
+    ring = np.array([u.position for u in mesh.vertex(vertex).neighbors()])    # (n, 3)
+    share = 3 / 5 if len(ring) == 3 else 1 / 2
+    v = mesh.positions[vertex]
+    return v + share * (ring.mean(axis=0) - v)
+
+
+for name, mesh, vertex in [("valence 3", cube, 0), ("valence 5", cube, 1), ("valence 6", centred, 0),
+                           ("valence 6, split at 1/4", presplit, 0)]:
+    measured = loop_subdivide(mesh, levels=7).positions[vertex]
+    print(f"{name:24s} vertex {vertex}: predicted {predicted_limit(mesh, vertex).round(4)}, "
+          f"after 7 levels {measured.round(4)}")
+
+# %% [markdown]
+# So valence acts twice. It sets the share: 3/5 of the way at valence 3, 1/2 at every
+# other valence. And it decides *which* vertices are in the ring, which sets where the
+# ring's average is. At valence 3, corner 0's ring is the three far corners, average
+# `(1/3, 1/3, 1/3)`, and 3/5 of that is `(0.2, 0.2, 0.2)`. At valence 6 the three face
+# centres join, the average is again `(1/3, 1/3, 1/3)`, but only half of it is taken:
+# `(1/6, 1/6, 1/6)`. The valence-5 corners of the sample cube have the two far diagonal
+# ends in their ring, which pulls the average, and the corner, further in: that is the
+# lopsided cube of section 7, in numbers.
+#
+# Splitting the edges at a quarter puts the whole ring four times closer, so its average
+# and the cut shrink four times: the corner looks sharper. It is still round, only on a
+# smaller scale, and it costs triangles. Corners that stay truly sharp need extra rules
+# for marked *crease* edges and corners (Hoppe and others, 1994), which this basic scheme
+# does not have.
+
+# %% [markdown]
 # ## Check yourself
 #
 # Predict, then run: the counts of the cube after one and after two levels; where
@@ -463,6 +620,10 @@ print(check_loop_rules(vertex_point=no_special_case))
 #   `beta = 3/16` for `n = 3`, `3/(8n)` otherwise. Boundary: midpoints, and
 #   `3/4 v + 1/8 (b0 + b1)`.
 # - Every new position comes from the old mesh, computed before anything changes.
+# - Loop follows the triangulation, not the shape: the sample cube (corners of valence 3
+#   and 5) comes out 11 % longer along one diagonal; split around the face centres it
+#   stays symmetric. A vertex ends halfway to its first ring's average (3/5 of the way at
+#   valence 3), so splitting the edges at a corner beforehand keeps it sharper.
 #
 # Next, chapter 10 runs the other way: instead of adding triangles, it removes them
 # while keeping the shape, choosing each collapse by its error.

@@ -115,6 +115,11 @@ for k, level in enumerate(de_casteljau(arch, 0.5)):
 # Move `t` and watch the construction slide along; move `levels` to draw it one level
 # at a time. The thick black part of the curve is the part already traced from `t = 0`.
 # Every coloured polyline is one level; the vermillion dot is the curve's point.
+#
+# In JupyterLab the control points are grey balls: drag one, and the curve and its
+# construction follow when you let go (**reset** puts them back). Where the picture is
+# a still image (GitHub, a static export) there is nothing to drag; the widget says so,
+# and the cells below do the same from code.
 
 # %%
 viewer = DeCasteljauViewer(arch, t=0.35)
@@ -133,6 +138,30 @@ viewer.step()
 print(viewer.describe().splitlines()[-1])
 viewer.step()
 print(viewer.describe().splitlines()[-2:])
+
+# %% [markdown]
+# Dragging from code: `move_control_point(i, (x, y))` moves `P_i`, as letting go of its
+# ball does.
+#
+# **Your turn.** Lift `P_1` from `(1, 2)` to `(1, 3)`, one unit up. Does the curve's point
+# at `t = 0.25` rise by the whole unit, or by less? Does `C(0)` move?
+
+# %%
+before = viewer.point.copy()
+viewer.move_control_point(1, (1.0, 3.0))
+print(viewer.describe().splitlines()[-1])
+print("the point rose by", round(float(viewer.point[1] - before[1]), 4))
+print("de_casteljau on the moved points agrees:",
+      np.allclose(viewer.point, de_casteljau(viewer.control_points, 0.25)[-1][0]))
+print("C(0) is still P_0:", de_casteljau(viewer.control_points, 0.0)[-1][0])
+viewer.reset()
+
+# %% [markdown]
+# By less: 0.4219 of the unit, `27/64`. Each lerp passes on only part of `P_1`'s move:
+# at level 1, the two points made from `P_1` move `1/4` and `3/4` of it; level 2 mixes
+# those again, and so on down to the last level. The share that arrives, `3 t (1 - t)^2`
+# at `t = 0.25`, is `P_1`'s weight in the Bernstein form of section 4. `C(0)` stays at
+# `P_0`: only `P_0` has any weight there. `reset()` put the arch back.
 
 # %% [markdown]
 # ## 4. What the construction tells you

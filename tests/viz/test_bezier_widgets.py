@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from halfedge_edu.algorithms.bezier import bezier_surface_points
+from halfedge_edu.algorithms.bezier import bezier_curve, bezier_surface_points, de_casteljau
 from halfedge_edu.viz.bezier_widgets import BezierSurfaceEditor, DeCasteljauViewer
 
 CUBIC = [[0, 0], [1, 2], [3, 2], [4, 0]]
@@ -97,3 +97,83 @@ def test_both_widgets_have_a_large_preset(closing):
     editor = BezierSurfaceEditor(_grid(), mode="static", preset="large", resolution=6)
     closing(editor)
     assert editor.scene.window_size == (1024, 768)
+
+
+# -- moving control points of the curve (what a drag in the live view does) -------------
+
+
+def test_moving_a_control_point_recomputes_the_curve_by_de_casteljau():
+    viewer = DeCasteljauViewer(CUBIC, t=0.25, mode="static")
+    picture = viewer.screenshot()
+    moved = viewer.move_control_point(1, (1.5, 3.0))
+    expected = np.array([[0, 0], [1.5, 3.0], [3, 2], [4, 0]], dtype=float)
+    assert np.array_equal(moved, [1.5, 3.0]) and np.array_equal(viewer.control_points, expected)
+    assert all(np.allclose(a, b) for a, b in zip(viewer.levels, de_casteljau(expected, 0.25)))
+    assert np.allclose(viewer.curve, bezier_curve(expected, len(viewer.curve)))
+    assert viewer.describe().splitlines()[-1] == "point on the curve: C(0.25) = (1.117, 1.547)"
+    assert viewer.screenshot() != picture
+
+
+def test_reset_puts_every_control_point_back():
+    viewer = DeCasteljauViewer(CUBIC, t=0.5, mode="static")
+    first = viewer.describe()
+    viewer.move_control_point(0, (-1.0, 1.0))
+    viewer.move_control_point(3, (5.0, 1.0))
+    viewer.reset()
+    assert np.array_equal(viewer.control_points, np.array(CUBIC, dtype=float))
+    assert viewer.describe() == first
+
+
+@pytest.mark.parametrize("index", [4, -1, 1.0, True])
+def test_a_control_point_that_does_not_exist_is_refused_and_nothing_changes(index):
+    viewer = DeCasteljauViewer(CUBIC, mode="static")
+    before = viewer.describe()
+    with pytest.raises(IndexError, match=r"no control point .*P_0 to P_3"):
+        viewer.move_control_point(index, (1.0, 1.0))
+    assert viewer.describe() == before
+
+
+@pytest.mark.parametrize("position", [(np.nan, 1.0), (1.0, np.inf), (1.0, 2.0, 0.0), (1.0,)])
+def test_a_position_that_is_not_two_finite_numbers_is_refused_and_nothing_changes(position):
+    viewer = DeCasteljauViewer(CUBIC, mode="static")
+    with pytest.raises(ValueError, match=r"P_2: .*two finite numbers"):
+        viewer.move_control_point(2, position)
+    assert np.array_equal(viewer.control_points, np.array(CUBIC, dtype=float))
+
+
+def test_the_static_picture_says_dragging_needs_the_live_view():
+    viewer = DeCasteljauViewer(CUBIC, mode="static")
+    assert "dragging the control points needs the live view" in viewer.hint.value
+    assert "move_control_point" in viewer.hint.value
+
+
+def test_a_drag_moves_the_point_in_the_plane_and_a_bad_one_only_says_why():
+    viewer = DeCasteljauViewer(CUBIC, t=0.5, mode="static")
+    viewer._dragged(2, (3.5, 2.5, 0.2))            # a ball let go a little off the plane
+    assert np.array_equal(viewer.control_points[2], [3.5, 2.5])
+    viewer._dragged(2, (np.nan, 0.0, 0.0))
+    assert "two finite numbers" in viewer.status.value
+    assert np.array_equal(viewer.control_points[2], [3.5, 2.5])
+
+
+def test_the_live_view_has_a_ball_on_every_control_point_that_follows_it(closing):
+    viewer = DeCasteljauViewer(CUBIC, t=0.5, mode="live")
+    closing(viewer)
+    assert [handle.GetCenter() for handle in viewer.scene.handles] == [(x, y, 0.0) for x, y in CUBIC]
+    picture = viewer.screenshot()
+    viewer.move_control_point(1, (1.0, 3.0))
+    assert viewer.scene.handles[1].GetCenter() == (1.0, 3.0, 0.0)
+    assert viewer.screenshot() != picture
+    assert "Drag a grey ball" in viewer.hint.value and "point on the curve" in viewer.legend.value
+
+
+def test_a_release_that_did_not_move_a_ball_changes_nothing():
+    viewer = DeCasteljauViewer(CUBIC, t=0.5, mode="static")
+    viewer.move_control_point(1, (1.0, 2.5))
+    viewer._dragged(0, (0.0, 0.0, 0.0))            # VTK's first release, reported to P_0's ball
+    assert viewer.status.value.startswith("degree 3") and viewer.control_points[1, 1] == 2.5
+
+
+def test_the_surface_sliders_report_to_the_kernel_only_when_let_go(editor):
+    sliders = [editor.row_slider, editor.column_slider, *editor.position_sliders]
+    assert [slider.continuous_update for slider in sliders] == [False] * 5
