@@ -26,11 +26,11 @@ from typing import Callable, NamedTuple
 
 import numpy as np
 
-from ..core.arrays import cross_rows, expand
+from ..core.arrays import EdgeTable, cross_rows, expand
 
 __all__ = [
-    "FOLD_ANGLE", "choose_round", "collapse_topology_ok", "drop_folding_neighbours", "independent_edges", "no_turned_faces",
-    "one_collapse_per_opposite_vertex",
+    "FOLD_ANGLE", "choose_round", "collapse_topology_ok", "drop_folding_neighbours", "faces_across", "independent_edges",
+    "no_turned_faces", "one_collapse_per_opposite_vertex",
 ]
 
 
@@ -109,9 +109,24 @@ class _MovedFaces(NamedTuple):
     owner: np.ndarray          # (j,) which collapse moves the face
     face: np.ndarray           # (j,) the face's index
     corners: np.ndarray        # (j, 3) its vertices, before
-    moving_corner: np.ndarray  # (j, 3) True at the corner that moves
+    position: np.ndarray       # (j,) 0, 1 or 2: which corner moves
     normal_before: np.ndarray  # (j, 3) cross products, length twice the area
     normal_after: np.ndarray   # (j, 3)
+
+    def far_edge(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(u, w)`` (j,) each: the edge of each face that does not move, in the face's order."""
+        rows = np.arange(len(self.position))
+        return (self.corners[rows, (self.position + 1) % 3],
+                self.corners[rows, (self.position + 2) % 3])
+
+
+def _holds(corners: np.ndarray, vertex: np.ndarray) -> np.ndarray:
+    """(j,) True where row ``corners[i]`` (j, 3) holds ``vertex[i]``.
+
+    Three comparisons of columns: ``(corners == vertex[:, None]).any(axis=1)`` says the
+    same, but numpy reduces along a row of three several times slower.
+    """
+    return (corners[:, 0] == vertex) | (corners[:, 1] == vertex) | (corners[:, 2] == vertex)
 
 
 def _moved_faces(vertices, faces, faces_around, points, keep, remove) -> _MovedFaces:
@@ -124,18 +139,19 @@ def _moved_faces(vertices, faces, faces_around, points, keep, remove) -> _MovedF
     for end, other in ((keep, remove), (remove, keep)):
         owner, face = expand(face_offsets, face_of_corner, end)
         corners = faces[face]                                           # (j, 3)
-        survives = ~(corners == other[owner, None]).any(axis=1)        # faces holding both vanish
+        survives = ~_holds(corners, other[owner])                      # faces holding both vanish
         owners.append(owner[survives])
         face_lists.append(face[survives])
         corner_lists.append(corners[survives])
         movers.append(end[owner[survives]])
     owner = np.concatenate(owners)
     corners = np.concatenate(corner_lists)                              # (j, 3)
-    moving_corner = corners == np.concatenate(movers)[:, None]          # one True a row
+    mover = np.concatenate(movers)
+    position = np.where(corners[:, 0] == mover, 0, np.where(corners[:, 1] == mover, 1, 2))
     before = vertices[corners]                                          # (j, 3 corners, 3)
     after = before.copy()
-    after[moving_corner] = points[owner]
-    return _MovedFaces(owner, np.concatenate(face_lists), corners, moving_corner,
+    after[np.arange(len(owner)), position] = points[owner]
+    return _MovedFaces(owner, np.concatenate(face_lists), corners, position,
                        cross_rows(before[:, 1] - before[:, 0], before[:, 2] - before[:, 0]),
                        cross_rows(after[:, 1] - after[:, 0], after[:, 2] - after[:, 0]))
 
@@ -153,6 +169,8 @@ def no_turned_faces(
     keep: np.ndarray,
     remove: np.ndarray,
     max_normal_cos: float,
+    *,
+    face_across: np.ndarray | None = None,
 ) -> np.ndarray:
     """(k,) True where moving both ends of edge ``keep[i] - remove[i]`` to ``points[i]``
     turns no face over and folds no pair of neighbouring faces.
@@ -171,9 +189,14 @@ def no_turned_faces(
       :data:`FOLD_ANGLE` apart. The turn
       test alone misses this: two neighbours may each swing by less than the allowed
       angle, in opposite directions, and between them fold shut.
+
+    ``face_across`` (m, 3), if the caller has it (from :func:`faces_across`): the face
+    across each face's edge ``faces[f, k] -> faces[f, k + 1]``, -1 on the boundary. It
+    names the unmoved neighbour of each moved face directly; without it the neighbour
+    is searched for among the faces around the far edge's end, several times the work.
     """
     moved = _moved_faces(vertices, faces, faces_around, points, keep, remove)
-    owner, corners, moving_corner = moved.owner, moved.corners, moved.moving_corner
+    owner, corners, position = moved.owner, moved.corners, moved.position
     n_before, n_after = moved.normal_before, moved.normal_after
     length_before = np.sqrt(np.einsum("ij,ij->i", n_before, n_before))
     length_after = np.sqrt(np.einsum("ij,ij->i", n_after, n_after))
@@ -186,9 +209,9 @@ def no_turned_faces(
 
     # Moved faces that share an edge at the new vertex: after the collapse both faces
     # hold the kept vertex (the removed one renamed) and one more common vertex.
-    spoke_end = corners[~moving_corner].reshape(-1, 2)                  # (j, 2) the other two corners
+    u, w = moved.far_edge()                                             # the other two corners
     rows = np.repeat(np.arange(len(owner)), 2)
-    key = owner[rows] * len(vertices) + spoke_end.reshape(-1)          # (2j,) owner and far end
+    key = owner[rows] * len(vertices) + np.stack([u, w], axis=1).reshape(-1)   # (2j,) owner and far end
     order = np.argsort(key, kind="stable")
     same = key[order][1:] == key[order][:-1]
     first, second = rows[order][:-1][same], rows[order][1:][same]
@@ -197,14 +220,16 @@ def no_turned_faces(
 
     # A moved face and the unmoved face across its far edge (u, w), the face holding
     # u and w but neither end of the collapse.
-    face_offsets, face_of_corner = faces_around
-    position = np.argmax(moving_corner, axis=1)
-    u = corners[np.arange(len(corners)), (position + 1) % 3]
-    w = corners[np.arange(len(corners)), (position + 2) % 3]
-    row, neighbour = expand(face_offsets, face_of_corner, w)
+    if face_across is None:
+        face_offsets, face_of_corner = faces_around
+        row, neighbour = expand(face_offsets, face_of_corner, w)
+        across = _holds(faces[neighbour], u[row])
+    else:
+        row = np.arange(len(owner))
+        neighbour = face_across[moved.face, (position + 1) % 3]         # across u -> w
+        across = neighbour >= 0
     beyond = faces[neighbour]                                           # (r, 3)
-    across = (beyond == u[row, None]).any(axis=1)
-    across &= ~(beyond == keep[owner[row], None]).any(axis=1) & ~(beyond == remove[owner[row], None]).any(axis=1)
+    across &= ~_holds(beyond, keep[owner[row]]) & ~_holds(beyond, remove[owner[row]])
     row, neighbour = row[across], neighbour[across]
     beyond_corners = vertices[faces[neighbour]]
     n_beyond = _unit(cross_rows(beyond_corners[:, 1] - beyond_corners[:, 0],
@@ -215,6 +240,20 @@ def no_turned_faces(
     ok = np.ones(len(keep), dtype=bool)
     ok[owner[turned]] = False
     return ok
+
+
+def faces_across(faces: np.ndarray, table: EdgeTable) -> np.ndarray:
+    """(m, 3) the face across each face's edge ``faces[f, k] -> faces[f, k + 1]``, -1 on the boundary.
+
+    ``table`` is the :func:`halfedge_edu.core.arrays.edge_table` of ``faces``: an interior
+    edge's two uses (directed edges ``3 f + k``) each name the other's face.
+    """
+    across = np.full(3 * len(faces), -1, dtype=np.int64)
+    inner = table.second >= 0
+    first, second = table.first[inner], table.second[inner]
+    across[first] = second // 3
+    across[second] = first // 3
+    return across.reshape(-1, 3)
 
 
 def drop_folding_neighbours(vertices: np.ndarray, faces: np.ndarray, faces_around: tuple[np.ndarray, np.ndarray],
@@ -230,10 +269,7 @@ def drop_folding_neighbours(vertices: np.ndarray, faces: np.ndarray, faces_aroun
     which puts each back to a state its own check accepted.
     """
     moved = _moved_faces(vertices, faces, faces_around, points, keep, remove)
-    position = np.argmax(moved.moving_corner, axis=1)
-    rows = np.arange(len(moved.owner))
-    u = moved.corners[rows, (position + 1) % 3]
-    w = moved.corners[rows, (position + 2) % 3]
+    u, w = moved.far_edge()
     key = np.minimum(u, w) * len(vertices) + np.maximum(u, w)          # each face's far edge
     order = np.argsort(key, kind="stable")
     same = key[order][1:] == key[order][:-1]

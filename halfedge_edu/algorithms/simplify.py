@@ -43,12 +43,14 @@ from typing import NamedTuple
 import numpy as np
 
 from ..core.arrays import (
-    compact, edge_table, face_cross, merge_vertices, unique_edges, vertex_faces, vertex_neighbours,
+    compact, edge_table, face_cross, merge_vertices, vertex_faces, vertex_neighbours,
 )
 from ..core.errors import MeshWarning
 from ..core.mesh import HalfedgeMesh
 from .arguments import check_simplify
-from .collapse_rounds import choose_round, collapse_topology_ok, drop_folding_neighbours, no_turned_faces
+from .collapse_rounds import (
+    choose_round, collapse_topology_ok, drop_folding_neighbours, faces_across, no_turned_faces,
+)
 
 
 @dataclass
@@ -360,8 +362,9 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
     moved = np.ones(n, dtype=bool)             # vertices whose price inputs changed
     while len(faces) > target_faces:
         rounds += 1
-        edges, count = unique_edges(faces, n)
-        boundary_edge = count == 1
+        round_table = edge_table(faces, n)
+        edges, boundary_edge = round_table.edges, round_table.count == 1
+        face_across = faces_across(faces, round_table)
         boundary_vertex = np.zeros(n, dtype=bool)
         boundary_vertex[edges[boundary_edge].reshape(-1)] = True
         degree = np.bincount(edges.reshape(-1), minlength=n)
@@ -390,7 +393,8 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         def check_turned_faces(indices: np.ndarray) -> np.ndarray:
             chosen_edges = candidates[indices]
             ok = no_turned_faces(vertices, faces, faces_around, points[chosen_edges],
-                                 keep[chosen_edges], remove[chosen_edges], max_normal_cos)
+                                 keep[chosen_edges], remove[chosen_edges], max_normal_cos,
+                                 face_across=face_across)
             # Where the best point turns a face over, an endpoint may not: in a flat
             # region all three cost nothing, and moving onto a neighbour folds less
             # often than moving to the middle of a long edge. Accept an endpoint only
@@ -407,7 +411,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
                 if cheap.any():
                     passes[cheap] = no_turned_faces(
                         vertices, faces, faces_around, option[cheap], keep[retry[cheap]],
-                        remove[retry[cheap]], max_normal_cos)
+                        remove[retry[cheap]], max_normal_cos, face_across=face_across)
                 points[retry[passes]] = option[passes]
                 cost[retry[passes]] = option_cost[passes]
                 still_bad = np.flatnonzero(~ok)
