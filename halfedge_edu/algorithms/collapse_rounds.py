@@ -30,7 +30,7 @@ from ..core.arrays import EdgeTable, cross_rows, expand
 
 __all__ = [
     "FOLD_ANGLE", "choose_round", "collapse_topology_ok", "drop_folding_neighbours", "faces_across", "independent_edges",
-    "no_turned_faces", "one_collapse_per_opposite_vertex",
+    "no_turned_faces", "one_collapse_per_opposite_vertex", "vertex_rings",
 ]
 
 
@@ -256,6 +256,36 @@ def faces_across(faces: np.ndarray, table: EdgeTable) -> np.ndarray:
     return across.reshape(-1, 3)
 
 
+def vertex_rings(faces: np.ndarray, table: EdgeTable, n: int) -> tuple[tuple[np.ndarray, np.ndarray],
+                                                                        tuple[np.ndarray, np.ndarray]]:
+    """Each vertex's faces and each vertex's neighbours, as two CSRs from one sort.
+
+    Returns ``(faces_around, neighbours)``, the same rows as
+    :func:`halfedge_edu.core.arrays.vertex_faces` and
+    :func:`halfedge_edu.core.arrays.vertex_neighbours` give (in another order within a
+    row), for one sort of the corners by vertex instead of two sorts. ``table`` is the
+    :func:`halfedge_edu.core.arrays.edge_table` of ``faces`` (m, 3).
+
+    The neighbours come from the corners: corner ``(f, k)`` at vertex v names the next
+    corner's vertex, ``faces[f, k + 1]``. Around an inner vertex that lists every
+    neighbour once. The faces of a boundary vertex form one open fan (the mesh has no
+    vertex with two fans), and the neighbour at its clockwise end is missing; it is the
+    tail of the boundary edge whose head is v, so each boundary edge adds one row.
+    """
+    corner_vertex = faces.reshape(-1)                                  # (3m,)
+    next_vertex = faces[:, [1, 2, 0]].reshape(-1)                      # (3m,) the next corner's vertex
+    boundary_use = table.first[table.count == 1]                      # (b,) directed edges tail -> head
+    rows = np.concatenate([corner_vertex, next_vertex[boundary_use]])     # (3m + b,) the head for the extra rows
+    values = np.concatenate([next_vertex, corner_vertex[boundary_use]])   # ... and the tail as its neighbour
+    order = np.argsort(rows)
+    face_offsets = np.zeros(n + 1, dtype=np.int64)
+    np.cumsum(np.bincount(corner_vertex, minlength=n), out=face_offsets[1:])
+    neighbour_offsets = np.zeros(n + 1, dtype=np.int64)
+    np.cumsum(np.bincount(rows, minlength=n), out=neighbour_offsets[1:])
+    corners = order[order < len(corner_vertex)]                       # the sort, without the extra rows
+    return (face_offsets, corners // 3), (neighbour_offsets, values[order])
+
+
 def drop_folding_neighbours(vertices: np.ndarray, faces: np.ndarray, faces_around: tuple[np.ndarray, np.ndarray],
                             points: np.ndarray, keep: np.ndarray, remove: np.ndarray) -> np.ndarray:
     """(k,) False for collapses of one round that would fold a face of another's shut.
@@ -333,6 +363,8 @@ def choose_round(
     check_turned_faces: Callable[[np.ndarray], np.ndarray],
     known_opposites: tuple[np.ndarray, np.ndarray] | None = None,
     passes: int = 5,
+    *,
+    neighbours: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> np.ndarray:
     """(k,) mask over candidates: a set of allowed collapses that can all be done at once.
 
@@ -354,6 +386,11 @@ def choose_round(
     ``known_opposites``: ``(owner, vertex)`` arrays of opposite vertices the caller has
     already found (candidate indices and vertices), so that candidates whose opposite
     vertex has lost an edge drop out before a pass picks, not after.
+
+    ``neighbours``: the vertex adjacency as CSR (from
+    :func:`halfedge_edu.core.arrays.vertex_neighbours`), if the caller has it: then
+    the ring around the accepted edges is gathered from their ends' rows instead of
+    found by a scan of every edge.
     """
     chosen = np.zeros(len(candidates), dtype=bool)
     open_ = open_.copy()
@@ -382,11 +419,15 @@ def choose_round(
         which = np.flatnonzero(passed)
         passed[which[~check_turned_faces(which)]] = False
         chosen |= passed
-        ends = np.zeros(n, dtype=bool)
-        ends[cand_edges[passed].reshape(-1)] = True
-        blocked |= ends
-        blocked[edges[ends[edges[:, 0]], 1]] = True
-        blocked[edges[ends[edges[:, 1]], 0]] = True
+        ends = cand_edges[passed].reshape(-1)
+        blocked[ends] = True
+        if neighbours is None:
+            at_end = np.zeros(n, dtype=bool)
+            at_end[ends] = True
+            blocked[edges[at_end[edges[:, 0]], 1]] = True
+            blocked[edges[at_end[edges[:, 1]], 0]] = True
+        else:
+            blocked[expand(*neighbours, ends)[1]] = True
         opposite_used[opposite_vertex[passed[opposite_owner]]] = True
     return chosen
 

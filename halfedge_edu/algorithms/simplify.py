@@ -43,13 +43,13 @@ from typing import NamedTuple
 import numpy as np
 
 from ..core.arrays import (
-    compact, edge_table, face_cross, merge_vertices, vertex_faces, vertex_neighbours,
+    compact, edge_table, face_cross, merge_vertices,
 )
 from ..core.errors import MeshWarning
 from ..core.mesh import HalfedgeMesh
 from .arguments import check_simplify
 from .collapse_rounds import (
-    choose_round, collapse_topology_ok, drop_folding_neighbours, faces_across, no_turned_faces,
+    choose_round, collapse_topology_ok, drop_folding_neighbours, faces_across, no_turned_faces, vertex_rings,
 )
 
 
@@ -412,7 +412,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
             candidates = np.arange(len(edges))
         candidates = candidates[np.argsort(cost[candidates], kind="stable")]
 
-        neighbours = vertex_neighbours(edges, n)
+        faces_around, neighbours = vertex_rings(faces, round_table, n)
 
         def check_topology(indices: np.ndarray):
             chosen_edges = candidates[indices]
@@ -420,7 +420,6 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
                                                      boundary_vertex, degree, neighbours)
             return ok, indices[owner], vertex
 
-        faces_around = vertex_faces(faces, n)
 
         def check_turned_faces(indices: np.ndarray) -> np.ndarray:
             chosen_edges = candidates[indices]
@@ -451,7 +450,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
             return ok
 
         chosen_mask = choose_round(edges, candidates, np.ones(len(candidates), dtype=bool), n,
-                                   check_topology, check_turned_faces)
+                                   check_topology, check_turned_faces, neighbours=neighbours)
         chosen = candidates[chosen_mask]
         # Stop exactly at the target: take chosen edges in cost order until enough faces go.
         removes_faces = np.where(boundary_edge[chosen], 1, 2)

@@ -8,9 +8,11 @@ from hypothesis import strategies as st
 
 import halfedge_edu as hx
 from halfedge_edu.algorithms.collapse_rounds import (
-    choose_round, collapse_topology_ok, independent_edges, no_turned_faces,
+    choose_round, collapse_topology_ok, faces_across, independent_edges, no_turned_faces, vertex_rings,
 )
-from halfedge_edu.core.arrays import compact, merge_vertices, unique_edges, vertex_faces, vertex_neighbours
+from halfedge_edu.core.arrays import (
+    compact, edge_table, merge_vertices, unique_edges, vertex_faces, vertex_neighbours,
+)
 from tests import strategies as shapes
 
 
@@ -133,3 +135,38 @@ def test_a_round_chosen_with_the_real_checks_collapses_all_at_once_into_a_valid_
     after.validate()
     assert after.n_faces == len(faces) - int(np.where(boundary_edge[candidates[chosen]], 1, 2).sum())
     assert (after.genus, after.n_boundary_loops) == (before.genus, before.n_boundary_loops)
+
+
+def _rows(csr_pair, n):
+    """Each CSR row as a sorted list, to compare two CSRs whose rows hold the same values in any order."""
+    offsets, values = csr_pair
+    return [sorted(values[offsets[v]:offsets[v + 1]].tolist()) for v in range(n)]
+
+
+@settings(max_examples=60)
+@given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1), n_collapses=st.integers(0, 25))
+def test_vertex_rings_hold_the_rows_of_vertex_faces_and_vertex_neighbours(case, seed, n_collapses):
+    vertices, faces = roughened(case, seed, n_collapses).to_arrays()
+    n = len(vertices)
+    faces_around, neighbours = vertex_rings(faces, edge_table(faces, n), n)
+    assert _rows(faces_around, n) == _rows(vertex_faces(faces, n), n)
+    assert _rows(neighbours, n) == _rows(vertex_neighbours(unique_edges(faces, n)[0], n), n)
+
+
+@settings(max_examples=60)
+@given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1))
+def test_the_face_across_table_gives_no_turned_faces_the_same_answers(case, seed):
+    # Random points near each edge, some far enough to turn faces over: with the table
+    # and without it (searching the faces around), every collapse gets the same verdict.
+    vertices, faces = case.vertices, case.faces
+    n = len(vertices)
+    table = edge_table(faces, n)
+    rng = np.random.default_rng(seed)
+    keep, remove = table.edges[:, 0], table.edges[:, 1]
+    size = float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0)))
+    points = 0.5 * (vertices[keep] + vertices[remove]) + rng.normal(scale=0.2 * size, size=(len(keep), 3))
+    around = vertex_faces(faces, n)
+    plain = no_turned_faces(vertices, faces, around, points, keep, remove, np.cos(np.radians(80.0)))
+    tabled = no_turned_faces(vertices, faces, around, points, keep, remove, np.cos(np.radians(80.0)),
+                             face_across=faces_across(faces, table))
+    assert np.array_equal(plain, tabled)
