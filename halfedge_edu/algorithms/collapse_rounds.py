@@ -26,11 +26,11 @@ from typing import Callable, NamedTuple
 
 import numpy as np
 
-from ..core.arrays import EdgeTable, cross_rows, expand
+from ..core.arrays import cross_rows, expand, face_halfedges, sort_undirected
 
 __all__ = [
-    "FOLD_ANGLE", "choose_round", "collapse_topology_ok", "drop_folding_neighbours", "faces_across", "independent_edges",
-    "no_turned_faces", "one_collapse_per_opposite_vertex", "vertex_rings",
+    "FOLD_ANGLE", "RoundEdges", "choose_round", "collapse_topology_ok", "drop_folding_neighbours", "independent_edges",
+    "no_turned_faces", "one_collapse_per_opposite_vertex", "round_edges", "vertex_rings",
 ]
 
 
@@ -190,7 +190,7 @@ def no_turned_faces(
       test alone misses this: two neighbours may each swing by less than the allowed
       angle, in opposite directions, and between them fold shut.
 
-    ``face_across`` (m, 3), if the caller has it (from :func:`faces_across`): the face
+    ``face_across`` (m, 3), if the caller has it (from :func:`round_edges`): the face
     across each face's edge ``faces[f, k] -> faces[f, k + 1]``, -1 on the boundary. It
     names the unmoved neighbour of each moved face directly; without it the neighbour
     is searched for among the faces around the far edge's end, several times the work.
@@ -242,29 +242,71 @@ def no_turned_faces(
     return ok
 
 
-def faces_across(faces: np.ndarray, table: EdgeTable) -> np.ndarray:
-    """(m, 3) the face across each face's edge ``faces[f, k] -> faces[f, k + 1]``, -1 on the boundary.
+class RoundEdges(NamedTuple):
+    """The edges of a face array (m, 3) and what a round of collapses asks about them.
 
-    ``table`` is the :func:`halfedge_edu.core.arrays.edge_table` of ``faces``: an interior
-    edge's two uses (directed edges ``3 f + k``) each name the other's face.
+    ``edges`` (E, 2) low/high in key order and ``boundary`` (E,) as
+    :func:`halfedge_edu.core.arrays.unique_edges` gives them; ``face_across`` (m, 3) the
+    face across each face's edge ``faces[f, k] -> faces[f, k + 1]``, -1 on the
+    boundary; ``boundary_halfedge`` (b,) the directed edges ``3 f + k`` that lie on
+    the boundary.
     """
-    across = np.full(3 * len(faces), -1, dtype=np.int64)
-    inner = table.second >= 0
-    first, second = table.first[inner], table.second[inner]
-    across[first] = second // 3
-    across[second] = first // 3
-    return across.reshape(-1, 3)
+
+    edges: np.ndarray
+    boundary: np.ndarray
+    face_across: np.ndarray
+    boundary_halfedge: np.ndarray
 
 
-def vertex_rings(faces: np.ndarray, table: EdgeTable, n: int) -> tuple[tuple[np.ndarray, np.ndarray],
-                                                                        tuple[np.ndarray, np.ndarray]]:
+def round_edges(faces: np.ndarray, n: int) -> RoundEdges:
+    """The :class:`RoundEdges` of ``faces`` (m, 3), vertex indices below ``n``: one sort of the directed edges.
+
+    After :func:`halfedge_edu.core.arrays.sort_undirected` the uses of an edge sit next
+    to each other; an interior edge's two uses each name the other's face.
+    """
+    n_halfedges = 3 * len(faces)
+    order, sorted_key = sort_undirected(*face_halfedges(faces), n)
+    new_run = np.ones(n_halfedges, dtype=bool)
+    new_run[1:] = sorted_key[1:] != sorted_key[:-1]
+    starts = np.flatnonzero(new_run)                                  # (E,) first use of each edge
+    count = np.diff(np.append(starts, n_halfedges))
+    keys = sorted_key[starts]
+    first = order[starts]
+    inner = count == 2
+    second = order[starts[inner] + 1]
+    across = np.full(n_halfedges, -1, dtype=np.int64)
+    across[first[inner]] = second // 3
+    across[second] = first[inner] // 3
+    return RoundEdges(np.stack([keys // n, keys % n], axis=1), count == 1, across.reshape(-1, 3),
+                      first[count == 1])
+
+
+def _grouping_order(rows: np.ndarray, n: int) -> np.ndarray:
+    """An order that groups ``rows`` (k,) (values below ``n``) by value, as ``np.argsort(rows)``.
+
+    The position is packed into the low bits of each row value and the packed numbers
+    are sorted with ``np.sort``, about twice as fast as an argsort (the trick of
+    :func:`halfedge_edu.core.arrays.sort_undirected`); too large a mesh falls back.
+    """
+    bits = max(1, int(len(rows) - 1).bit_length())
+    if int(n) >= 2 ** (62 - bits):
+        return np.argsort(rows)
+    packed = rows.astype(np.int64) << bits
+    packed |= np.arange(len(rows), dtype=np.int64)
+    packed.sort()
+    return packed & ((1 << bits) - 1)
+
+
+def vertex_rings(faces: np.ndarray, boundary_halfedge: np.ndarray, n: int) -> tuple[tuple[np.ndarray, np.ndarray],
+                                                                                   tuple[np.ndarray, np.ndarray]]:
     """Each vertex's faces and each vertex's neighbours, as two CSRs from one sort.
 
     Returns ``(faces_around, neighbours)``, the same rows as
     :func:`halfedge_edu.core.arrays.vertex_faces` and
     :func:`halfedge_edu.core.arrays.vertex_neighbours` give (in another order within a
-    row), for one sort of the corners by vertex instead of two sorts. ``table`` is the
-    :func:`halfedge_edu.core.arrays.edge_table` of ``faces`` (m, 3).
+    row), for one sort of the corners by vertex instead of two sorts.
+    ``boundary_halfedge`` (b,) are the directed edges ``3 f + k`` of ``faces`` (m, 3)
+    on the boundary (:func:`round_edges`).
 
     The neighbours come from the corners: corner ``(f, k)`` at vertex v names the next
     corner's vertex, ``faces[f, k + 1]``. Around an inner vertex that lists every
@@ -274,10 +316,9 @@ def vertex_rings(faces: np.ndarray, table: EdgeTable, n: int) -> tuple[tuple[np.
     """
     corner_vertex = faces.reshape(-1)                                  # (3m,)
     next_vertex = faces[:, [1, 2, 0]].reshape(-1)                      # (3m,) the next corner's vertex
-    boundary_use = table.first[table.count == 1]                      # (b,) directed edges tail -> head
-    rows = np.concatenate([corner_vertex, next_vertex[boundary_use]])     # (3m + b,) the head for the extra rows
-    values = np.concatenate([next_vertex, corner_vertex[boundary_use]])   # ... and the tail as its neighbour
-    order = np.argsort(rows)
+    rows = np.concatenate([corner_vertex, next_vertex[boundary_halfedge]])     # (3m + b,) the head for the extra rows
+    values = np.concatenate([next_vertex, corner_vertex[boundary_halfedge]])   # ... and the tail as its neighbour
+    order = _grouping_order(rows, n)
     face_offsets = np.zeros(n + 1, dtype=np.int64)
     np.cumsum(np.bincount(corner_vertex, minlength=n), out=face_offsets[1:])
     neighbour_offsets = np.zeros(n + 1, dtype=np.int64)

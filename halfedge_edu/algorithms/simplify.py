@@ -49,7 +49,7 @@ from ..core.errors import MeshWarning
 from ..core.mesh import HalfedgeMesh
 from .arguments import check_simplify
 from .collapse_rounds import (
-    choose_round, collapse_topology_ok, drop_folding_neighbours, faces_across, no_turned_faces, vertex_rings,
+    choose_round, collapse_topology_ok, drop_folding_neighbours, no_turned_faces, round_edges, vertex_rings,
 )
 
 
@@ -394,9 +394,8 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
     changed = np.ones(n, dtype=bool)           # vertices moved or merged away: their edges need new prices
     while len(faces) > target_faces:
         rounds += 1
-        round_table = edge_table(faces, n)
-        edges, boundary_edge = round_table.edges, round_table.count == 1
-        face_across = faces_across(faces, round_table)
+        this_round = round_edges(faces, n)
+        edges, boundary_edge, face_across = this_round.edges, this_round.boundary, this_round.face_across
         boundary_vertex = np.zeros(n, dtype=bool)
         boundary_vertex[edges[boundary_edge].reshape(-1)] = True
         degree = np.bincount(edges.reshape(-1), minlength=n)
@@ -412,7 +411,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
             candidates = np.arange(len(edges))
         candidates = candidates[np.argsort(cost[candidates], kind="stable")]
 
-        faces_around, neighbours = vertex_rings(faces, round_table, n)
+        faces_around, neighbours = vertex_rings(faces, this_round.boundary_halfedge, n)
 
         def check_topology(indices: np.ndarray):
             chosen_edges = candidates[indices]

@@ -8,11 +8,9 @@ from hypothesis import strategies as st
 
 import halfedge_edu as hx
 from halfedge_edu.algorithms.collapse_rounds import (
-    choose_round, collapse_topology_ok, faces_across, independent_edges, no_turned_faces, vertex_rings,
+    choose_round, collapse_topology_ok, independent_edges, no_turned_faces, round_edges, vertex_rings,
 )
-from halfedge_edu.core.arrays import (
-    compact, edge_table, merge_vertices, unique_edges, vertex_faces, vertex_neighbours,
-)
+from halfedge_edu.core.arrays import compact, merge_vertices, unique_edges, vertex_faces, vertex_neighbours
 from tests import strategies as shapes
 
 
@@ -145,10 +143,13 @@ def _rows(csr_pair, n):
 
 @settings(max_examples=60)
 @given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1), n_collapses=st.integers(0, 25))
-def test_vertex_rings_hold_the_rows_of_vertex_faces_and_vertex_neighbours(case, seed, n_collapses):
+def test_round_edges_and_vertex_rings_hold_what_the_array_toolbox_gives(case, seed, n_collapses):
     vertices, faces = roughened(case, seed, n_collapses).to_arrays()
     n = len(vertices)
-    faces_around, neighbours = vertex_rings(faces, edge_table(faces, n), n)
+    this_round = round_edges(faces, n)
+    edges, count = unique_edges(faces, n)
+    assert np.array_equal(this_round.edges, edges) and np.array_equal(this_round.boundary, count == 1)
+    faces_around, neighbours = vertex_rings(faces, this_round.boundary_halfedge, n)
     assert _rows(faces_around, n) == _rows(vertex_faces(faces, n), n)
     assert _rows(neighbours, n) == _rows(vertex_neighbours(unique_edges(faces, n)[0], n), n)
 
@@ -160,13 +161,13 @@ def test_the_face_across_table_gives_no_turned_faces_the_same_answers(case, seed
     # and without it (searching the faces around), every collapse gets the same verdict.
     vertices, faces = case.vertices, case.faces
     n = len(vertices)
-    table = edge_table(faces, n)
+    this_round = round_edges(faces, n)
     rng = np.random.default_rng(seed)
-    keep, remove = table.edges[:, 0], table.edges[:, 1]
+    keep, remove = this_round.edges[:, 0], this_round.edges[:, 1]
     size = float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0)))
     points = 0.5 * (vertices[keep] + vertices[remove]) + rng.normal(scale=0.2 * size, size=(len(keep), 3))
     around = vertex_faces(faces, n)
     plain = no_turned_faces(vertices, faces, around, points, keep, remove, np.cos(np.radians(80.0)))
     tabled = no_turned_faces(vertices, faces, around, points, keep, remove, np.cos(np.radians(80.0)),
-                             face_across=faces_across(faces, table))
+                             face_across=this_round.face_across)
     assert np.array_equal(plain, tabled)
