@@ -104,20 +104,19 @@ FOLD_ANGLE = 150.0
 
 
 class _MovedFaces(NamedTuple):
-    """The faces k collapses move, one row each (j rows), before and after."""
+    """The faces k collapses move, one row each (j rows), before and after.
+
+    Each face is read from its moving corner: ``(moving corner, u, w)`` is the face's
+    own counter-clockwise order, and ``u - w`` its far edge, the one that stays.
+    """
 
     owner: np.ndarray          # (j,) which collapse moves the face
     face: np.ndarray           # (j,) the face's index
-    corners: np.ndarray        # (j, 3) its vertices, before
     position: np.ndarray       # (j,) 0, 1 or 2: which corner moves
+    u: np.ndarray              # (j,) the corner after the moving one
+    w: np.ndarray              # (j,) the corner after u
     normal_before: np.ndarray  # (j, 3) cross products, length twice the area
     normal_after: np.ndarray   # (j, 3)
-
-    def far_edge(self) -> tuple[np.ndarray, np.ndarray]:
-        """``(u, w)`` (j,) each: the edge of each face that does not move, in the face's order."""
-        rows = np.arange(len(self.position))
-        return (self.corners[rows, (self.position + 1) % 3],
-                self.corners[rows, (self.position + 2) % 3])
 
 
 def _holds(corners: np.ndarray, vertex: np.ndarray) -> np.ndarray:
@@ -132,28 +131,28 @@ def _holds(corners: np.ndarray, vertex: np.ndarray) -> np.ndarray:
 def _moved_faces(vertices, faces, faces_around, points, keep, remove) -> _MovedFaces:
     """Every face around ``keep[i]`` or ``remove[i]`` that survives collapse i, moved to ``points[i]``.
 
-    The two faces holding both ends vanish and are left out.
+    The two faces holding both ends vanish and are left out. Rows come in the order of
+    ``keep``'s faces, then ``remove``'s.
     """
-    face_offsets, face_of_corner = faces_around                        # from vertex_faces()
-    owners, face_lists, corner_lists, movers = [], [], [], []
-    for end, other in ((keep, remove), (remove, keep)):
-        owner, face = expand(face_offsets, face_of_corner, end)
-        corners = faces[face]                                           # (j, 3)
-        survives = ~_holds(corners, other[owner])                      # faces holding both vanish
-        owners.append(owner[survives])
-        face_lists.append(face[survives])
-        corner_lists.append(corners[survives])
-        movers.append(end[owner[survives]])
-    owner = np.concatenate(owners)
-    corners = np.concatenate(corner_lists)                              # (j, 3)
-    mover = np.concatenate(movers)
+    k = len(keep)
+    end = np.concatenate([keep, remove])                                # (2k,) the moving ends
+    other = np.concatenate([remove, keep])
+    row, face = expand(*faces_around, end)                              # faces_around from vertex_faces()
+    corners = faces[face]                                               # (j, 3)
+    survives = ~_holds(corners, other[row])                            # faces holding both vanish
+    row, face, corners = row[survives], face[survives], corners[survives]
+    mover = end[row]
     position = np.where(corners[:, 0] == mover, 0, np.where(corners[:, 1] == mover, 1, 2))
-    before = vertices[corners]                                          # (j, 3 corners, 3)
-    after = before.copy()
-    after[np.arange(len(owner)), position] = points[owner]
-    return _MovedFaces(owner, np.concatenate(face_lists), corners, position,
-                       cross_rows(before[:, 1] - before[:, 0], before[:, 2] - before[:, 0]),
-                       cross_rows(after[:, 1] - after[:, 0], after[:, 2] - after[:, 0]))
+    rows = np.arange(len(row))
+    u = corners[rows, (position + 1) % 3]
+    w = corners[rows, (position + 2) % 3]
+    owner = np.where(row < k, row, row - k)
+    # (mover, u, w) is a rotation of the face's corners, so (u - x) x (w - x) is its
+    # cross product for x at the mover's old place and at the new point.
+    at_u, at_w = vertices[u], vertices[w]
+    before, after = vertices[mover], points[owner]
+    return _MovedFaces(owner, face, position, u, w,
+                       cross_rows(at_u - before, at_w - before), cross_rows(at_u - after, at_w - after))
 
 
 def _unit(rows: np.ndarray) -> np.ndarray:
@@ -196,7 +195,7 @@ def no_turned_faces(
     is searched for among the faces around the far edge's end, several times the work.
     """
     moved = _moved_faces(vertices, faces, faces_around, points, keep, remove)
-    owner, corners, position = moved.owner, moved.corners, moved.position
+    owner, position, u, w = moved.owner, moved.position, moved.u, moved.w
     n_before, n_after = moved.normal_before, moved.normal_after
     length_before = np.sqrt(np.einsum("ij,ij->i", n_before, n_before))
     length_after = np.sqrt(np.einsum("ij,ij->i", n_after, n_after))
@@ -209,7 +208,6 @@ def no_turned_faces(
 
     # Moved faces that share an edge at the new vertex: after the collapse both faces
     # hold the kept vertex (the removed one renamed) and one more common vertex.
-    u, w = moved.far_edge()                                             # the other two corners
     rows = np.repeat(np.arange(len(owner)), 2)
     key = owner[rows] * len(vertices) + np.stack([u, w], axis=1).reshape(-1)   # (2j,) owner and far end
     order = np.argsort(key, kind="stable")
@@ -230,8 +228,8 @@ def no_turned_faces(
         across = neighbour >= 0
     beyond = faces[neighbour]                                           # (r, 3)
     across &= ~_holds(beyond, keep[owner[row]]) & ~_holds(beyond, remove[owner[row]])
-    row, neighbour = row[across], neighbour[across]
-    beyond_corners = vertices[faces[neighbour]]
+    row = row[across]
+    beyond_corners = vertices[beyond[across]]                           # (r', 3 corners, 3)
     n_beyond = _unit(cross_rows(beyond_corners[:, 1] - beyond_corners[:, 0],
                                 beyond_corners[:, 2] - beyond_corners[:, 0]))
     folded = np.einsum("ij,ij->i", unit_after[row], n_beyond) < fold_cos
@@ -340,7 +338,7 @@ def drop_folding_neighbours(vertices: np.ndarray, faces: np.ndarray, faces_aroun
     which puts each back to a state its own check accepted.
     """
     moved = _moved_faces(vertices, faces, faces_around, points, keep, remove)
-    u, w = moved.far_edge()
+    u, w = moved.u, moved.w
     key = np.minimum(u, w) * len(vertices) + np.maximum(u, w)          # each face's far edge
     order = np.argsort(key, kind="stable")
     same = key[order][1:] == key[order][:-1]
