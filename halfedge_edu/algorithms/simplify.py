@@ -429,23 +429,24 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
             # region all three cost nothing, and moving onto a neighbour folds less
             # often than moving to the middle of a long edge. Accept an endpoint only
             # if it costs at most twice as much (or next to nothing).
-            for end in (keep, remove):
-                retry = chosen_edges[~ok]
-                if len(retry) == 0:
-                    break
-                option = vertices[end[retry]]
-                quadric = np.take(quadrics, keep[retry], axis=1) + np.take(quadrics, remove[retry], axis=1)
-                option_cost = _packed_cost(quadric, option.T)
-                cheap = option_cost <= 2.0 * cost[retry] + cost_floor
-                passes = np.zeros(len(retry), dtype=bool)
-                if cheap.any():
-                    passes[cheap] = no_turned_faces(
-                        vertices, faces, faces_around, option[cheap], keep[retry[cheap]],
-                        remove[retry[cheap]], max_normal_cos, face_across=face_across)
-                points[retry[passes]] = option[passes]
-                cost[retry[passes]] = option_cost[passes]
-                still_bad = np.flatnonzero(~ok)
-                ok[still_bad[passes]] = True
+            retry = chosen_edges[~ok]                                  # (r,)
+            if len(retry) == 0:
+                return ok
+            # Both endpoints in one check, the kept end's rows first; the kept end wins where both pass.
+            twice = np.concatenate([retry, retry])                     # (2r,)
+            option = vertices[np.concatenate([keep[retry], remove[retry]])]
+            quadric = np.take(quadrics, keep[twice], axis=1) + np.take(quadrics, remove[twice], axis=1)
+            option_cost = _packed_cost(quadric, option.T)
+            passes = option_cost <= 2.0 * cost[twice] + cost_floor
+            cheap = np.flatnonzero(passes)
+            passes[cheap] = no_turned_faces(vertices, faces, faces_around, option[cheap], keep[twice[cheap]],
+                                            remove[twice[cheap]], max_normal_cos, face_across=face_across)
+            r = len(retry)
+            pick = np.where(passes[:r], np.arange(r), np.arange(r) + r)    # (r,) the kept end if it passes
+            good = passes[pick]
+            points[retry[good]] = option[pick[good]]
+            cost[retry[good]] = option_cost[pick[good]]
+            ok[np.flatnonzero(~ok)[good]] = True
             return ok
 
         chosen_mask = choose_round(edges, candidates, np.ones(len(candidates), dtype=bool), n,
