@@ -284,9 +284,11 @@ class _EdgePrices:
         cost = np.empty(len(edges))
         keep = np.empty(len(edges), dtype=np.int64)
         if len(self.edges):
-            unchanged = ~(changed[self.edges[:, 0]] | changed[self.edges[:, 1]])
-            fresh = ~stale
-            points[fresh], cost[fresh], keep[fresh] = self.points[unchanged], self.cost[unchanged], self.keep[unchanged]
+            unchanged = np.flatnonzero(~(changed[self.edges[:, 0]] | changed[self.edges[:, 1]]))
+            fresh = np.flatnonzero(~stale)               # indices and np.take: faster than boolean masks
+            points[fresh] = np.take(self.points, unchanged, axis=0)
+            cost[fresh] = np.take(self.cost, unchanged)
+            keep[fresh] = np.take(self.keep, unchanged)
         todo = np.flatnonzero(stale)
         a, b = edges[todo, 0], edges[todo, 1]
         quadric = np.take(quadrics, a, axis=1) + np.take(quadrics, b, axis=1)        # (10, t)
