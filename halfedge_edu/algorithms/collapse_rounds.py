@@ -326,7 +326,8 @@ def vertex_rings(faces: np.ndarray, boundary_halfedge: np.ndarray, n: int) -> tu
 
 
 def drop_folding_neighbours(vertices: np.ndarray, faces: np.ndarray, faces_around: tuple[np.ndarray, np.ndarray],
-                            points: np.ndarray, keep: np.ndarray, remove: np.ndarray) -> np.ndarray:
+                            points: np.ndarray, keep: np.ndarray, remove: np.ndarray, *,
+                            face_across: np.ndarray | None = None) -> np.ndarray:
     """(k,) False for collapses of one round that would fold a face of another's shut.
 
     :func:`no_turned_faces` judges each collapse against the faces around it as they
@@ -336,13 +337,25 @@ def drop_folding_neighbours(vertices: np.ndarray, faces: np.ndarray, faces_aroun
     round's collapses are applied at once and every such pair is measured; where a pair
     folds (normals more than :data:`FOLD_ANGLE` apart), both collapses are dropped,
     which puts each back to a state its own check accepted.
+
+    The pairs are moved faces with the same far edge, found by sorting the far edges;
+    or, given ``face_across`` (from :func:`round_edges`), as moved faces whose
+    neighbour across the far edge is moved too, without a sort.
     """
     moved = _moved_faces(vertices, faces, faces_around, points, keep, remove)
-    u, w = moved.u, moved.w
-    key = np.minimum(u, w) * len(vertices) + np.maximum(u, w)          # each face's far edge
-    order = np.argsort(key, kind="stable")
-    same = key[order][1:] == key[order][:-1]
-    first, second = order[:-1][same], order[1:][same]
+    if face_across is None:
+        u, w = moved.u, moved.w
+        key = np.minimum(u, w) * len(vertices) + np.maximum(u, w)      # each face's far edge
+        order = np.argsort(key, kind="stable")
+        same = key[order][1:] == key[order][:-1]
+        first, second = order[:-1][same], order[1:][same]
+    else:
+        row_of_face = np.full(len(faces), -1, dtype=np.int64)
+        row_of_face[moved.face] = np.arange(len(moved.face))            # a face is moved by one collapse at most
+        neighbour = face_across[moved.face, (moved.position + 1) % 3]   # across u -> w
+        other = np.where(neighbour >= 0, row_of_face[neighbour], -1)
+        first = np.flatnonzero(other > np.arange(len(other)))          # each pair once
+        second = other[first]
     apart = moved.owner[first] != moved.owner[second]
     first, second = first[apart], second[apart]
     unit_after = _unit(moved.normal_after)

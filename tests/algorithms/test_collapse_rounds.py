@@ -8,7 +8,8 @@ from hypothesis import strategies as st
 
 import halfedge_edu as hx
 from halfedge_edu.algorithms.collapse_rounds import (
-    choose_round, collapse_topology_ok, independent_edges, no_turned_faces, round_edges, vertex_rings,
+    choose_round, collapse_topology_ok, drop_folding_neighbours, independent_edges, no_turned_faces, round_edges,
+    vertex_rings,
 )
 from halfedge_edu.core.arrays import compact, merge_vertices, unique_edges, vertex_faces, vertex_neighbours
 from tests import strategies as shapes
@@ -171,3 +172,23 @@ def test_the_face_across_table_gives_no_turned_faces_the_same_answers(case, seed
     tabled = no_turned_faces(vertices, faces, around, points, keep, remove, np.cos(np.radians(80.0)),
                              face_across=this_round.face_across)
     assert np.array_equal(plain, tabled)
+
+
+@settings(max_examples=60)
+@given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1))
+def test_drop_folding_neighbours_finds_the_same_pairs_with_the_face_across_table(case, seed):
+    # A round of collapses two edges apart, each moved to a random point: the pairs of
+    # moved faces that meet across a far edge are the same whether found by sorting the
+    # far edges or by looking across them.
+    vertices, faces = case.vertices, case.faces
+    n, edges, boundary_edge, boundary_vertex, degree, neighbours = topology_inputs(vertices, faces)
+    rng = np.random.default_rng(seed)
+    picked = edges[independent_edges(edges, rng.permutation(len(edges)), edges, n)]
+    keep, remove = picked[:, 0], picked[:, 1]
+    size = float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0)))
+    points = vertices[keep] + rng.normal(scale=0.5 * size, size=(len(keep), 3))
+    around = vertex_faces(faces, n)
+    sorted_pairs = drop_folding_neighbours(vertices, faces, around, points, keep, remove)
+    looked_across = drop_folding_neighbours(vertices, faces, around, points, keep, remove,
+                                            face_across=round_edges(faces, n).face_across)
+    assert np.array_equal(sorted_pairs, looked_across)
