@@ -210,7 +210,7 @@ def no_turned_faces(
     # hold the kept vertex (the removed one renamed) and one more common vertex.
     rows = np.repeat(np.arange(len(owner)), 2)
     key = owner[rows] * len(vertices) + np.stack([u, w], axis=1).reshape(-1)   # (2j,) owner and far end
-    order = np.argsort(key, kind="stable")
+    order = _grouping_order(key, len(keep) * len(vertices))
     same = key[order][1:] == key[order][:-1]
     first, second = rows[order][:-1][same], rows[order][1:][same]
     folded = np.einsum("ij,ij->i", unit_after[first], unit_after[second]) < fold_cos
@@ -280,15 +280,15 @@ def round_edges(faces: np.ndarray, n: int) -> RoundEdges:
 
 
 def _grouping_order(rows: np.ndarray, n: int) -> np.ndarray:
-    """An order that groups ``rows`` (k,) (values below ``n``) by value, as ``np.argsort(rows)``.
+    """The stable order that sorts ``rows`` (k,) (values below ``n``), as ``np.argsort(rows, kind="stable")``.
 
     The position is packed into the low bits of each row value and the packed numbers
     are sorted with ``np.sort``, about twice as fast as an argsort (the trick of
-    :func:`halfedge_edu.core.arrays.sort_undirected`); too large a mesh falls back.
+    :func:`halfedge_edu.core.arrays.sort_undirected`); values too large to pack fall back.
     """
     bits = max(1, int(len(rows) - 1).bit_length())
     if int(n) >= 2 ** (62 - bits):
-        return np.argsort(rows)
+        return np.argsort(rows, kind="stable")
     packed = rows.astype(np.int64) << bits
     packed |= np.arange(len(rows), dtype=np.int64)
     packed.sort()

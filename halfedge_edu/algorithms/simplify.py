@@ -42,9 +42,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..core.arrays import (
-    compact, edge_table, face_cross, merge_vertices,
-)
+from ..core.arrays import compact, face_cross, merge_vertices
 from ..core.errors import MeshWarning
 from ..core.mesh import HalfedgeMesh
 from .arguments import check_simplify
@@ -380,12 +378,12 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
     max_normal_cos = float(np.cos(np.radians(max_normal_angle)))
 
     quadrics = accumulate(face_quadrics(vertices, faces), faces, n)
-    table = edge_table(faces, n)
-    on_boundary = table.count == 1
-    if on_boundary.any():
-        boundary_faces = table.first[on_boundary] // 3                 # the one face of each
-        bq = boundary_quadrics(vertices, faces, table.edges[on_boundary], boundary_faces, boundary_weight)
-        quadrics += accumulate(bq, table.edges[on_boundary], n)      # each to both ends
+    this_round = round_edges(faces, n)                                 # the first round's edges
+    if this_round.boundary.any():
+        boundary_edges = this_round.edges[this_round.boundary]
+        boundary_faces = this_round.boundary_halfedge // 3            # the one face of each
+        bq = boundary_quadrics(vertices, faces, boundary_edges, boundary_faces, boundary_weight)
+        quadrics += accumulate(bq, boundary_edges, n)                 # each to both ends
     quadrics = pack_quadrics(quadrics)                                 # (10, n)
 
     # Costs are area x distance^2 (length^4); below this they count as nothing.
@@ -396,7 +394,6 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
     changed = np.ones(n, dtype=bool)           # vertices moved or merged away: their edges need new prices
     while len(faces) > target_faces:
         rounds += 1
-        this_round = round_edges(faces, n)
         edges, boundary_edge, face_across = this_round.edges, this_round.boundary, this_round.face_across
         boundary_vertex = np.zeros(n, dtype=bool)
         boundary_vertex[edges[boundary_edge].reshape(-1)] = True
@@ -477,6 +474,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         changed[remove_c] = True
         faces_left = len(faces)
         faces = merge_vertices(faces, remove_c, keep_c, n)
+        this_round = round_edges(faces, n)
         if bar is not None:
             bar.update(faces_left - len(faces))
 
