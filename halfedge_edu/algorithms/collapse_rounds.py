@@ -119,13 +119,23 @@ class _MovedFaces(NamedTuple):
     normal_after: np.ndarray   # (j, 3)
 
 
-def _holds(corners: np.ndarray, vertex: np.ndarray) -> np.ndarray:
-    """(j,) True where row ``corners[i]`` (j, 3) holds ``vertex[i]``.
+def _holds_any(columns: tuple[np.ndarray, np.ndarray, np.ndarray], *vertices: np.ndarray) -> np.ndarray:
+    """(j,) True where the face with corner columns ``columns`` (three (j,)) holds any of ``vertices`` (each (j,)).
 
-    Three comparisons of columns: ``(corners == vertex[:, None]).any(axis=1)`` says the
-    same, but numpy reduces along a row of three several times slower.
+    Comparisons of columns: ``(corners == vertex[:, None]).any(axis=1)`` on a (j, 3)
+    array says the same, but numpy reduces along a row of three several times slower.
     """
-    return (corners[:, 0] == vertex) | (corners[:, 1] == vertex) | (corners[:, 2] == vertex)
+    found = np.zeros(len(columns[0]), dtype=bool)
+    for vertex in vertices:
+        for column in columns:
+            found |= column == vertex
+    return found
+
+
+def _keep_where(mask: np.ndarray, *arrays: np.ndarray) -> tuple[np.ndarray, ...]:
+    """``arrays``, each cut to the rows where ``mask`` (j,) holds."""
+    rows = np.flatnonzero(mask)
+    return tuple(np.take(array, rows, axis=0) for array in arrays)
 
 
 def _moved_faces(vertices, faces, faces_around, points, keep, remove) -> _MovedFaces:
@@ -138,19 +148,24 @@ def _moved_faces(vertices, faces, faces_around, points, keep, remove) -> _MovedF
     end = np.concatenate([keep, remove])                                # (2k,) the moving ends
     other = np.concatenate([remove, keep])
     row, face = expand(*faces_around, end)                              # faces_around from vertex_faces()
-    corners = faces[face]                                               # (j, 3)
-    survives = ~_holds(corners, other[row])                            # faces holding both vanish
-    row, face, corners = row[survives], face[survives], corners[survives]
-    mover = end[row]
-    position = np.where(corners[:, 0] == mover, 0, np.where(corners[:, 1] == mover, 1, 2))
-    rows = np.arange(len(row))
-    u = corners[rows, (position + 1) % 3]
-    w = corners[rows, (position + 2) % 3]
+    # One column of corners at a time, gathered with np.take from the flat face array:
+    # several times faster than fancy indexing rows of a 2-D array.
+    flat = faces.reshape(-1)
+    first_corner = 3 * face
+    c0, c1, c2 = (np.take(flat, first_corner + i) for i in range(3))   # (j,) each
+    gone = other[row]
+    survives = np.flatnonzero((c0 != gone) & (c1 != gone) & (c2 != gone))   # faces holding both vanish
+    row, face, first_corner = row[survives], face[survives], first_corner[survives]
+    c0, c1 = c0[survives], c1[survives]
+    mover = np.take(end, row)
+    position = np.where(c0 == mover, 0, np.where(c1 == mover, 1, 2))
+    u = np.take(flat, first_corner + (position + 1) % 3)
+    w = np.take(flat, first_corner + (position + 2) % 3)
     owner = np.where(row < k, row, row - k)
     # (mover, u, w) is a rotation of the face's corners, so (u - x) x (w - x) is its
     # cross product for x at the mover's old place and at the new point.
-    at_u, at_w = vertices[u], vertices[w]
-    before, after = vertices[mover], points[owner]
+    at_u, at_w = np.take(vertices, u, axis=0), np.take(vertices, w, axis=0)
+    before, after = np.take(vertices, mover, axis=0), np.take(points, owner, axis=0)
     return _MovedFaces(owner, face, position, u, w,
                        cross_rows(at_u - before, at_w - before), cross_rows(at_u - after, at_w - after))
 
@@ -218,20 +233,17 @@ def no_turned_faces(
 
     # A moved face and the unmoved face across its far edge (u, w), the face holding
     # u and w but neither end of the collapse.
+    flat = faces.reshape(-1)
     if face_across is None:
-        face_offsets, face_of_corner = faces_around
-        row, neighbour = expand(face_offsets, face_of_corner, w)
-        across = _holds(faces[neighbour], u[row])
+        row, neighbour = expand(*faces_around, w)
+        row, neighbour = _keep_where(_holds_any(tuple(faces[neighbour].T), u[row]), row, neighbour)
     else:
-        row = np.arange(len(owner))
-        neighbour = face_across[moved.face, (position + 1) % 3]         # across u -> w
-        across = neighbour >= 0
-    beyond = faces[neighbour]                                           # (r, 3)
-    across &= ~_holds(beyond, keep[owner[row]]) & ~_holds(beyond, remove[owner[row]])
-    row = row[across]
-    beyond_corners = vertices[beyond[across]]                           # (r', 3 corners, 3)
-    n_beyond = _unit(cross_rows(beyond_corners[:, 1] - beyond_corners[:, 0],
-                                beyond_corners[:, 2] - beyond_corners[:, 0]))
+        neighbour = np.take(face_across.reshape(-1), 3 * moved.face + (position + 1) % 3)   # across u -> w
+        row, neighbour = _keep_where(neighbour >= 0, np.arange(len(owner)), neighbour)
+    b0, b1, b2 = (np.take(flat, 3 * neighbour + i) for i in range(3))
+    row, b0, b1, b2 = _keep_where(~_holds_any((b0, b1, b2), keep[owner[row]], remove[owner[row]]), row, b0, b1, b2)
+    at_b0 = np.take(vertices, b0, axis=0)
+    n_beyond = _unit(cross_rows(np.take(vertices, b1, axis=0) - at_b0, np.take(vertices, b2, axis=0) - at_b0))
     folded = np.einsum("ij,ij->i", unit_after[row], n_beyond) < fold_cos
     turned[row[folded]] = True
 
