@@ -26,11 +26,11 @@ from typing import Callable, NamedTuple
 
 import numpy as np
 
-from ..core.arrays import cross_rows, expand, face_halfedges, sort_undirected
+from ..core.arrays import cross_rows, expand, sort_undirected
 
 __all__ = [
-    "FOLD_ANGLE", "RoundEdges", "choose_round", "collapse_topology_ok", "drop_folding_neighbours", "independent_edges",
-    "no_turned_faces", "one_collapse_per_opposite_vertex", "round_edges", "vertex_rings",
+    "FOLD_ANGLE", "RoundTables", "choose_round", "collapse_topology_ok", "drop_folding_neighbours", "independent_edges",
+    "no_turned_faces", "one_collapse_per_opposite_vertex", "round_tables",
 ]
 
 
@@ -204,7 +204,7 @@ def no_turned_faces(
       test alone misses this: two neighbours may each swing by less than the allowed
       angle, in opposite directions, and between them fold shut.
 
-    ``face_across`` (m, 3), if the caller has it (from :func:`round_edges`): the face
+    ``face_across`` (m, 3), if the caller has it (from :func:`round_tables`): the face
     across each face's edge ``faces[f, k] -> faces[f, k + 1]``, -1 on the boundary. It
     names the unmoved neighbour of each moved face directly; without it the neighbour
     is searched for among the faces around the far edge's end, several times the work.
@@ -252,30 +252,42 @@ def no_turned_faces(
     return ok
 
 
-class RoundEdges(NamedTuple):
-    """The edges of a face array (m, 3) and what a round of collapses asks about them.
+class RoundTables(NamedTuple):
+    """What a round of collapses asks about a face array (m, 3), built once per round.
 
     ``edges`` (E, 2) low/high in key order and ``boundary`` (E,) as
-    :func:`halfedge_edu.core.arrays.unique_edges` gives them; ``face_across`` (m, 3) the
-    face across each face's edge ``faces[f, k] -> faces[f, k + 1]``, -1 on the
-    boundary; ``boundary_halfedge`` (b,) the directed edges ``3 f + k`` that lie on
-    the boundary.
+    :func:`halfedge_edu.core.arrays.unique_edges` gives them; ``boundary_halfedge``
+    (b,) the directed edge ``3 f + k`` (``faces[f, k] -> faces[f, k + 1]``) of each
+    boundary edge, in the same order; ``face_across`` (m, 3) the face across each
+    face's edge ``k``, -1 on the boundary; ``faces_around`` and ``neighbours`` each
+    vertex's faces and neighbours as CSR, the rows of
+    :func:`halfedge_edu.core.arrays.vertex_faces` and
+    :func:`halfedge_edu.core.arrays.vertex_neighbours` (in another order within a row).
     """
 
     edges: np.ndarray
     boundary: np.ndarray
-    face_across: np.ndarray
     boundary_halfedge: np.ndarray
+    face_across: np.ndarray
+    faces_around: tuple[np.ndarray, np.ndarray]
+    neighbours: tuple[np.ndarray, np.ndarray]
 
 
-def round_edges(faces: np.ndarray, n: int) -> RoundEdges:
-    """The :class:`RoundEdges` of ``faces`` (m, 3), vertex indices below ``n``: one sort of the directed edges.
+def round_tables(faces: np.ndarray, n: int) -> RoundTables:
+    """The :class:`RoundTables` of ``faces`` (m, 3), vertex indices below ``n``, from two sorts.
 
-    After :func:`halfedge_edu.core.arrays.sort_undirected` the uses of an edge sit next
-    to each other; an interior edge's two uses each name the other's face.
+    The directed edges sorted by their undirected key
+    (:func:`halfedge_edu.core.arrays.sort_undirected`) give the edges: the uses of an
+    edge sit next to each other, and an interior edge's two uses each name the other's
+    face. The corners sorted by vertex give the faces and the neighbours around every
+    vertex (:func:`_vertex_rings`).
     """
-    n_halfedges = 3 * len(faces)
-    order, sorted_key = sort_undirected(*face_halfedges(faces), n)
+    corner_vertex = faces.reshape(-1)                                  # (3m,) tail of directed edge 3f + k
+    next_vertex = np.empty_like(corner_vertex)                         # (3m,) its head, faces[f, k + 1]
+    next_vertex.reshape(-1, 3)[:, :2] = faces[:, 1:]
+    next_vertex.reshape(-1, 3)[:, 2] = faces[:, 0]
+    n_halfedges = len(corner_vertex)
+    order, sorted_key = sort_undirected(corner_vertex, next_vertex, n)
     new_run = np.ones(n_halfedges, dtype=bool)
     new_run[1:] = sorted_key[1:] != sorted_key[:-1]
     starts = np.flatnonzero(new_run)                                  # (E,) first use of each edge
@@ -287,8 +299,10 @@ def round_edges(faces: np.ndarray, n: int) -> RoundEdges:
     across = np.full(n_halfedges, -1, dtype=np.int64)
     across[first[inner]] = second // 3
     across[second] = first[inner] // 3
-    return RoundEdges(np.stack([keys // n, keys % n], axis=1), count == 1, across.reshape(-1, 3),
-                      first[count == 1])
+    boundary_halfedge = first[count == 1]
+    faces_around, neighbours = _vertex_rings(corner_vertex, next_vertex, boundary_halfedge, n)
+    return RoundTables(np.stack([keys // n, keys % n], axis=1), count == 1, boundary_halfedge,
+                       across.reshape(-1, 3), faces_around, neighbours)
 
 
 def _grouping_order(rows: np.ndarray, n: int) -> np.ndarray:
@@ -307,16 +321,12 @@ def _grouping_order(rows: np.ndarray, n: int) -> np.ndarray:
     return packed & ((1 << bits) - 1)
 
 
-def vertex_rings(faces: np.ndarray, boundary_halfedge: np.ndarray, n: int) -> tuple[tuple[np.ndarray, np.ndarray],
-                                                                                   tuple[np.ndarray, np.ndarray]]:
-    """Each vertex's faces and each vertex's neighbours, as two CSRs from one sort.
+def _vertex_rings(corner_vertex: np.ndarray, next_vertex: np.ndarray, boundary_halfedge: np.ndarray,
+                  n: int) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
+    """Each vertex's faces and each vertex's neighbours, as two CSRs from one sort of the corners.
 
-    Returns ``(faces_around, neighbours)``, the same rows as
-    :func:`halfedge_edu.core.arrays.vertex_faces` and
-    :func:`halfedge_edu.core.arrays.vertex_neighbours` give (in another order within a
-    row), for one sort of the corners by vertex instead of two sorts.
-    ``boundary_halfedge`` (b,) are the directed edges ``3 f + k`` of ``faces`` (m, 3)
-    on the boundary (:func:`round_edges`).
+    ``corner_vertex`` and ``next_vertex`` (3m,) are the tail and head of each directed
+    edge ``3 f + k``; ``boundary_halfedge`` (b,) the ones on the boundary.
 
     The neighbours come from the corners: corner ``(f, k)`` at vertex v names the next
     corner's vertex, ``faces[f, k + 1]``. Around an inner vertex that lists every
@@ -324,8 +334,6 @@ def vertex_rings(faces: np.ndarray, boundary_halfedge: np.ndarray, n: int) -> tu
     vertex with two fans), and the neighbour at its clockwise end is missing; it is the
     tail of the boundary edge whose head is v, so each boundary edge adds one row.
     """
-    corner_vertex = faces.reshape(-1)                                  # (3m,)
-    next_vertex = faces[:, [1, 2, 0]].reshape(-1)                      # (3m,) the next corner's vertex
     rows = np.concatenate([corner_vertex, next_vertex[boundary_halfedge]])     # (3m + b,) the head for the extra rows
     values = np.concatenate([next_vertex, corner_vertex[boundary_halfedge]])   # ... and the tail as its neighbour
     order = _grouping_order(rows, n)
@@ -351,7 +359,7 @@ def drop_folding_neighbours(vertices: np.ndarray, faces: np.ndarray, faces_aroun
     which puts each back to a state its own check accepted.
 
     The pairs are moved faces with the same far edge, found by sorting the far edges;
-    or, given ``face_across`` (from :func:`round_edges`), as moved faces whose
+    or, given ``face_across`` (from :func:`round_tables`), as moved faces whose
     neighbour across the far edge is moved too, without a sort.
     """
     moved = _moved_faces(vertices, faces, faces_around, points, keep, remove)

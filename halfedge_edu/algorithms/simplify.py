@@ -47,7 +47,7 @@ from ..core.errors import MeshWarning
 from ..core.mesh import HalfedgeMesh
 from .arguments import check_simplify
 from .collapse_rounds import (
-    choose_round, collapse_topology_ok, drop_folding_neighbours, no_turned_faces, round_edges, vertex_rings,
+    choose_round, collapse_topology_ok, drop_folding_neighbours, no_turned_faces, round_tables,
 )
 
 
@@ -378,7 +378,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
     max_normal_cos = float(np.cos(np.radians(max_normal_angle)))
 
     quadrics = accumulate(face_quadrics(vertices, faces), faces, n)
-    this_round = round_edges(faces, n)                                 # the first round's edges
+    this_round = round_tables(faces, n)                                 # the first round's edges
     if this_round.boundary.any():
         boundary_edges = this_round.edges[this_round.boundary]
         boundary_faces = this_round.boundary_halfedge // 3            # the one face of each
@@ -410,7 +410,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
             candidates = np.arange(len(edges))
         candidates = candidates[np.argsort(cost[candidates], kind="stable")]
 
-        faces_around, neighbours = vertex_rings(faces, this_round.boundary_halfedge, n)
+        faces_around, neighbours = this_round.faces_around, this_round.neighbours
 
         def check_topology(indices: np.ndarray):
             chosen_edges = candidates[indices]
@@ -474,7 +474,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         changed[remove_c] = True
         faces_left = len(faces)
         faces = merge_vertices(faces, remove_c, keep_c, n)
-        this_round = round_edges(faces, n)
+        this_round = round_tables(faces, n)
         if bar is not None:
             bar.update(faces_left - len(faces))
 

@@ -8,8 +8,7 @@ from hypothesis import strategies as st
 
 import halfedge_edu as hx
 from halfedge_edu.algorithms.collapse_rounds import (
-    choose_round, collapse_topology_ok, drop_folding_neighbours, independent_edges, no_turned_faces, round_edges,
-    vertex_rings,
+    choose_round, collapse_topology_ok, drop_folding_neighbours, independent_edges, no_turned_faces, round_tables,
 )
 from halfedge_edu.core.arrays import compact, merge_vertices, unique_edges, vertex_faces, vertex_neighbours
 from tests import strategies as shapes
@@ -144,15 +143,16 @@ def _rows(csr_pair, n):
 
 @settings(max_examples=60)
 @given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1), n_collapses=st.integers(0, 25))
-def test_round_edges_and_vertex_rings_hold_what_the_array_toolbox_gives(case, seed, n_collapses):
+def test_round_tables_hold_what_the_array_toolbox_gives(case, seed, n_collapses):
     vertices, faces = roughened(case, seed, n_collapses).to_arrays()
     n = len(vertices)
-    this_round = round_edges(faces, n)
+    tables = round_tables(faces, n)
     edges, count = unique_edges(faces, n)
-    assert np.array_equal(this_round.edges, edges) and np.array_equal(this_round.boundary, count == 1)
-    faces_around, neighbours = vertex_rings(faces, this_round.boundary_halfedge, n)
-    assert _rows(faces_around, n) == _rows(vertex_faces(faces, n), n)
-    assert _rows(neighbours, n) == _rows(vertex_neighbours(unique_edges(faces, n)[0], n), n)
+    assert np.array_equal(tables.edges, edges) and np.array_equal(tables.boundary, count == 1)
+    tail, head = tables.boundary_halfedge, 3 * (tables.boundary_halfedge // 3) + (tables.boundary_halfedge + 1) % 3
+    assert np.array_equal(np.sort(faces.reshape(-1)[[tail, head]], axis=0), edges[count == 1].T)
+    assert _rows(tables.faces_around, n) == _rows(vertex_faces(faces, n), n)
+    assert _rows(tables.neighbours, n) == _rows(vertex_neighbours(edges, n), n)
 
 
 @settings(max_examples=60)
@@ -162,7 +162,7 @@ def test_the_face_across_table_gives_no_turned_faces_the_same_answers(case, seed
     # and without it (searching the faces around), every collapse gets the same verdict.
     vertices, faces = case.vertices, case.faces
     n = len(vertices)
-    this_round = round_edges(faces, n)
+    this_round = round_tables(faces, n)
     rng = np.random.default_rng(seed)
     keep, remove = this_round.edges[:, 0], this_round.edges[:, 1]
     size = float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0)))
@@ -190,5 +190,5 @@ def test_drop_folding_neighbours_finds_the_same_pairs_with_the_face_across_table
     around = vertex_faces(faces, n)
     sorted_pairs = drop_folding_neighbours(vertices, faces, around, points, keep, remove)
     looked_across = drop_folding_neighbours(vertices, faces, around, points, keep, remove,
-                                            face_across=round_edges(faces, n).face_across)
+                                            face_across=round_tables(faces, n).face_across)
     assert np.array_equal(sorted_pairs, looked_across)
