@@ -420,9 +420,12 @@ def independent_edges(edges: np.ndarray, priority: np.ndarray, all_edges: np.nda
     m1 = np.full(n, big)
     np.minimum.at(m1, edges[:, 0], priority)
     np.minimum.at(m1, edges[:, 1], priority)
+    # m2 is read only at the ends of the given edges, and only neighbours with an m1
+    # can lower it: so only the mesh edges between two such vertices take part.
+    near = all_edges[(m1[all_edges[:, 0]] < big) & (m1[all_edges[:, 1]] < big)]
     m2 = m1.copy()
-    np.minimum.at(m2, all_edges[:, 0], m1[all_edges[:, 1]])
-    np.minimum.at(m2, all_edges[:, 1], m1[all_edges[:, 0]])
+    np.minimum.at(m2, near[:, 0], m1[near[:, 1]])
+    np.minimum.at(m2, near[:, 1], m1[near[:, 0]])
     return (m2[edges[:, 0]] == priority) & (m2[edges[:, 1]] == priority)
 
 
