@@ -244,18 +244,18 @@ def _packed_cost(packed: np.ndarray, points: np.ndarray) -> np.ndarray:
 
 def _packed_optimal_points(packed: np.ndarray, midpoint: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """:func:`optimal_points` for packed quadrics (10, k) and edge midpoints (3, k): points (3, k), costs (k,)."""
-    q00, q01, q02, q03, q11, q12, q13, q22, q23, _ = packed
-    A = (q00, q11, q22, q01, q02, q12)                            # six (k,) rows
-    q = packed[[3, 6, 8]]                                         # (3, k): q by coordinate
+    q00, q01, q02, q03, q11, q12, q13, q22, q23, _ = packed        # ten (k,) rows
     trace = q00 + q11 + q22
     # A quadric with no planes at all (zero-area faces) has A = 0 and q = 0: with
     # eps = 1 the solve below gives the midpoint, as it should.
     eps = np.where(trace > 0, PULL_TO_MIDPOINT * trace, 1.0)
     pulled_inverse = _symmetric_inverse(q00 + eps, q11 + eps, q22 + eps, q01, q02, q12)
-    x = np.array(_symmetric_times(pulled_inverse, *(eps * midpoint - q)))          # (3, k)
-    for _ in range(REFINEMENT_STEPS):                  # take the pull back out where A decides
-        residual = -q - np.array(_symmetric_times(A, *x))
-        x = x + np.array(_symmetric_times(pulled_inverse, *residual))
+    x = _symmetric_times(pulled_inverse, *(eps * midpoint[i] - q_i for i, q_i in enumerate((q03, q13, q23))))
+    # Taking the pull back out, x += (A + eps I)^-1 (-q - A x), is the same as
+    # x = (A + eps I)^-1 (eps x - q): one product a step instead of two.
+    for _ in range(REFINEMENT_STEPS):
+        x = _symmetric_times(pulled_inverse, eps * x[0] - q03, eps * x[1] - q13, eps * x[2] - q23)
+    x = np.array(x)                                               # (3, k)
     return x, np.maximum(_packed_cost(packed, x), 0.0)
 
 
