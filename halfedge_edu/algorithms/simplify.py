@@ -90,13 +90,19 @@ def face_quadrics(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     Area weighting makes a big face count for more than a sliver, so the error does
     not depend on how finely a flat region happens to be triangulated.
     """
+    area, plane = _face_planes(vertices, faces)
+    return area[:, None, None] * plane[:, :, None] * plane[:, None, :]
+
+
+def _face_planes(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Each face's area (m,) and plane ``p = [n, d]`` (m, 4): :func:`face_quadrics` is ``area * p p^T``."""
     corners = vertices[faces]                                        # (m, 3, 3)
     cross = face_cross(corners)                                      # (m, 3), length 2 * area
     a = corners[:, 0]
     double_area = np.linalg.norm(cross, axis=1)
     normal = cross / np.maximum(double_area, 1e-300)[:, None]
     plane = np.concatenate([normal, -np.einsum("ij,ij->i", normal, a)[:, None]], axis=1)  # (m, 4)
-    return 0.5 * double_area[:, None, None] * plane[:, :, None] * plane[:, None, :]
+    return 0.5 * double_area, plane
 
 
 def boundary_quadrics(vertices: np.ndarray, faces: np.ndarray, boundary_edges: np.ndarray,
@@ -106,6 +112,12 @@ def boundary_quadrics(vertices: np.ndarray, faces: np.ndarray, boundary_edges: n
     They make moving a boundary vertex off its boundary line expensive, so holes keep
     their shape. ``weight`` scales them against the surface quadrics.
     """
+    scale, plane = _boundary_planes(vertices, faces, boundary_edges, boundary_faces, weight)
+    return scale[:, None, None] * plane[:, :, None] * plane[:, None, :]
+
+
+def _boundary_planes(vertices, faces, boundary_edges, boundary_faces, weight) -> tuple[np.ndarray, np.ndarray]:
+    """The scale (k,) and plane (k, 4) of each :func:`boundary_quadrics` quadric."""
     start, end = vertices[boundary_edges[:, 0]], vertices[boundary_edges[:, 1]]
     face_normal = face_cross(vertices[faces[boundary_faces]])
     direction = end - start
@@ -113,8 +125,7 @@ def boundary_quadrics(vertices: np.ndarray, faces: np.ndarray, boundary_edges: n
     length = np.linalg.norm(normal, axis=1)
     normal = normal / np.maximum(length, 1e-300)[:, None]
     plane = np.concatenate([normal, -np.einsum("ij,ij->i", normal, start)[:, None]], axis=1)
-    scale = weight * np.einsum("ij,ij->i", direction, direction)
-    return scale[:, None, None] * plane[:, :, None] * plane[:, None, :]
+    return weight * np.einsum("ij,ij->i", direction, direction), plane
 
 
 def accumulate(quadrics: np.ndarray, owners: np.ndarray, n: int) -> np.ndarray:
@@ -126,13 +137,18 @@ def accumulate(quadrics: np.ndarray, owners: np.ndarray, n: int) -> np.ndarray:
     incidence matrix (a 1 where the vertex owns the quadric) times the quadrics
     flattened to 16 columns.
     """
+    return _accumulate_rows(quadrics.reshape(len(quadrics), 16), owners, n).reshape(n, 4, 4)
+
+
+def _accumulate_rows(rows: np.ndarray, owners: np.ndarray, n: int) -> np.ndarray:
+    """(n, c) sum of the rows (k, c) each vertex owns: :func:`accumulate` for any row length."""
     from scipy import sparse      # here, not at the top: `import halfedge_edu` stays light
 
     owners = owners.reshape(len(owners), -1)                             # (k, c)
-    rows = owners.reshape(-1)
+    vertex = owners.reshape(-1)
     columns = np.repeat(np.arange(len(owners)), owners.shape[1])
-    incidence = sparse.csr_matrix((np.ones(len(rows)), (rows, columns)), shape=(n, len(owners)))
-    return np.asarray(incidence @ quadrics.reshape(len(quadrics), 16)).reshape(n, 4, 4)
+    incidence = sparse.csr_matrix((np.ones(len(vertex)), (vertex, columns)), shape=(n, len(owners)))
+    return np.asarray(incidence @ rows)
 
 
 def quadric_cost(quadric: np.ndarray, points: np.ndarray) -> np.ndarray:
@@ -226,6 +242,12 @@ def optimal_points(quadric: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[n
 # (n, 16) array; the arithmetic then runs on contiguous rows.
 # Packed rows, in order: entries (00, 01, 02, 03, 11, 12, 13, 22, 23, 33).
 _PACKED_ENTRIES = [0, 1, 2, 3, 5, 6, 7, 10, 11, 15]        # their places in the flattened 4x4
+
+
+def _packed_outer(weight: np.ndarray, plane: np.ndarray) -> np.ndarray:
+    """(k, 10) the packed entries of ``weight * p p^T`` for weights (k,) and planes p (k, 4)."""
+    rows, columns = np.divmod(_PACKED_ENTRIES, 4)
+    return weight[:, None] * plane[:, rows] * plane[:, columns]
 
 
 def pack_quadrics(quadric: np.ndarray) -> np.ndarray:
@@ -377,14 +399,15 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         raise ValueError(f"target_faces must be at least 1, got {target_faces}")
     max_normal_cos = float(np.cos(np.radians(max_normal_angle)))
 
-    quadrics = accumulate(face_quadrics(vertices, faces), faces, n)
-    this_round = round_tables(faces, n)                                 # the first round's edges
+    # The vertex quadrics, packed (see pack_quadrics) from the start: ten columns, not sixteen.
+    quadrics = _accumulate_rows(_packed_outer(*_face_planes(vertices, faces)), faces, n)       # (n, 10)
+    this_round = round_tables(faces, n)                                # the first round's tables
     if this_round.boundary.any():
         boundary_edges = this_round.edges[this_round.boundary]
         boundary_faces = this_round.boundary_halfedge // 3            # the one face of each
-        bq = boundary_quadrics(vertices, faces, boundary_edges, boundary_faces, boundary_weight)
-        quadrics += accumulate(bq, boundary_edges, n)                 # each to both ends
-    quadrics = pack_quadrics(quadrics)                                 # (10, n)
+        planes = _boundary_planes(vertices, faces, boundary_edges, boundary_faces, boundary_weight)
+        quadrics += _accumulate_rows(_packed_outer(*planes), boundary_edges, n)   # each to both ends
+    quadrics = np.ascontiguousarray(quadrics.T)                        # (10, n)
 
     # Costs are area x distance^2 (length^4); below this they count as nothing.
     cost_floor = 1e-12 * float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0))) ** 4
