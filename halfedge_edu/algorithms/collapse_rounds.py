@@ -422,10 +422,13 @@ def independent_edges(edges: np.ndarray, priority: np.ndarray, all_edges: np.nda
     np.minimum.at(m1, edges[:, 1], priority)
     # m2 is read only at the ends of the given edges, and only neighbours with an m1
     # can lower it: so only the mesh edges between two such vertices take part.
-    near = all_edges[(m1[all_edges[:, 0]] < big) & (m1[all_edges[:, 1]] < big)]
+    has = m1 < big
+    x, y = all_edges[:, 0], all_edges[:, 1]
+    near = np.flatnonzero(has[x] & has[y])          # indices and np.take: a 2-D boolean mask is slower
+    x, y = np.take(x, near), np.take(y, near)
     m2 = m1.copy()
-    np.minimum.at(m2, near[:, 0], m1[near[:, 1]])
-    np.minimum.at(m2, near[:, 1], m1[near[:, 0]])
+    np.minimum.at(m2, x, m1[y])
+    np.minimum.at(m2, y, m1[x])
     return (m2[edges[:, 0]] == priority) & (m2[edges[:, 1]] == priority)
 
 
