@@ -230,7 +230,7 @@ def optimal_points(quadric: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[n
     crease line, at 0.6 degrees halfway, below 0.1 degrees it stays at the midpoint as
     if the region were flat.
     """
-    packed = pack_quadrics(quadric)
+    packed = _pack_quadrics(quadric)
     points, cost = _packed_optimal_points(packed, np.ascontiguousarray((0.5 * (a + b)).T))
     return np.ascontiguousarray(points.T), cost
 
@@ -250,7 +250,7 @@ def _packed_outer(weight: np.ndarray, plane: np.ndarray) -> np.ndarray:
     return weight[:, None] * plane[:, rows] * plane[:, columns]
 
 
-def pack_quadrics(quadric: np.ndarray) -> np.ndarray:
+def _pack_quadrics(quadric: np.ndarray) -> np.ndarray:
     """(10, k) the distinct entries of k symmetric quadrics (k, 4, 4), one row per entry."""
     return np.ascontiguousarray(quadric.reshape(len(quadric), 16)[:, _PACKED_ENTRIES].T)
 
@@ -399,7 +399,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         raise ValueError(f"target_faces must be at least 1, got {target_faces}")
     max_normal_cos = float(np.cos(np.radians(max_normal_angle)))
 
-    # The vertex quadrics, packed (see pack_quadrics) from the start: ten columns, not sixteen.
+    # The vertex quadrics, packed (see _pack_quadrics) from the start: ten columns, not sixteen.
     quadrics = _accumulate_rows(_packed_outer(*_face_planes(vertices, faces)), faces, n)       # (n, 10)
     this_round = round_tables(faces, n)                                # the first round's tables
     if this_round.boundary.any():
