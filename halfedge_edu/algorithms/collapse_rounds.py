@@ -18,6 +18,11 @@ faces (m, 3), the edges of :func:`halfedge_edu.core.arrays.unique_edges`):
 
 Checking is the expensive part, so :func:`choose_round` checks only the few candidates
 it picks, pass after pass, instead of every candidate.
+
+A round needs the same few tables of the face array every time: the edges, the face
+across each edge, the faces and the neighbours around every vertex.
+:func:`round_tables` builds them all from two sorts, and the checks take them as
+keyword arguments (``face_across``, ``neighbours``) where they replace a search.
 """
 
 from __future__ import annotations

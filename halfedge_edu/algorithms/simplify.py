@@ -13,11 +13,16 @@ The idea, in four sentences:
 4. Collapse the cheapest edges first; the merged vertex keeps ``Q_a + Q_b``.
 
 The course's version (see ``simplify_sequential``) pops one edge at a time from a priority
-queue. This default version does the same work in *rounds*: each round prices every
-edge at once, then collapses a set of cheap edges that are far enough apart not to
-disturb each other (no two within one ring of each other), all at once, with numpy. An
-edge is taken only if it is the cheapest in its neighbourhood, so the order stays
-close to the queue's, and tens of rounds replace tens of thousands of Python steps.
+queue. This default version does the same work in *rounds*: each round prices, all at
+once, the edges whose ends changed in the last round (the other prices are kept), then
+collapses a set of cheap edges that are far enough apart not to disturb each other (no
+two within one ring of each other), all at once, with numpy. An edge is taken only if
+it is the cheapest in its neighbourhood, so the order stays close to the queue's, and
+about twenty rounds replace tens of thousands of Python steps. A round can take at
+most about one face in seven (the collapses must stay apart), so the rounds cannot get
+much fewer; what a round costs is kept down instead: two sorts of the face array per
+round (:func:`~.collapse_rounds.round_tables`), the quadrics as ten packed numbers,
+and checks that gather only what the picked edges touch.
 
 Every collapse must pass the same checks as :func:`halfedge_edu.core.ops.can_collapse`: the
 link condition (the endpoints share exactly the two opposite vertices, one on the
@@ -29,7 +34,7 @@ area vanish), and no two neighbouring faces may fold shut (normals more than
 different collapses of one round. The check covers the fallback placements too.
 Both checks run only on the edges a round picks, not on every candidate: a round
 collapses about one candidate in ten. The checks and the choice of a round live in
-:mod:`.collapse_rounds`, shared with ``remesh``; the array tools (edge tables, CSR
+:mod:`.collapse_rounds`, shared with ``remesh``; the array tools (edge keys, CSR
 adjacency) in :mod:`halfedge_edu.core.arrays`.
 """
 
