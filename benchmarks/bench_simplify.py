@@ -3,6 +3,7 @@
     python benchmarks/bench_simplify.py
     python benchmarks/bench_simplify.py --quick     # the bunny only
     python benchmarks/bench_simplify.py --repeat 5  # median of 5 runs each (default 3)
+    python benchmarks/bench_simplify.py --profile   # where our time goes, phase by phase
 
 Three inputs of about 100k faces, three kinds of surface: the bunny (a scan), Spot
 subdivided twice at edge midpoints (piecewise flat: many collapses cost nothing) and
@@ -26,7 +27,20 @@ import numpy as np
 
 import halfedge_edu as hx
 from _common import median_of, hundred_k_inputs, surface_distance
-from halfedge_edu.algorithms.simplify import simplify
+from halfedge_edu.algorithms.simplify import simplify, simplify_with_report
+
+#: The phases of a round, as the functions that do them (cumulative time of each).
+PHASES = [
+    ("edge and ring tables", "round_tables"),
+    ("pricing (re-price changed edges)", "update"),
+    ("round choice, all passes", "choose_round"),
+    ("  topology checks", "collapse_topology_ok"),
+    ("  turned-face checks", "no_turned_faces"),
+    ("  independence", "independent_edges"),
+    ("folds between collapses", "drop_folding_neighbours"),
+    ("apply (merge vertices)", "merge_vertices"),
+    ("vertex quadrics (start)", "_accumulate_rows"),
+]
 
 
 def inputs(quick: bool):
@@ -62,11 +76,35 @@ def run_fast_simplification(vertices, faces, target):
     )
 
 
+def profile(name: str, mesh, target: int) -> None:
+    """Print the cumulative time of each phase of ``simplify`` (cProfile) and the number of rounds."""
+    import cProfile
+    import pstats
+
+    profiler = cProfile.Profile()
+    profiler.enable()
+    result = simplify_with_report(mesh, target)
+    profiler.disable()
+    stats = pstats.Stats(profiler).stats                       # {(file, line, function): (..., cumtime, ...)}
+    total = max(cumulative for (_, _, function), (_, _, _, cumulative, _) in stats.items() if function == "_simplify")
+    print(f"{name}: {total:.3f} s under cProfile, {result.report.rounds} rounds")
+    for label, function in PHASES:
+        seconds = sum(cumulative for (path, _, called), (_, _, _, cumulative, _) in stats.items()
+                      if called == function and "halfedge_edu" in path)
+        print(f"   {label:<36}{seconds:7.3f} s {100 * seconds / total:5.1f}%")
+
+
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="the bunny only")
-    parser.add_argument("--repeat", type=int, default=3, help="time each method this many times, keep the fastest")
+    parser.add_argument("--repeat", type=int, default=3, help="time each method this many times, keep the median")
+    parser.add_argument("--profile", action="store_true", help="profile our phases instead of timing the peers")
     args = parser.parse_args(argv)
+    if args.profile:
+        simplify(hx.sample("spot"), 1000)          # first call: imports (scipy.sparse) stay out of the profile
+        for name, mesh in inputs(args.quick):
+            profile(name, mesh, mesh.n_faces // 10)
+        return
 
     header = f"{'input':<24}{'faces':>8}{'method':>21}{'result':>8}{'time s':>9}{'ours/peer':>11}{'mean dist':>11}{'max dist':>10}{'valid':>7}"
     print("Quadric simplification to 10% of the faces")

@@ -18,6 +18,11 @@ faces (m, 3), the edges of :func:`halfedge_edu.core.arrays.unique_edges`):
 
 Checking is the expensive part, so :func:`choose_round` checks only the few candidates
 it picks, pass after pass, instead of every candidate.
+
+A round needs the same few tables of the face array every time: the edges, the face
+across each edge, the faces and the neighbours around every vertex.
+:func:`round_tables` builds them all from two sorts, and the checks take them as
+keyword arguments (``face_across``, ``neighbours``) where they replace a search.
 """
 
 from __future__ import annotations
@@ -26,11 +31,11 @@ from typing import Callable, NamedTuple
 
 import numpy as np
 
-from ..core.arrays import cross_rows, expand
+from ..core.arrays import cross_rows, expand, sort_undirected
 
 __all__ = [
-    "FOLD_ANGLE", "choose_round", "collapse_topology_ok", "drop_folding_neighbours", "independent_edges", "no_turned_faces",
-    "one_collapse_per_opposite_vertex",
+    "FOLD_ANGLE", "RoundTables", "choose_round", "collapse_topology_ok", "drop_folding_neighbours", "independent_edges",
+    "no_turned_faces", "one_collapse_per_opposite_vertex", "round_tables",
 ]
 
 
@@ -104,40 +109,70 @@ FOLD_ANGLE = 150.0
 
 
 class _MovedFaces(NamedTuple):
-    """The faces k collapses move, one row each (j rows), before and after."""
+    """The faces k collapses move, one row each (j rows), before and after.
+
+    Each face is read from its moving corner: ``(moving corner, u, w)`` is the face's
+    own counter-clockwise order, and ``u - w`` its far edge, the one that stays.
+    """
 
     owner: np.ndarray          # (j,) which collapse moves the face
     face: np.ndarray           # (j,) the face's index
-    corners: np.ndarray        # (j, 3) its vertices, before
-    moving_corner: np.ndarray  # (j, 3) True at the corner that moves
+    position: np.ndarray       # (j,) 0, 1 or 2: which corner moves
+    u: np.ndarray              # (j,) the corner after the moving one
+    w: np.ndarray              # (j,) the corner after u
     normal_before: np.ndarray  # (j, 3) cross products, length twice the area
     normal_after: np.ndarray   # (j, 3)
+
+
+def _holds_any(columns: tuple[np.ndarray, np.ndarray, np.ndarray], *vertices: np.ndarray) -> np.ndarray:
+    """(j,) True where the face with corner columns ``columns`` (three (j,)) holds any of ``vertices`` (each (j,)).
+
+    Comparisons of columns: ``(corners == vertex[:, None]).any(axis=1)`` on a (j, 3)
+    array says the same, but numpy reduces along a row of three several times slower.
+    """
+    found = np.zeros(len(columns[0]), dtype=bool)
+    for vertex in vertices:
+        for column in columns:
+            found |= column == vertex
+    return found
+
+
+def _keep_where(mask: np.ndarray, *arrays: np.ndarray) -> tuple[np.ndarray, ...]:
+    """``arrays``, each cut to the rows where ``mask`` (j,) holds."""
+    rows = np.flatnonzero(mask)
+    return tuple(np.take(array, rows, axis=0) for array in arrays)
 
 
 def _moved_faces(vertices, faces, faces_around, points, keep, remove) -> _MovedFaces:
     """Every face around ``keep[i]`` or ``remove[i]`` that survives collapse i, moved to ``points[i]``.
 
-    The two faces holding both ends vanish and are left out.
+    The two faces holding both ends vanish and are left out. Rows come in the order of
+    ``keep``'s faces, then ``remove``'s.
     """
-    face_offsets, face_of_corner = faces_around                        # from vertex_faces()
-    owners, face_lists, corner_lists, movers = [], [], [], []
-    for end, other in ((keep, remove), (remove, keep)):
-        owner, face = expand(face_offsets, face_of_corner, end)
-        corners = faces[face]                                           # (j, 3)
-        survives = ~(corners == other[owner, None]).any(axis=1)        # faces holding both vanish
-        owners.append(owner[survives])
-        face_lists.append(face[survives])
-        corner_lists.append(corners[survives])
-        movers.append(end[owner[survives]])
-    owner = np.concatenate(owners)
-    corners = np.concatenate(corner_lists)                              # (j, 3)
-    moving_corner = corners == np.concatenate(movers)[:, None]          # one True a row
-    before = vertices[corners]                                          # (j, 3 corners, 3)
-    after = before.copy()
-    after[moving_corner] = points[owner]
-    return _MovedFaces(owner, np.concatenate(face_lists), corners, moving_corner,
-                       cross_rows(before[:, 1] - before[:, 0], before[:, 2] - before[:, 0]),
-                       cross_rows(after[:, 1] - after[:, 0], after[:, 2] - after[:, 0]))
+    k = len(keep)
+    end = np.concatenate([keep, remove])                                # (2k,) the moving ends
+    other = np.concatenate([remove, keep])
+    row, face = expand(*faces_around, end)                              # faces_around from vertex_faces()
+    # One column of corners at a time, gathered with np.take from the flat face array:
+    # several times faster than fancy indexing rows of a 2-D array.
+    flat = faces.reshape(-1)
+    first_corner = 3 * face
+    c0, c1, c2 = (np.take(flat, first_corner + i) for i in range(3))   # (j,) each
+    gone = other[row]
+    survives = np.flatnonzero((c0 != gone) & (c1 != gone) & (c2 != gone))   # faces holding both vanish
+    row, face, first_corner = row[survives], face[survives], first_corner[survives]
+    c0, c1 = c0[survives], c1[survives]
+    mover = np.take(end, row)
+    position = np.where(c0 == mover, 0, np.where(c1 == mover, 1, 2))
+    u = np.take(flat, first_corner + (position + 1) % 3)
+    w = np.take(flat, first_corner + (position + 2) % 3)
+    owner = np.where(row < k, row, row - k)
+    # (mover, u, w) is a rotation of the face's corners, so (u - x) x (w - x) is its
+    # cross product for x at the mover's old place and at the new point.
+    at_u, at_w = np.take(vertices, u, axis=0), np.take(vertices, w, axis=0)
+    before, after = np.take(vertices, mover, axis=0), np.take(points, owner, axis=0)
+    return _MovedFaces(owner, face, position, u, w,
+                       cross_rows(at_u - before, at_w - before), cross_rows(at_u - after, at_w - after))
 
 
 def _unit(rows: np.ndarray) -> np.ndarray:
@@ -153,6 +188,8 @@ def no_turned_faces(
     keep: np.ndarray,
     remove: np.ndarray,
     max_normal_cos: float,
+    *,
+    face_across: np.ndarray | None = None,
 ) -> np.ndarray:
     """(k,) True where moving both ends of edge ``keep[i] - remove[i]`` to ``points[i]``
     turns no face over and folds no pair of neighbouring faces.
@@ -171,9 +208,14 @@ def no_turned_faces(
       :data:`FOLD_ANGLE` apart. The turn
       test alone misses this: two neighbours may each swing by less than the allowed
       angle, in opposite directions, and between them fold shut.
+
+    ``face_across`` (m, 3), if the caller has it (from :func:`round_tables`): the face
+    across each face's edge ``faces[f, k] -> faces[f, k + 1]``, -1 on the boundary. It
+    names the unmoved neighbour of each moved face directly; without it the neighbour
+    is searched for among the faces around the far edge's end, several times the work.
     """
     moved = _moved_faces(vertices, faces, faces_around, points, keep, remove)
-    owner, corners, moving_corner = moved.owner, moved.corners, moved.moving_corner
+    owner, position, u, w = moved.owner, moved.position, moved.u, moved.w
     n_before, n_after = moved.normal_before, moved.normal_after
     length_before = np.sqrt(np.einsum("ij,ij->i", n_before, n_before))
     length_after = np.sqrt(np.einsum("ij,ij->i", n_after, n_after))
@@ -186,10 +228,9 @@ def no_turned_faces(
 
     # Moved faces that share an edge at the new vertex: after the collapse both faces
     # hold the kept vertex (the removed one renamed) and one more common vertex.
-    spoke_end = corners[~moving_corner].reshape(-1, 2)                  # (j, 2) the other two corners
     rows = np.repeat(np.arange(len(owner)), 2)
-    key = owner[rows] * len(vertices) + spoke_end.reshape(-1)          # (2j,) owner and far end
-    order = np.argsort(key, kind="stable")
+    key = owner[rows] * len(vertices) + np.stack([u, w], axis=1).reshape(-1)   # (2j,) owner and far end
+    order = _grouping_order(key, len(keep) * len(vertices))
     same = key[order][1:] == key[order][:-1]
     first, second = rows[order][:-1][same], rows[order][1:][same]
     folded = np.einsum("ij,ij->i", unit_after[first], unit_after[second]) < fold_cos
@@ -197,18 +238,17 @@ def no_turned_faces(
 
     # A moved face and the unmoved face across its far edge (u, w), the face holding
     # u and w but neither end of the collapse.
-    face_offsets, face_of_corner = faces_around
-    position = np.argmax(moving_corner, axis=1)
-    u = corners[np.arange(len(corners)), (position + 1) % 3]
-    w = corners[np.arange(len(corners)), (position + 2) % 3]
-    row, neighbour = expand(face_offsets, face_of_corner, w)
-    beyond = faces[neighbour]                                           # (r, 3)
-    across = (beyond == u[row, None]).any(axis=1)
-    across &= ~(beyond == keep[owner[row], None]).any(axis=1) & ~(beyond == remove[owner[row], None]).any(axis=1)
-    row, neighbour = row[across], neighbour[across]
-    beyond_corners = vertices[faces[neighbour]]
-    n_beyond = _unit(cross_rows(beyond_corners[:, 1] - beyond_corners[:, 0],
-                                beyond_corners[:, 2] - beyond_corners[:, 0]))
+    flat = faces.reshape(-1)
+    if face_across is None:
+        row, neighbour = expand(*faces_around, w)
+        row, neighbour = _keep_where(_holds_any(tuple(faces[neighbour].T), u[row]), row, neighbour)
+    else:
+        neighbour = np.take(face_across.reshape(-1), 3 * moved.face + (position + 1) % 3)   # across u -> w
+        row, neighbour = _keep_where(neighbour >= 0, np.arange(len(owner)), neighbour)
+    b0, b1, b2 = (np.take(flat, 3 * neighbour + i) for i in range(3))
+    row, b0, b1, b2 = _keep_where(~_holds_any((b0, b1, b2), keep[owner[row]], remove[owner[row]]), row, b0, b1, b2)
+    at_b0 = np.take(vertices, b0, axis=0)
+    n_beyond = _unit(cross_rows(np.take(vertices, b1, axis=0) - at_b0, np.take(vertices, b2, axis=0) - at_b0))
     folded = np.einsum("ij,ij->i", unit_after[row], n_beyond) < fold_cos
     turned[row[folded]] = True
 
@@ -217,8 +257,102 @@ def no_turned_faces(
     return ok
 
 
+class RoundTables(NamedTuple):
+    """What a round of collapses asks about a face array (m, 3), built once per round.
+
+    ``edges`` (E, 2) low/high in key order and ``boundary`` (E,) as
+    :func:`halfedge_edu.core.arrays.unique_edges` gives them; ``boundary_halfedge``
+    (b,) the directed edge ``3 f + k`` (``faces[f, k] -> faces[f, k + 1]``) of each
+    boundary edge, in the same order; ``face_across`` (m, 3) the face across each
+    face's edge ``k``, -1 on the boundary; ``faces_around`` and ``neighbours`` each
+    vertex's faces and neighbours as CSR, the rows of
+    :func:`halfedge_edu.core.arrays.vertex_faces` and
+    :func:`halfedge_edu.core.arrays.vertex_neighbours` (in another order within a row).
+    """
+
+    edges: np.ndarray
+    boundary: np.ndarray
+    boundary_halfedge: np.ndarray
+    face_across: np.ndarray
+    faces_around: tuple[np.ndarray, np.ndarray]
+    neighbours: tuple[np.ndarray, np.ndarray]
+
+
+def round_tables(faces: np.ndarray, n: int) -> RoundTables:
+    """The :class:`RoundTables` of ``faces`` (m, 3), vertex indices below ``n``, from two sorts.
+
+    The directed edges sorted by their undirected key
+    (:func:`halfedge_edu.core.arrays.sort_undirected`) give the edges: the uses of an
+    edge sit next to each other, and an interior edge's two uses each name the other's
+    face. The corners sorted by vertex give the faces and the neighbours around every
+    vertex (:func:`_vertex_rings`).
+    """
+    corner_vertex = faces.reshape(-1)                                  # (3m,) tail of directed edge 3f + k
+    next_vertex = np.empty_like(corner_vertex)                         # (3m,) its head, faces[f, k + 1]
+    next_vertex.reshape(-1, 3)[:, :2] = faces[:, 1:]
+    next_vertex.reshape(-1, 3)[:, 2] = faces[:, 0]
+    n_halfedges = len(corner_vertex)
+    order, sorted_key = sort_undirected(corner_vertex, next_vertex, n)
+    new_run = np.ones(n_halfedges, dtype=bool)
+    new_run[1:] = sorted_key[1:] != sorted_key[:-1]
+    starts = np.flatnonzero(new_run)                                  # (E,) first use of each edge
+    count = np.diff(np.append(starts, n_halfedges))
+    keys = sorted_key[starts]
+    first = order[starts]
+    inner = count == 2
+    second = order[starts[inner] + 1]
+    across = np.full(n_halfedges, -1, dtype=np.int64)
+    across[first[inner]] = second // 3
+    across[second] = first[inner] // 3
+    boundary_halfedge = first[count == 1]
+    faces_around, neighbours = _vertex_rings(corner_vertex, next_vertex, boundary_halfedge, n)
+    return RoundTables(np.stack([keys // n, keys % n], axis=1), count == 1, boundary_halfedge,
+                       across.reshape(-1, 3), faces_around, neighbours)
+
+
+def _grouping_order(rows: np.ndarray, n: int) -> np.ndarray:
+    """The stable order that sorts ``rows`` (k,) (values below ``n``), as ``np.argsort(rows, kind="stable")``.
+
+    The position is packed into the low bits of each row value and the packed numbers
+    are sorted with ``np.sort``, about twice as fast as an argsort (the trick of
+    :func:`halfedge_edu.core.arrays.sort_undirected`); values too large to pack fall back.
+    """
+    bits = max(1, int(len(rows) - 1).bit_length())
+    if int(n) >= 2 ** (62 - bits):
+        return np.argsort(rows, kind="stable")
+    packed = rows.astype(np.int64) << bits
+    packed |= np.arange(len(rows), dtype=np.int64)
+    packed.sort()
+    return packed & ((1 << bits) - 1)
+
+
+def _vertex_rings(corner_vertex: np.ndarray, next_vertex: np.ndarray, boundary_halfedge: np.ndarray,
+                  n: int) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
+    """Each vertex's faces and each vertex's neighbours, as two CSRs from one sort of the corners.
+
+    ``corner_vertex`` and ``next_vertex`` (3m,) are the tail and head of each directed
+    edge ``3 f + k``; ``boundary_halfedge`` (b,) the ones on the boundary.
+
+    The neighbours come from the corners: corner ``(f, k)`` at vertex v names the next
+    corner's vertex, ``faces[f, k + 1]``. Around an inner vertex that lists every
+    neighbour once. The faces of a boundary vertex form one open fan (the mesh has no
+    vertex with two fans), and the neighbour at its clockwise end is missing; it is the
+    tail of the boundary edge whose head is v, so each boundary edge adds one row.
+    """
+    rows = np.concatenate([corner_vertex, next_vertex[boundary_halfedge]])     # (3m + b,) the head for the extra rows
+    values = np.concatenate([next_vertex, corner_vertex[boundary_halfedge]])   # ... and the tail as its neighbour
+    order = _grouping_order(rows, n)
+    face_offsets = np.zeros(n + 1, dtype=np.int64)
+    np.cumsum(np.bincount(corner_vertex, minlength=n), out=face_offsets[1:])
+    neighbour_offsets = np.zeros(n + 1, dtype=np.int64)
+    np.cumsum(np.bincount(rows, minlength=n), out=neighbour_offsets[1:])
+    corners = order[order < len(corner_vertex)]                       # the sort, without the extra rows
+    return (face_offsets, corners // 3), (neighbour_offsets, values[order])
+
+
 def drop_folding_neighbours(vertices: np.ndarray, faces: np.ndarray, faces_around: tuple[np.ndarray, np.ndarray],
-                            points: np.ndarray, keep: np.ndarray, remove: np.ndarray) -> np.ndarray:
+                            points: np.ndarray, keep: np.ndarray, remove: np.ndarray, *,
+                            face_across: np.ndarray | None = None) -> np.ndarray:
     """(k,) False for collapses of one round that would fold a face of another's shut.
 
     :func:`no_turned_faces` judges each collapse against the faces around it as they
@@ -228,16 +362,25 @@ def drop_folding_neighbours(vertices: np.ndarray, faces: np.ndarray, faces_aroun
     round's collapses are applied at once and every such pair is measured; where a pair
     folds (normals more than :data:`FOLD_ANGLE` apart), both collapses are dropped,
     which puts each back to a state its own check accepted.
+
+    The pairs are moved faces with the same far edge, found by sorting the far edges;
+    or, given ``face_across`` (from :func:`round_tables`), as moved faces whose
+    neighbour across the far edge is moved too, without a sort.
     """
     moved = _moved_faces(vertices, faces, faces_around, points, keep, remove)
-    position = np.argmax(moved.moving_corner, axis=1)
-    rows = np.arange(len(moved.owner))
-    u = moved.corners[rows, (position + 1) % 3]
-    w = moved.corners[rows, (position + 2) % 3]
-    key = np.minimum(u, w) * len(vertices) + np.maximum(u, w)          # each face's far edge
-    order = np.argsort(key, kind="stable")
-    same = key[order][1:] == key[order][:-1]
-    first, second = order[:-1][same], order[1:][same]
+    if face_across is None:
+        u, w = moved.u, moved.w
+        key = np.minimum(u, w) * len(vertices) + np.maximum(u, w)      # each face's far edge
+        order = np.argsort(key, kind="stable")
+        same = key[order][1:] == key[order][:-1]
+        first, second = order[:-1][same], order[1:][same]
+    else:
+        row_of_face = np.full(len(faces), -1, dtype=np.int64)
+        row_of_face[moved.face] = np.arange(len(moved.face))            # a face is moved by one collapse at most
+        neighbour = face_across[moved.face, (moved.position + 1) % 3]   # across u -> w
+        other = np.where(neighbour >= 0, row_of_face[neighbour], -1)
+        first = np.flatnonzero(other > np.arange(len(other)))          # each pair once
+        second = other[first]
     apart = moved.owner[first] != moved.owner[second]
     first, second = first[apart], second[apart]
     unit_after = _unit(moved.normal_after)
@@ -282,9 +425,15 @@ def independent_edges(edges: np.ndarray, priority: np.ndarray, all_edges: np.nda
     m1 = np.full(n, big)
     np.minimum.at(m1, edges[:, 0], priority)
     np.minimum.at(m1, edges[:, 1], priority)
+    # m2 is read only at the ends of the given edges, and only neighbours with an m1
+    # can lower it: so only the mesh edges between two such vertices take part.
+    has = m1 < big
+    x, y = all_edges[:, 0], all_edges[:, 1]
+    near = np.flatnonzero(has[x] & has[y])          # indices and np.take: a 2-D boolean mask is slower
+    x, y = np.take(x, near), np.take(y, near)
     m2 = m1.copy()
-    np.minimum.at(m2, all_edges[:, 0], m1[all_edges[:, 1]])
-    np.minimum.at(m2, all_edges[:, 1], m1[all_edges[:, 0]])
+    np.minimum.at(m2, x, m1[y])
+    np.minimum.at(m2, y, m1[x])
     return (m2[edges[:, 0]] == priority) & (m2[edges[:, 1]] == priority)
 
 
@@ -297,6 +446,8 @@ def choose_round(
     check_turned_faces: Callable[[np.ndarray], np.ndarray],
     known_opposites: tuple[np.ndarray, np.ndarray] | None = None,
     passes: int = 5,
+    *,
+    neighbours: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> np.ndarray:
     """(k,) mask over candidates: a set of allowed collapses that can all be done at once.
 
@@ -318,6 +469,11 @@ def choose_round(
     ``known_opposites``: ``(owner, vertex)`` arrays of opposite vertices the caller has
     already found (candidate indices and vertices), so that candidates whose opposite
     vertex has lost an edge drop out before a pass picks, not after.
+
+    ``neighbours``: the vertex adjacency as CSR (from
+    :func:`halfedge_edu.core.arrays.vertex_neighbours`), if the caller has it: then
+    the ring around the accepted edges is gathered from their ends' rows instead of
+    found by a scan of every edge.
     """
     chosen = np.zeros(len(candidates), dtype=bool)
     open_ = open_.copy()
@@ -346,11 +502,15 @@ def choose_round(
         which = np.flatnonzero(passed)
         passed[which[~check_turned_faces(which)]] = False
         chosen |= passed
-        ends = np.zeros(n, dtype=bool)
-        ends[cand_edges[passed].reshape(-1)] = True
-        blocked |= ends
-        blocked[edges[ends[edges[:, 0]], 1]] = True
-        blocked[edges[ends[edges[:, 1]], 0]] = True
+        ends = cand_edges[passed].reshape(-1)
+        blocked[ends] = True
+        if neighbours is None:
+            at_end = np.zeros(n, dtype=bool)
+            at_end[ends] = True
+            blocked[edges[at_end[edges[:, 0]], 1]] = True
+            blocked[edges[at_end[edges[:, 1]], 0]] = True
+        else:
+            blocked[expand(*neighbours, ends)[1]] = True
         opposite_used[opposite_vertex[passed[opposite_owner]]] = True
     return chosen
 

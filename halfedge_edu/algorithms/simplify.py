@@ -13,11 +13,16 @@ The idea, in four sentences:
 4. Collapse the cheapest edges first; the merged vertex keeps ``Q_a + Q_b``.
 
 The course's version (see ``simplify_sequential``) pops one edge at a time from a priority
-queue. This default version does the same work in *rounds*: each round prices every
-edge at once, then collapses a set of cheap edges that are far enough apart not to
-disturb each other (no two within one ring of each other), all at once, with numpy. An
-edge is taken only if it is the cheapest in its neighbourhood, so the order stays
-close to the queue's, and tens of rounds replace tens of thousands of Python steps.
+queue. This default version does the same work in *rounds*: each round prices, all at
+once, the edges whose ends changed in the last round (the other prices are kept), then
+collapses a set of cheap edges that are far enough apart not to disturb each other (no
+two within one ring of each other), all at once, with numpy. An edge is taken only if
+it is the cheapest in its neighbourhood, so the order stays close to the queue's, and
+about twenty rounds replace tens of thousands of Python steps. A round can take at
+most about one face in seven (the collapses must stay apart), so the rounds cannot get
+much fewer; what a round costs is kept down instead: two sorts of the face array per
+round (:func:`~.collapse_rounds.round_tables`), the quadrics as ten packed numbers,
+and checks that gather only what the picked edges touch.
 
 Every collapse must pass the same checks as :func:`halfedge_edu.core.ops.can_collapse`: the
 link condition (the endpoints share exactly the two opposite vertices, one on the
@@ -29,7 +34,7 @@ area vanish), and no two neighbouring faces may fold shut (normals more than
 different collapses of one round. The check covers the fallback placements too.
 Both checks run only on the edges a round picks, not on every candidate: a round
 collapses about one candidate in ten. The checks and the choice of a round live in
-:mod:`.collapse_rounds`, shared with ``remesh``; the array tools (edge tables, CSR
+:mod:`.collapse_rounds`, shared with ``remesh``; the array tools (edge keys, CSR
 adjacency) in :mod:`halfedge_edu.core.arrays`.
 """
 
@@ -42,13 +47,13 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..core.arrays import (
-    compact, edge_table, face_cross, merge_vertices, unique_edges, vertex_faces, vertex_neighbours,
-)
+from ..core.arrays import compact, face_cross, merge_vertices
 from ..core.errors import MeshWarning
 from ..core.mesh import HalfedgeMesh
 from .arguments import check_simplify
-from .collapse_rounds import choose_round, collapse_topology_ok, drop_folding_neighbours, no_turned_faces
+from .collapse_rounds import (
+    choose_round, collapse_topology_ok, drop_folding_neighbours, no_turned_faces, round_tables,
+)
 
 
 @dataclass
@@ -90,13 +95,19 @@ def face_quadrics(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     Area weighting makes a big face count for more than a sliver, so the error does
     not depend on how finely a flat region happens to be triangulated.
     """
+    area, plane = _face_planes(vertices, faces)
+    return area[:, None, None] * plane[:, :, None] * plane[:, None, :]
+
+
+def _face_planes(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Each face's area (m,) and plane ``p = [n, d]`` (m, 4): :func:`face_quadrics` is ``area * p p^T``."""
     corners = vertices[faces]                                        # (m, 3, 3)
     cross = face_cross(corners)                                      # (m, 3), length 2 * area
     a = corners[:, 0]
     double_area = np.linalg.norm(cross, axis=1)
     normal = cross / np.maximum(double_area, 1e-300)[:, None]
     plane = np.concatenate([normal, -np.einsum("ij,ij->i", normal, a)[:, None]], axis=1)  # (m, 4)
-    return 0.5 * double_area[:, None, None] * plane[:, :, None] * plane[:, None, :]
+    return 0.5 * double_area, plane
 
 
 def boundary_quadrics(vertices: np.ndarray, faces: np.ndarray, boundary_edges: np.ndarray,
@@ -106,6 +117,12 @@ def boundary_quadrics(vertices: np.ndarray, faces: np.ndarray, boundary_edges: n
     They make moving a boundary vertex off its boundary line expensive, so holes keep
     their shape. ``weight`` scales them against the surface quadrics.
     """
+    scale, plane = _boundary_planes(vertices, faces, boundary_edges, boundary_faces, weight)
+    return scale[:, None, None] * plane[:, :, None] * plane[:, None, :]
+
+
+def _boundary_planes(vertices, faces, boundary_edges, boundary_faces, weight) -> tuple[np.ndarray, np.ndarray]:
+    """The scale (k,) and plane (k, 4) of each :func:`boundary_quadrics` quadric."""
     start, end = vertices[boundary_edges[:, 0]], vertices[boundary_edges[:, 1]]
     face_normal = face_cross(vertices[faces[boundary_faces]])
     direction = end - start
@@ -113,8 +130,7 @@ def boundary_quadrics(vertices: np.ndarray, faces: np.ndarray, boundary_edges: n
     length = np.linalg.norm(normal, axis=1)
     normal = normal / np.maximum(length, 1e-300)[:, None]
     plane = np.concatenate([normal, -np.einsum("ij,ij->i", normal, start)[:, None]], axis=1)
-    scale = weight * np.einsum("ij,ij->i", direction, direction)
-    return scale[:, None, None] * plane[:, :, None] * plane[:, None, :]
+    return weight * np.einsum("ij,ij->i", direction, direction), plane
 
 
 def accumulate(quadrics: np.ndarray, owners: np.ndarray, n: int) -> np.ndarray:
@@ -126,13 +142,18 @@ def accumulate(quadrics: np.ndarray, owners: np.ndarray, n: int) -> np.ndarray:
     incidence matrix (a 1 where the vertex owns the quadric) times the quadrics
     flattened to 16 columns.
     """
+    return _accumulate_rows(quadrics.reshape(len(quadrics), 16), owners, n).reshape(n, 4, 4)
+
+
+def _accumulate_rows(rows: np.ndarray, owners: np.ndarray, n: int) -> np.ndarray:
+    """(n, c) sum of the rows (k, c) each vertex owns: :func:`accumulate` for any row length."""
     from scipy import sparse      # here, not at the top: `import halfedge_edu` stays light
 
     owners = owners.reshape(len(owners), -1)                             # (k, c)
-    rows = owners.reshape(-1)
+    vertex = owners.reshape(-1)
     columns = np.repeat(np.arange(len(owners)), owners.shape[1])
-    incidence = sparse.csr_matrix((np.ones(len(rows)), (rows, columns)), shape=(n, len(owners)))
-    return np.asarray(incidence @ quadrics.reshape(len(quadrics), 16)).reshape(n, 4, 4)
+    incidence = sparse.csr_matrix((np.ones(len(vertex)), (vertex, columns)), shape=(n, len(owners)))
+    return np.asarray(incidence @ rows)
 
 
 def quadric_cost(quadric: np.ndarray, points: np.ndarray) -> np.ndarray:
@@ -214,22 +235,55 @@ def optimal_points(quadric: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[n
     crease line, at 0.6 degrees halfway, below 0.1 degrees it stays at the midpoint as
     if the region were flat.
     """
-    k = len(quadric)
-    A = _symmetric_entries(quadric[:, :3, :3])                    # six (k,) arrays
-    q = quadric.reshape(k, 16)[:, [3, 7, 11]].T.copy()            # (3, k): q by coordinate
-    midpoint = (0.5 * (a + b)).T                                  # (3, k)
-    trace = A[0] + A[1] + A[2]
+    packed = _pack_quadrics(quadric)
+    points, cost = _packed_optimal_points(packed, np.ascontiguousarray((0.5 * (a + b)).T))
+    return np.ascontiguousarray(points.T), cost
+
+
+# The rounds keep the quadrics as their ten distinct entries (the matrix is symmetric),
+# one row per entry: ``packed[:, v]`` is vertex v's quadric. Summing and gathering 10
+# numbers a vertex instead of 16 is most of the work of re-pricing edges, and
+# ``np.take`` along the rows gathers several times faster than indexing rows of an
+# (n, 16) array; the arithmetic then runs on contiguous rows.
+# Packed rows, in order: entries (00, 01, 02, 03, 11, 12, 13, 22, 23, 33).
+_PACKED_ENTRIES = [0, 1, 2, 3, 5, 6, 7, 10, 11, 15]        # their places in the flattened 4x4
+
+
+def _packed_outer(weight: np.ndarray, plane: np.ndarray) -> np.ndarray:
+    """(k, 10) the packed entries of ``weight * p p^T`` for weights (k,) and planes p (k, 4)."""
+    rows, columns = np.divmod(_PACKED_ENTRIES, 4)
+    return weight[:, None] * plane[:, rows] * plane[:, columns]
+
+
+def _pack_quadrics(quadric: np.ndarray) -> np.ndarray:
+    """(10, k) the distinct entries of k symmetric quadrics (k, 4, 4), one row per entry."""
+    return np.ascontiguousarray(quadric.reshape(len(quadric), 16)[:, _PACKED_ENTRIES].T)
+
+
+def _packed_cost(packed: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """(k,) ``[x, 1] Q [x, 1]^T`` for packed quadrics (10, k) and points (3, k): :func:`quadric_cost`."""
+    q00, q01, q02, q03, q11, q12, q13, q22, q23, q33 = packed
+    x, y, z = points
+    return (x * (q00 * x + 2.0 * (q01 * y + q02 * z + q03))
+            + y * (q11 * y + 2.0 * (q12 * z + q13))
+            + z * (q22 * z + 2.0 * q23) + q33)
+
+
+def _packed_optimal_points(packed: np.ndarray, midpoint: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`optimal_points` for packed quadrics (10, k) and edge midpoints (3, k): points (3, k), costs (k,)."""
+    q00, q01, q02, q03, q11, q12, q13, q22, q23, _ = packed        # ten (k,) rows
+    trace = q00 + q11 + q22
     # A quadric with no planes at all (zero-area faces) has A = 0 and q = 0: with
     # eps = 1 the solve below gives the midpoint, as it should.
     eps = np.where(trace > 0, PULL_TO_MIDPOINT * trace, 1.0)
-    pulled_inverse = _symmetric_inverse(A[0] + eps, A[1] + eps, A[2] + eps, A[3], A[4], A[5])
-    x = np.array(_symmetric_times(pulled_inverse, *(eps * midpoint - q)))          # (3, k)
-    for _ in range(REFINEMENT_STEPS):                  # take the pull back out where A decides
-        residual = -q - np.array(_symmetric_times(A, *x))
-        x = x + np.array(_symmetric_times(pulled_inverse, *residual))
-    points = np.ascontiguousarray(x.T)
-    return points, np.maximum(quadric_cost(quadric, points), 0.0)
-
+    pulled_inverse = _symmetric_inverse(q00 + eps, q11 + eps, q22 + eps, q01, q02, q12)
+    x = _symmetric_times(pulled_inverse, *(eps * midpoint[i] - q_i for i, q_i in enumerate((q03, q13, q23))))
+    # Taking the pull back out, x += (A + eps I)^-1 (-q - A x), is the same as
+    # x = (A + eps I)^-1 (eps x - q): one product a step instead of two.
+    for _ in range(REFINEMENT_STEPS):
+        x = _symmetric_times(pulled_inverse, eps * x[0] - q03, eps * x[1] - q13, eps * x[2] - q23)
+    x = np.array(x)                                               # (3, k)
+    return x, np.maximum(_packed_cost(packed, x), 0.0)
 
 
 class _EdgePrices:
@@ -237,39 +291,45 @@ class _EdgePrices:
 
     An edge's price depends only on its two vertices' quadrics and positions (and on
     which of them are on the boundary, which collapses do not change). So each round
-    re-prices just the edges at a vertex that moved; the others are looked up by their
-    key ``low * n + high`` in the previous round's sorted keys.
+    re-prices just the edges at a vertex that changed (moved, or merged into another);
+    the others are the previous round's edges with no changed end, in the same order:
+    both lists are sorted by key and hold the same edges, so they match one to one.
     """
 
     def __init__(self):
-        self.keys = np.empty(0, dtype=np.int64)
+        self.edges = np.empty((0, 2), dtype=np.int64)
 
-    def update(self, edges, boundary_edge, boundary_vertex, vertices, quadrics, moved, n):
-        keys = edges[:, 0] * n + edges[:, 1]                       # ascending (np.unique order)
-        stale = moved[edges[:, 0]] | moved[edges[:, 1]]
-        if len(self.keys):
-            # Take every edge's old price by its key, then overwrite the stale ones
-            # (one gather of whole arrays is cheaper than picking the fresh ones out).
-            where = np.minimum(np.searchsorted(self.keys, keys), len(self.keys) - 1)
-            stale |= self.keys[where] != keys
-            points, cost, keep = self.points[where], self.cost[where], self.keep[where]
-        else:
-            points = np.empty((len(edges), 3))
-            cost = np.empty(len(edges))
-            keep = np.empty(len(edges), dtype=np.int64)
+    def update(self, edges, boundary_edge, boundary_vertex, vertices, quadrics, changed):
+        """Prices of ``edges`` (E, 2, key order): ``(points (E, 3), cost, keep, remove)``.
+
+        ``changed`` (n,) marks the vertices moved or merged away since the last call.
+        """
+        stale = changed[edges[:, 0]] | changed[edges[:, 1]]
+        points = np.empty((len(edges), 3))
+        cost = np.empty(len(edges))
+        keep = np.empty(len(edges), dtype=np.int64)
+        if len(self.edges):
+            unchanged = np.flatnonzero(~(changed[self.edges[:, 0]] | changed[self.edges[:, 1]]))
+            fresh = np.flatnonzero(~stale)               # indices and np.take: faster than boolean masks
+            points[fresh] = np.take(self.points, unchanged, axis=0)
+            cost[fresh] = np.take(self.cost, unchanged)
+            keep[fresh] = np.take(self.keep, unchanged)
         todo = np.flatnonzero(stale)
         a, b = edges[todo, 0], edges[todo, 1]
-        quadric = quadrics[a] + quadrics[b]
-        p, c = optimal_points(quadric, vertices[a], vertices[b])
+        quadric = np.take(quadrics, a, axis=1) + np.take(quadrics, b, axis=1)        # (10, t)
+        vertex_rows = np.ascontiguousarray(vertices.T)                                 # (3, n)
+        midpoint = 0.5 * (np.take(vertex_rows, a, axis=1) + np.take(vertex_rows, b, axis=1))
+        x, c = _packed_optimal_points(quadric, midpoint)
+        p = np.ascontiguousarray(x.T)                                                 # (t, 3)
         # An interior edge with one boundary end collapses onto that end, keeping the outline.
         a_fixed = boundary_vertex[a] & ~boundary_edge[todo] & ~boundary_vertex[b]
         b_fixed = boundary_vertex[b] & ~boundary_edge[todo] & ~boundary_vertex[a]
         p[a_fixed] = vertices[a[a_fixed]]
         p[b_fixed] = vertices[b[b_fixed]]
-        pinned = a_fixed | b_fixed
-        c[pinned] = quadric_cost(quadric[pinned], p[pinned])
+        pinned = np.flatnonzero(a_fixed | b_fixed)
+        c[pinned] = _packed_cost(quadric[:, pinned], p[pinned].T)
         points[todo], cost[todo], keep[todo] = p, c, np.where(b_fixed, b, a)
-        self.keys, self.points, self.cost, self.keep = keys, points, cost, keep
+        self.edges, self.points, self.cost, self.keep = edges, points, cost, keep
         remove = np.where(keep == edges[:, 0], edges[:, 1], edges[:, 0])
         return points, cost, keep, remove
 
@@ -344,28 +404,29 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         raise ValueError(f"target_faces must be at least 1, got {target_faces}")
     max_normal_cos = float(np.cos(np.radians(max_normal_angle)))
 
-    quadrics = accumulate(face_quadrics(vertices, faces), faces, n)
-    table = edge_table(faces, n)
-    on_boundary = table.count == 1
-    if on_boundary.any():
-        boundary_faces = table.first[on_boundary] // 3                 # the one face of each
-        bq = boundary_quadrics(vertices, faces, table.edges[on_boundary], boundary_faces, boundary_weight)
-        quadrics += accumulate(bq, table.edges[on_boundary], n)      # each to both ends
+    # The vertex quadrics, packed (see _pack_quadrics) from the start: ten columns, not sixteen.
+    quadrics = _accumulate_rows(_packed_outer(*_face_planes(vertices, faces)), faces, n)       # (n, 10)
+    this_round = round_tables(faces, n)                                # the first round's tables
+    if this_round.boundary.any():
+        boundary_edges = this_round.edges[this_round.boundary]
+        boundary_faces = this_round.boundary_halfedge // 3            # the one face of each
+        planes = _boundary_planes(vertices, faces, boundary_edges, boundary_faces, boundary_weight)
+        quadrics += _accumulate_rows(_packed_outer(*planes), boundary_edges, n)   # each to both ends
+    quadrics = np.ascontiguousarray(quadrics.T)                        # (10, n)
 
     # Costs are area x distance^2 (length^4); below this they count as nothing.
     cost_floor = 1e-12 * float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0))) ** 4
     bar = _progress_bar(progress, faces_before - target_faces)
     rounds = 0
     priced = _EdgePrices()
-    moved = np.ones(n, dtype=bool)             # vertices whose price inputs changed
+    changed = np.ones(n, dtype=bool)           # vertices moved or merged away: their edges need new prices
     while len(faces) > target_faces:
         rounds += 1
-        edges, count = unique_edges(faces, n)
-        boundary_edge = count == 1
+        edges, boundary_edge, face_across = this_round.edges, this_round.boundary, this_round.face_across
         boundary_vertex = np.zeros(n, dtype=bool)
         boundary_vertex[edges[boundary_edge].reshape(-1)] = True
         degree = np.bincount(edges.reshape(-1), minlength=n)
-        points, cost, keep, remove = priced.update(edges, boundary_edge, boundary_vertex, vertices, quadrics, moved, n)
+        points, cost, keep, remove = priced.update(edges, boundary_edge, boundary_vertex, vertices, quadrics, changed)
 
         # Consider the cheapest edges only, and not many more than the faces still to go.
         faces_to_remove = len(faces) - target_faces
@@ -377,7 +438,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
             candidates = np.arange(len(edges))
         candidates = candidates[np.argsort(cost[candidates], kind="stable")]
 
-        neighbours = vertex_neighbours(edges, n)
+        faces_around, neighbours = this_round.faces_around, this_round.neighbours
 
         def check_topology(indices: np.ndarray):
             chosen_edges = candidates[indices]
@@ -385,43 +446,44 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
                                                      boundary_vertex, degree, neighbours)
             return ok, indices[owner], vertex
 
-        faces_around = vertex_faces(faces, n)
 
         def check_turned_faces(indices: np.ndarray) -> np.ndarray:
             chosen_edges = candidates[indices]
             ok = no_turned_faces(vertices, faces, faces_around, points[chosen_edges],
-                                 keep[chosen_edges], remove[chosen_edges], max_normal_cos)
+                                 keep[chosen_edges], remove[chosen_edges], max_normal_cos,
+                                 face_across=face_across)
             # Where the best point turns a face over, an endpoint may not: in a flat
             # region all three cost nothing, and moving onto a neighbour folds less
             # often than moving to the middle of a long edge. Accept an endpoint only
             # if it costs at most twice as much (or next to nothing).
-            for end in (keep, remove):
-                retry = chosen_edges[~ok]
-                if len(retry) == 0:
-                    break
-                option = vertices[end[retry]]
-                quadric = quadrics[keep[retry]] + quadrics[remove[retry]]
-                option_cost = quadric_cost(quadric, option)
-                cheap = option_cost <= 2.0 * cost[retry] + cost_floor
-                passes = np.zeros(len(retry), dtype=bool)
-                if cheap.any():
-                    passes[cheap] = no_turned_faces(
-                        vertices, faces, faces_around, option[cheap], keep[retry[cheap]],
-                        remove[retry[cheap]], max_normal_cos)
-                points[retry[passes]] = option[passes]
-                cost[retry[passes]] = option_cost[passes]
-                still_bad = np.flatnonzero(~ok)
-                ok[still_bad[passes]] = True
+            retry = chosen_edges[~ok]                                  # (r,)
+            if len(retry) == 0:
+                return ok
+            # Both endpoints in one check, the kept end's rows first; the kept end wins where both pass.
+            twice = np.concatenate([retry, retry])                     # (2r,)
+            option = vertices[np.concatenate([keep[retry], remove[retry]])]
+            quadric = np.take(quadrics, keep[twice], axis=1) + np.take(quadrics, remove[twice], axis=1)
+            option_cost = _packed_cost(quadric, option.T)
+            passes = option_cost <= 2.0 * cost[twice] + cost_floor
+            cheap = np.flatnonzero(passes)
+            passes[cheap] = no_turned_faces(vertices, faces, faces_around, option[cheap], keep[twice[cheap]],
+                                            remove[twice[cheap]], max_normal_cos, face_across=face_across)
+            r = len(retry)
+            pick = np.where(passes[:r], np.arange(r), np.arange(r) + r)    # (r,) the kept end if it passes
+            good = passes[pick]
+            points[retry[good]] = option[pick[good]]
+            cost[retry[good]] = option_cost[pick[good]]
+            ok[np.flatnonzero(~ok)[good]] = True
             return ok
 
         chosen_mask = choose_round(edges, candidates, np.ones(len(candidates), dtype=bool), n,
-                                   check_topology, check_turned_faces)
+                                   check_topology, check_turned_faces, neighbours=neighbours)
         chosen = candidates[chosen_mask]
         # Stop exactly at the target: take chosen edges in cost order until enough faces go.
         removes_faces = np.where(boundary_edge[chosen], 1, 2)
         chosen = chosen[np.cumsum(removes_faces) <= faces_to_remove]
         chosen = chosen[drop_folding_neighbours(vertices, faces, faces_around, points[chosen],
-                                                keep[chosen], remove[chosen])]
+                                                keep[chosen], remove[chosen], face_across=face_across)]
         if len(chosen) == 0:
             # Nothing passed the geometric check, or only interior collapses are left with
             # one face to go (then one more collapse is the nearest we can get).
@@ -434,11 +496,13 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
 
         keep_c, remove_c = keep[chosen], remove[chosen]
         vertices[keep_c] = points[chosen]
-        quadrics[keep_c] += quadrics[remove_c]
-        moved[:] = False
-        moved[keep_c] = True
+        quadrics[:, keep_c] += quadrics[:, remove_c]
+        changed[:] = False
+        changed[keep_c] = True
+        changed[remove_c] = True
         faces_left = len(faces)
         faces = merge_vertices(faces, remove_c, keep_c, n)
+        this_round = round_tables(faces, n)
         if bar is not None:
             bar.update(faces_left - len(faces))
 

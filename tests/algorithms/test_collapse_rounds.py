@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 
 import halfedge_edu as hx
 from halfedge_edu.algorithms.collapse_rounds import (
-    choose_round, collapse_topology_ok, independent_edges, no_turned_faces,
+    choose_round, collapse_topology_ok, drop_folding_neighbours, independent_edges, no_turned_faces, round_tables,
 )
 from halfedge_edu.core.arrays import compact, merge_vertices, unique_edges, vertex_faces, vertex_neighbours
 from tests import strategies as shapes
@@ -133,3 +133,62 @@ def test_a_round_chosen_with_the_real_checks_collapses_all_at_once_into_a_valid_
     after.validate()
     assert after.n_faces == len(faces) - int(np.where(boundary_edge[candidates[chosen]], 1, 2).sum())
     assert (after.genus, after.n_boundary_loops) == (before.genus, before.n_boundary_loops)
+
+
+def _rows(csr_pair, n):
+    """Each CSR row as a sorted list, to compare two CSRs whose rows hold the same values in any order."""
+    offsets, values = csr_pair
+    return [sorted(values[offsets[v]:offsets[v + 1]].tolist()) for v in range(n)]
+
+
+@settings(max_examples=60)
+@given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1), n_collapses=st.integers(0, 25))
+def test_round_tables_hold_what_the_array_toolbox_gives(case, seed, n_collapses):
+    vertices, faces = roughened(case, seed, n_collapses).to_arrays()
+    n = len(vertices)
+    tables = round_tables(faces, n)
+    edges, count = unique_edges(faces, n)
+    assert np.array_equal(tables.edges, edges) and np.array_equal(tables.boundary, count == 1)
+    tail, head = tables.boundary_halfedge, 3 * (tables.boundary_halfedge // 3) + (tables.boundary_halfedge + 1) % 3
+    assert np.array_equal(np.sort(faces.reshape(-1)[[tail, head]], axis=0), edges[count == 1].T)
+    assert _rows(tables.faces_around, n) == _rows(vertex_faces(faces, n), n)
+    assert _rows(tables.neighbours, n) == _rows(vertex_neighbours(edges, n), n)
+
+
+@settings(max_examples=60)
+@given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1))
+def test_the_face_across_table_gives_no_turned_faces_the_same_answers(case, seed):
+    # Random points near each edge, some far enough to turn faces over: with the table
+    # and without it (searching the faces around), every collapse gets the same verdict.
+    vertices, faces = case.vertices, case.faces
+    n = len(vertices)
+    this_round = round_tables(faces, n)
+    rng = np.random.default_rng(seed)
+    keep, remove = this_round.edges[:, 0], this_round.edges[:, 1]
+    size = float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0)))
+    points = 0.5 * (vertices[keep] + vertices[remove]) + rng.normal(scale=0.2 * size, size=(len(keep), 3))
+    around = vertex_faces(faces, n)
+    plain = no_turned_faces(vertices, faces, around, points, keep, remove, np.cos(np.radians(80.0)))
+    tabled = no_turned_faces(vertices, faces, around, points, keep, remove, np.cos(np.radians(80.0)),
+                             face_across=this_round.face_across)
+    assert np.array_equal(plain, tabled)
+
+
+@settings(max_examples=60)
+@given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1))
+def test_drop_folding_neighbours_finds_the_same_pairs_with_the_face_across_table(case, seed):
+    # A round of collapses two edges apart, each moved to a random point: the pairs of
+    # moved faces that meet across a far edge are the same whether found by sorting the
+    # far edges or by looking across them.
+    vertices, faces = case.vertices, case.faces
+    n, edges, boundary_edge, boundary_vertex, degree, neighbours = topology_inputs(vertices, faces)
+    rng = np.random.default_rng(seed)
+    picked = edges[independent_edges(edges, rng.permutation(len(edges)), edges, n)]
+    keep, remove = picked[:, 0], picked[:, 1]
+    size = float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0)))
+    points = vertices[keep] + rng.normal(scale=0.5 * size, size=(len(keep), 3))
+    around = vertex_faces(faces, n)
+    sorted_pairs = drop_folding_neighbours(vertices, faces, around, points, keep, remove)
+    looked_across = drop_folding_neighbours(vertices, faces, around, points, keep, remove,
+                                            face_across=round_tables(faces, n).face_across)
+    assert np.array_equal(sorted_pairs, looked_across)
