@@ -384,7 +384,7 @@ def run_class(n: int, *, steps: int = 20, step_interval: float = 1.0, rotate_sec
             for student, seconds in zip(members, spawned):
                 student.spawn_s = seconds
             log(f"[{n} students] spawned: median {statistics.median(spawned):.1f} s")
-            list(pool.map(lambda s: run_chapter(hub, s, timeout, live_backend), members))
+            list(pool.map(lambda s: run_chapter(hub, s, timeout), members))
             log(f"[{n} students] chapter 03 ran: median {statistics.median(s.chapter_s for s in members):.1f} s")
             for student in members:
                 student.pss_mib, student.kernel_pss_mib, student.rss_mib = memory(student.home)
@@ -404,42 +404,11 @@ def run_class(n: int, *, steps: int = 20, step_interval: float = 1.0, rotate_sec
         shutil.rmtree(state, ignore_errors=True)
 
 
-# The two changes proposed for halfedge_edu/viz (see the report of issue 14), applied
-# inside the kernel while the package does not make them itself, so that
-# ``--live-backend client`` measures exactly them:
-# 1. renderer.View.__init__ adds "mode": live_backend.trame_mode() to its jupyter_kwargs;
-# 2. widgets.SceneWidget._repr_mimebundle_ adds its "image/png" picture only when the
-#    view is not the client one (pyvista refuses a screenshot of a plotter whose client
-#    view never rendered it on the server, so without this, displaying a widget raises).
-PROPOSED_READ_POINT = """
-import pyvista
-from halfedge_edu import live_backend as _live_backend
-from halfedge_edu.viz import widgets as _widgets
-_show, _bundle = pyvista.Plotter.show, _widgets.SceneWidget._repr_mimebundle_
-def _show_with_setting(self, *args, **kwargs):
-    if kwargs.get("jupyter_backend") == "trame":
-        kwargs["jupyter_kwargs"] = dict(kwargs.get("jupyter_kwargs") or {}, mode=_live_backend.trame_mode())
-    return _show(self, *args, **kwargs)
-def _bundle_without_server_picture(self, include=None, exclude=None):
-    if not self.scene.plotter.suppress_rendering:
-        return _bundle(self, include=include, exclude=exclude)
-    return dict(self.widget._repr_mimebundle_(include=include, exclude=exclude), **{"text/plain": self.describe()})
-pyvista.Plotter.show, _widgets.SceneWidget._repr_mimebundle_ = _show_with_setting, _bundle_without_server_picture
-"""
-
-
-def renderer_reads_the_setting() -> bool:
-    """True once halfedge_edu/viz/renderer.py chooses the live backend from the setting."""
-    return "live_backend" in (ROOT / "halfedge_edu" / "viz" / "renderer.py").read_text()
-
-
-def run_chapter(hub: Hub, student: Student, timeout: float, live_backend: str) -> None:
+def run_chapter(hub: Hub, student: Student, timeout: float) -> None:
     """Open chapter 03 as JupyterLab does (a session) and run every code cell."""
     path = f"course/{CHAPTER}"
     cells = chapter_cells(hub.state / student.name / path)
     student.kernel = Kernel(hub, student.name, path, timeout=60)
-    if live_backend != "server" and not renderer_reads_the_setting():
-        student.kernel.execute(PROPOSED_READ_POINT, timeout=120)
     start = time.monotonic()
     for code in cells:
         student.kernel.execute(code, timeout=max(1.0, timeout - (time.monotonic() - start)))

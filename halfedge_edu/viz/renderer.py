@@ -93,9 +93,14 @@ class View:
         else:
             # A collapsed menu is one small button in the corner; the full toolbar would
             # cover the top ~60 px of the view, where the highlighted halfedge may be.
+            trame_mode = live_backend.trame_mode()
             self.widget = scene.plotter.show(
-                jupyter_backend="trame", return_viewer=True, jupyter_kwargs={"collapse_menu": True, "mode": live_backend.trame_mode()}
+                jupyter_backend="trame", return_viewer=True, jupyter_kwargs={"collapse_menu": True, "mode": trame_mode}
             )
+            if trame_mode == "client":
+                # The browser fetches the scene's arrays after it loads the view, which
+                # may be long after the last step: keep them (see live_backend).
+                live_backend.keep_scene_arrays(self.widget.viewer)
         self.update()
 
     def update(self) -> None:
