@@ -169,18 +169,22 @@ def start_hub(state: Path, live_backend: str, timeout: float) -> Hub:
                                    env=env, stdout=out, stderr=subprocess.STDOUT, start_new_session=True)
     hub = Hub(url=f"http://127.0.0.1:{port}", token=token, process=process, state=state, log=log)
     deadline = time.monotonic() + timeout
-    while True:
-        if process.poll() is not None:
-            raise BenchError(f"jupyterhub exited with status {process.returncode}:\n{hub.log_tail()}")
-        try:
-            hub.api("GET", "/", timeout=5)
-            return hub
-        except (urllib.error.URLError, OSError):
-            pass
-        if time.monotonic() > deadline:
-            stop_hub(hub)
-            raise BenchError(f"jupyterhub did not answer within {timeout:.0f} s:\n{hub.log_tail()}")
-        time.sleep(0.5)
+    try:
+        while True:
+            if process.poll() is not None:
+                raise BenchError(f"jupyterhub exited with status {process.returncode}:\n{hub.log_tail()}")
+            try:
+                hub.api("GET", "/", timeout=5)
+                return hub
+            except (urllib.error.URLError, OSError):
+                pass
+            if time.monotonic() > deadline:
+                raise BenchError(f"jupyterhub did not answer within {timeout:.0f} s:\n{hub.log_tail()}")
+            time.sleep(0.5)
+    except BaseException:
+        # Also on Ctrl-C while waiting: a hub left running keeps its ports and proxy.
+        stop_hub(hub)
+        raise
 
 
 def stop_hub(hub: Hub) -> None:

@@ -74,6 +74,11 @@ def keep_scene_arrays(viewer) -> None:
     _guard_array_cache(viewer.server)
 
 
+# The hashes each view's scene names, by the scene's state key: (that scene, its hashes).
+# A scene is replaced, never changed in place, so its hashes are listed once.
+_SCENE_HASHES: dict[str, tuple[dict, frozenset[str]]] = {}
+
+
 def shown_array_hashes(server) -> set[str]:
     """The hashes of the data arrays named by the current scene of every open client-side
     viewer on ``server``: what a browser may still ask for."""
@@ -85,8 +90,13 @@ def shown_array_hashes(server) -> set[str]:
             continue
         for view in viewer.views:
             key = _scene_state_key(view)
-            if key is not None and server.state.has(key):
-                hashes.update(entry["hash"] for entry in extract_array_hash(server.state[key]))
+            if key is None or not server.state.has(key):
+                continue
+            scene = server.state[key]
+            listed = _SCENE_HASHES.get(key)
+            if listed is None or listed[0] is not scene:
+                listed = _SCENE_HASHES[key] = (scene, frozenset(entry["hash"] for entry in extract_array_hash(scene)))
+            hashes |= listed[1]
     return hashes
 
 

@@ -108,11 +108,11 @@ class View:
         if self.mode == "static":
             self.widget.value = self.scene.screenshot()
         else:
+            # trame-pyvista's views follow the plotter's renders (a render callback sends
+            # the new frame, or the new scene to vtk.js), so one render is the whole
+            # update. Calling the viewer's update() as well did all of it twice (measured
+            # with trame-pyvista 0.2.3: four scene serialisations a step instead of two).
             self.scene.render()
-            # trame's remote view sends a new frame on update(); a local view syncs itself.
-            update = getattr(getattr(self.widget, "viewer", None), "update", None)
-            if callable(update):
-                update()
 
 
 def prepare_plotter(look, window_size: tuple[int, int], plotter=None):
