@@ -33,7 +33,8 @@ loop counted. Timings on a shared machine are noisy: the table says how loaded i
 (the load average at the start of each N), and a sweep should be read by its medians.
 
 ``--live-backend`` sets ``HALFEDGE_EDU_LIVE_BACKEND`` for every student through the hub
-(``server``: the kernel renders, today's default; ``client``: vtk.js in the browser).
+(``client``: vtk.js draws in the browser, the recipes' default, see
+deploy/singleuser-start.sh; ``server``: the kernel renders, as ``make lab`` does).
 """
 
 from __future__ import annotations
@@ -370,7 +371,7 @@ class ClassResult:
 
 
 def run_class(n: int, *, steps: int = 20, step_interval: float = 1.0, rotate_seconds: float = 5.0,
-              browsers: int = 2, live_backend: str = "server", timeout: float = 900.0,
+              browsers: int = 2, live_backend: str = "client", timeout: float = 900.0,
               screenshots: Path | None = None, log=print) -> ClassResult:
     """Everything the module docstring lists, for ``n`` students; always stops the hub."""
     state = Path(tempfile.mkdtemp(prefix=f"halfedge-class-{n}-"))
@@ -618,7 +619,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--step-interval", type=float, default=1.0, help="seconds between a student's clicks")
     parser.add_argument("--rotate-seconds", type=float, default=5.0, help="how long to drag each live view")
     parser.add_argument("--browsers", type=int, default=2, help="students whose live view Chromium opens")
-    parser.add_argument("--live-backend", choices=("server", "client"), default="server",
+    parser.add_argument("--live-backend", choices=("server", "client"), default="client",
                         help="HALFEDGE_EDU_LIVE_BACKEND for every student")
     parser.add_argument("--timeout", type=float, default=900.0, help="seconds any one phase may take")
     parser.add_argument("--screenshots", type=Path, help="folder for the live views' screenshots")
