@@ -33,7 +33,8 @@ loop counted. Timings on a shared machine are noisy: the table says how loaded i
 (the load average at the start of each N), and a sweep should be read by its medians.
 
 ``--live-backend`` sets ``HALFEDGE_EDU_LIVE_BACKEND`` for every student through the hub
-(``server``: the kernel renders, today's default; ``client``: vtk.js in the browser).
+(``client``: vtk.js draws in the browser, the recipes' default, see
+deploy/singleuser-start.sh; ``server``: the kernel renders, as ``make lab`` does).
 """
 
 from __future__ import annotations
@@ -169,18 +170,22 @@ def start_hub(state: Path, live_backend: str, timeout: float) -> Hub:
                                    env=env, stdout=out, stderr=subprocess.STDOUT, start_new_session=True)
     hub = Hub(url=f"http://127.0.0.1:{port}", token=token, process=process, state=state, log=log)
     deadline = time.monotonic() + timeout
-    while True:
-        if process.poll() is not None:
-            raise BenchError(f"jupyterhub exited with status {process.returncode}:\n{hub.log_tail()}")
-        try:
-            hub.api("GET", "/", timeout=5)
-            return hub
-        except (urllib.error.URLError, OSError):
-            pass
-        if time.monotonic() > deadline:
-            stop_hub(hub)
-            raise BenchError(f"jupyterhub did not answer within {timeout:.0f} s:\n{hub.log_tail()}")
-        time.sleep(0.5)
+    try:
+        while True:
+            if process.poll() is not None:
+                raise BenchError(f"jupyterhub exited with status {process.returncode}:\n{hub.log_tail()}")
+            try:
+                hub.api("GET", "/", timeout=5)
+                return hub
+            except (urllib.error.URLError, OSError):
+                pass
+            if time.monotonic() > deadline:
+                raise BenchError(f"jupyterhub did not answer within {timeout:.0f} s:\n{hub.log_tail()}")
+            time.sleep(0.5)
+    except BaseException:
+        # Also on Ctrl-C while waiting: a hub left running keeps its ports and proxy.
+        stop_hub(hub)
+        raise
 
 
 def stop_hub(hub: Hub) -> None:
@@ -366,7 +371,7 @@ class ClassResult:
 
 
 def run_class(n: int, *, steps: int = 20, step_interval: float = 1.0, rotate_seconds: float = 5.0,
-              browsers: int = 2, live_backend: str = "server", timeout: float = 900.0,
+              browsers: int = 2, live_backend: str = "client", timeout: float = 900.0,
               screenshots: Path | None = None, log=print) -> ClassResult:
     """Everything the module docstring lists, for ``n`` students; always stops the hub."""
     state = Path(tempfile.mkdtemp(prefix=f"halfedge-class-{n}-"))
@@ -384,7 +389,7 @@ def run_class(n: int, *, steps: int = 20, step_interval: float = 1.0, rotate_sec
             for student, seconds in zip(members, spawned):
                 student.spawn_s = seconds
             log(f"[{n} students] spawned: median {statistics.median(spawned):.1f} s")
-            list(pool.map(lambda s: run_chapter(hub, s, timeout, live_backend), members))
+            list(pool.map(lambda s: run_chapter(hub, s, timeout), members))
             log(f"[{n} students] chapter 03 ran: median {statistics.median(s.chapter_s for s in members):.1f} s")
             for student in members:
                 student.pss_mib, student.kernel_pss_mib, student.rss_mib = memory(student.home)
@@ -404,42 +409,11 @@ def run_class(n: int, *, steps: int = 20, step_interval: float = 1.0, rotate_sec
         shutil.rmtree(state, ignore_errors=True)
 
 
-# The two changes proposed for halfedge_edu/viz (see the report of issue 14), applied
-# inside the kernel while the package does not make them itself, so that
-# ``--live-backend client`` measures exactly them:
-# 1. renderer.View.__init__ adds "mode": live_backend.trame_mode() to its jupyter_kwargs;
-# 2. widgets.SceneWidget._repr_mimebundle_ adds its "image/png" picture only when the
-#    view is not the client one (pyvista refuses a screenshot of a plotter whose client
-#    view never rendered it on the server, so without this, displaying a widget raises).
-PROPOSED_READ_POINT = """
-import pyvista
-from halfedge_edu import live_backend as _live_backend
-from halfedge_edu.viz import widgets as _widgets
-_show, _bundle = pyvista.Plotter.show, _widgets.SceneWidget._repr_mimebundle_
-def _show_with_setting(self, *args, **kwargs):
-    if kwargs.get("jupyter_backend") == "trame":
-        kwargs["jupyter_kwargs"] = dict(kwargs.get("jupyter_kwargs") or {}, mode=_live_backend.trame_mode())
-    return _show(self, *args, **kwargs)
-def _bundle_without_server_picture(self, include=None, exclude=None):
-    if not self.scene.plotter.suppress_rendering:
-        return _bundle(self, include=include, exclude=exclude)
-    return dict(self.widget._repr_mimebundle_(include=include, exclude=exclude), **{"text/plain": self.describe()})
-pyvista.Plotter.show, _widgets.SceneWidget._repr_mimebundle_ = _show_with_setting, _bundle_without_server_picture
-"""
-
-
-def renderer_reads_the_setting() -> bool:
-    """True once halfedge_edu/viz/renderer.py chooses the live backend from the setting."""
-    return "live_backend" in (ROOT / "halfedge_edu" / "viz" / "renderer.py").read_text()
-
-
-def run_chapter(hub: Hub, student: Student, timeout: float, live_backend: str) -> None:
+def run_chapter(hub: Hub, student: Student, timeout: float) -> None:
     """Open chapter 03 as JupyterLab does (a session) and run every code cell."""
     path = f"course/{CHAPTER}"
     cells = chapter_cells(hub.state / student.name / path)
     student.kernel = Kernel(hub, student.name, path, timeout=60)
-    if live_backend != "server" and not renderer_reads_the_setting():
-        student.kernel.execute(PROPOSED_READ_POINT, timeout=120)
     start = time.monotonic()
     for code in cells:
         student.kernel.execute(code, timeout=max(1.0, timeout - (time.monotonic() - start)))
@@ -645,7 +619,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--step-interval", type=float, default=1.0, help="seconds between a student's clicks")
     parser.add_argument("--rotate-seconds", type=float, default=5.0, help="how long to drag each live view")
     parser.add_argument("--browsers", type=int, default=2, help="students whose live view Chromium opens")
-    parser.add_argument("--live-backend", choices=("server", "client"), default="server",
+    parser.add_argument("--live-backend", choices=("server", "client"), default="client",
                         help="HALFEDGE_EDU_LIVE_BACKEND for every student")
     parser.add_argument("--timeout", type=float, default=900.0, help="seconds any one phase may take")
     parser.add_argument("--screenshots", type=Path, help="folder for the live views' screenshots")

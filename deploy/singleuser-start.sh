@@ -15,11 +15,27 @@
 #   twice (/user/NAME/user/NAME/proxy/...) and the live view stayed an error page.
 # PYVISTA_JUPYTER_BACKEND=static is NOT set: that is for CI only and would turn every live
 # view into a picture. A hub short of memory may set HALFEDGE_EDU_VIZ=static instead.
+#
+# Memory and CPU of each student's kernel (issue 14; a value already set wins):
+# - HALFEDGE_EDU_LIVE_BACKEND=client: the live 3D views are drawn by vtk.js in the
+#   browser, so the kernel keeps no render window per widget and rotating costs it
+#   nothing. Labels are not drawn in that view and vertices are squares; a hub that
+#   wants them sets HALFEDGE_EDU_LIVE_BACKEND=server (jupyterhub_config.py passes it on).
+# - MALLOC_MMAP_THRESHOLD_ and MALLOC_TRIM_THRESHOLD_ (glibc): blocks of 128 KiB and more
+#   go back to the system when freed (a closed scene's render window, a step's
+#   temporary arrays) instead of staying in the kernel's heap; 20-25 MiB less per
+#   kernel after chapter 03, measured.
+# - LP_NUM_THREADS: Mesa's software renderer starts one thread per core of the machine,
+#   each with its own buffers; a student has one CPU (the spawner's cpu_limit).
 set -euo pipefail
 
 export VTK_DEFAULT_OPENGL_WINDOW=vtkEGLRenderWindow
 export VTK_WASM_DIR_OVERRIDE="${VTK_WASM_DIR_OVERRIDE:-$HOME/.cache/halfedge_edu/vtk-wasm-empty}"
 export PYVISTA_TRAME_SERVER_PROXY_PREFIX="/proxy/"
+export HALFEDGE_EDU_LIVE_BACKEND="${HALFEDGE_EDU_LIVE_BACKEND:-client}"
+export MALLOC_MMAP_THRESHOLD_="${MALLOC_MMAP_THRESHOLD_:-131072}"
+export MALLOC_TRIM_THRESHOLD_="${MALLOC_TRIM_THRESHOLD_:-131072}"
+export LP_NUM_THREADS="${LP_NUM_THREADS:-1}"
 mkdir -p "$VTK_WASM_DIR_OVERRIDE"
 
 # Each student's own copy of the chapters, from the installed package; files already

@@ -19,6 +19,7 @@ register every backend name without a mode; measured with trame-pyvista 0.2.3).
 from __future__ import annotations
 
 import os
+import weakref
 
 ENV_VARIABLE = "HALFEDGE_EDU_LIVE_BACKEND"
 # The setting's values and trame-pyvista's view mode for each: "trame" is the view the
@@ -40,3 +41,102 @@ def trame_mode(setting: str | None = None) -> str:
     if chosen not in TRAME_MODES:
         raise ValueError(f"{source}={setting!r}: use 'server' or 'client'")
     return TRAME_MODES[chosen]
+
+
+# --------------------------------------------------------------------------- client views
+#
+# Why a client-side view can lose its mesh (measured with trame-vtk 2.11.17, VTK 9.7):
+# the scene a browser loads names each data array by a hash, and the browser fetches the
+# arrays afterwards (RPC ``viewport.geometry.array.get``). trame-vtk keeps those arrays in
+# a cache shared by every view of the kernel and, whenever any view sends a new scene,
+# drops the entries older than 20 s that nothing else references. A mesh's cells are
+# converted to a fresh array for every scene (``vtkCellArray.ExportLegacyFormat``), which
+# only that cache references: 20 s after a view was last updated, the next update of any
+# other view (a step of another widget) deletes its cells. A browser that then loads the
+# view (the cell is shown, scrolled back into sight, the page is reloaded) asks for them,
+# gets "Exception raised" (JSON-RPC error -32001) and draws no mesh.
+#
+# The fix: an array stays in the cache while the current scene of an open client-side
+# view still names it; the rest is released as trame-vtk would.
+
+# The trame-pyvista viewers of open client-side views (held weakly).
+_CLIENT_VIEWERS: weakref.WeakSet = weakref.WeakSet()
+
+
+def keep_scene_arrays(viewer) -> None:
+    """Keep the data arrays that ``viewer``'s views name in the kernel until they change.
+
+    ``viewer`` is the trame-pyvista viewer of a client-side live view
+    (``plotter.show(..., return_viewer=True).viewer``). Its arrays are kept while its
+    plotter is open; the viewer is held weakly.
+    """
+    _CLIENT_VIEWERS.add(viewer)
+    _guard_array_cache(viewer.server)
+
+
+# The hashes each view's scene names, by the scene's state key: (that scene, its hashes).
+# A scene is replaced, never changed in place, so its hashes are listed once.
+_SCENE_HASHES: dict[str, tuple[dict, frozenset[str]]] = {}
+
+
+def shown_array_hashes(server) -> set[str]:
+    """The hashes of the data arrays named by the current scene of every open client-side
+    viewer on ``server``: what a browser may still ask for."""
+    from trame_vtk.modules.vtk.serializers import extract_array_hash
+
+    hashes: set[str] = set()
+    for viewer in list(_CLIENT_VIEWERS):
+        if viewer.server is not server or viewer.plotter.render_window is None:
+            continue
+        for view in viewer.views:
+            key = _scene_state_key(view)
+            if key is None or not server.state.has(key):
+                continue
+            scene = server.state[key]
+            listed = _SCENE_HASHES.get(key)
+            if listed is None or listed[0] is not scene:
+                listed = _SCENE_HASHES[key] = (scene, frozenset(entry["hash"] for entry in extract_array_hash(scene)))
+            hashes |= listed[1]
+    return hashes
+
+
+def _scene_state_key(view) -> str | None:
+    """The trame state entry that holds a local view's scene (``scene_<ref>``)."""
+    return getattr(view, "_VtkLocalView__scene_id", None)
+
+
+def _array_cache_context(server):
+    """trame-vtk's geometry-delivery context on ``server`` (its array cache), or None
+    before the server is ready."""
+    from trame_vtk.modules.vtk.protocols import vtkWebLocalRendering
+
+    protocol = server.protocol
+    if protocol is None:
+        return None
+    for link in protocol.getLinkProtocols():
+        if isinstance(link, vtkWebLocalRendering):
+            return link.context
+    return None
+
+
+def _guard_array_cache(server) -> None:
+    """Make ``server``'s array cache spare the arrays of shown scenes (once per server);
+    before the server is ready, do it when it is."""
+    context = _array_cache_context(server)
+    if context is None:
+        server.controller.on_server_ready.add(lambda **_: _guard_array_cache(server))
+        return
+    if getattr(context, "halfedge_edu_guarded", False):
+        return
+    release = context.check_for_arrays_to_release
+
+    def release_unshown_arrays(time_window: float = 20) -> None:
+        kept = {digest: context.data_array_cache.pop(digest)
+                for digest in shown_array_hashes(server) if digest in context.data_array_cache}
+        try:
+            release(time_window)
+        finally:
+            context.data_array_cache.update(kept)
+
+    context.check_for_arrays_to_release = release_unshown_arrays
+    context.halfedge_edu_guarded = True

@@ -68,17 +68,29 @@ def gib(text: str) -> float:
     return float(number) / (1024 if unit == "M" else 1)
 
 
-def test_shared_start_script_sets_the_live_environment_and_copies_the_course(tmp_path):
-    env = {key: value for key, value in os.environ.items() if not key.startswith(("PYVISTA_", "VTK_", "HALFEDGE_EDU_"))}
-    env.update(HOME=str(tmp_path), JUPYTERHUB_SERVICE_PREFIX="/user/ann/",
-               PATH=os.path.dirname(sys.executable) + os.pathsep + env.get("PATH", ""))
+# What deploy/singleuser-start.sh sets for a student's kernel's memory and CPU (see its comments).
+MEMORY_SETTINGS = {"HALFEDGE_EDU_LIVE_BACKEND": "client", "MALLOC_MMAP_THRESHOLD_": "131072",
+                   "MALLOC_TRIM_THRESHOLD_": "131072", "LP_NUM_THREADS": "1"}
+
+
+def run_start_script(home: Path, **preset: str) -> dict:
+    """The environment a command started through deploy/singleuser-start.sh sees, plus the
+    live view's address prefix pyvista builds (``view_prefix``)."""
+    env = {key: value for key, value in os.environ.items()
+           if not key.startswith(("PYVISTA_", "VTK_", "HALFEDGE_EDU_")) and key not in MEMORY_SETTINGS}
+    env.update(HOME=str(home), JUPYTERHUB_SERVICE_PREFIX="/user/ann/",
+               PATH=os.path.dirname(sys.executable) + os.pathsep + env.get("PATH", ""), **preset)
     result = subprocess.run(
         [str(START), sys.executable, "-c", "import json, os, pyvista; print(json.dumps(dict(os.environ, "
          "view_prefix=pyvista.global_theme.trame.server_proxy_prefix)))"],
         capture_output=True, text=True, env=env, timeout=120,
     )
     assert result.returncode == 0, result.stderr
-    started = json.loads(result.stdout.splitlines()[-1])
+    return json.loads(result.stdout.splitlines()[-1])
+
+
+def test_shared_start_script_sets_the_live_environment_and_copies_the_course(tmp_path):
+    started = run_start_script(tmp_path)
     # The prefix the live view's address is built with: the user's own, once.
     assert started.pop("view_prefix") == "/user/ann/proxy/"
     assert started["VTK_DEFAULT_OPENGL_WINDOW"] == re.search(r"VTK_DEFAULT_OPENGL_WINDOW=(\S+)", MAKEFILE).group(1)
@@ -86,10 +98,18 @@ def test_shared_start_script_sets_the_live_environment_and_copies_the_course(tmp
     assert wasm.is_dir() and not any(wasm.iterdir())
     assert "PYVISTA_JUPYTER_BACKEND" not in started, "a hub keeps the live view (static is for CI)"
     assert len(list((tmp_path / "course").glob("[0-9][0-9]*_*.ipynb"))) == len(list((ROOT / "notebooks").glob("[0-9][0-9]*_*.ipynb")))
+    assert {name: started[name] for name in MEMORY_SETTINGS} == MEMORY_SETTINGS
+
+
+def test_start_script_keeps_memory_settings_the_hub_already_chose(tmp_path):
+    chosen = {"HALFEDGE_EDU_LIVE_BACKEND": "server", "LP_NUM_THREADS": "2", "MALLOC_MMAP_THRESHOLD_": "262144"}
+    started = run_start_script(tmp_path, **chosen)
+    assert {name: started[name] for name in chosen} == chosen
+    assert started["MALLOC_TRIM_THRESHOLD_"] == MEMORY_SETTINGS["MALLOC_TRIM_THRESHOLD_"]
 
 
 def test_start_script_sets_the_makefiles_variables_and_the_proxy_prefix():
-    exported = set(re.findall(r"^export (\w+)=", START.read_text(), flags=re.M))
+    exported = set(re.findall(r"^export (\w+)=", START.read_text(), flags=re.M)) - set(MEMORY_SETTINGS)
     makefile_variables = set(re.findall(r"\b(VTK_\w+|PYVISTA_\w+)=", MAKEFILE))
     # Every headless/lab variable of the Makefile except the CI-only static backend.
     assert exported == makefile_variables - {"PYVISTA_JUPYTER_BACKEND"} | {"PYVISTA_TRAME_SERVER_PROXY_PREFIX"}

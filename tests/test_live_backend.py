@@ -31,3 +31,64 @@ def test_a_wrong_value_names_the_variable_and_the_value(monkeypatch):
         live_backend.trame_mode()
     with pytest.raises(ValueError, match=r"setting='gpu'"):
         live_backend.trame_mode("gpu")
+
+
+# A client-side view's arrays in a real kernel (trame runs only inside one). The kernel
+# prints one JSON line; trame-vtk's own release rule is applied with time_window=-1, i.e.
+# as if every cached array were older than its 20 s window.
+KEEPS_SHOWN_ARRAYS = r"""
+import json
+import halfedge_edu as hx
+from halfedge_edu import live_backend
+from halfedge_edu.viz import HalfedgeExplorer
+from trame_vtk.modules.vtk.serializers import extract_array_hash
+
+def shown(explorer):
+    viewer = explorer.view.widget.viewer
+    key = live_backend._scene_state_key(next(iter(viewer.views)))
+    return {entry["hash"] for entry in extract_array_hash(viewer.server.state[key])}
+
+def cached(hashes):
+    return sorted(digest for digest in hashes if digest in context.data_array_cache)
+
+explorer = HalfedgeExplorer(hx.sample("open_patch"), halfedge=7)
+context = live_backend._array_cache_context(explorer.view.widget.viewer.server)
+first = shown(explorer)
+explorer.go("next")
+explorer.go("twin")
+now = shown(explorer)
+other = HalfedgeExplorer(hx.sample("cube"), halfedge=0)
+other.go("next")     # another view's update: where trame-vtk releases arrays
+context.check_for_arrays_to_release(time_window=-1)
+print(json.dumps({"first": len(first), "now": len(now), "now_cached": len(cached(now)),
+                  "old": len(first - now - shown(other)), "old_cached": len(cached(first - now - shown(other)))}))
+"""
+
+
+def test_a_client_view_keeps_the_arrays_its_scene_names_and_releases_the_old_ones(tmp_path):
+    import json
+    import os
+
+    from jupyter_client.manager import start_new_kernel
+
+    env = {name: value for name, value in os.environ.items() if name != "PYVISTA_JUPYTER_BACKEND"}
+    env.update(HALFEDGE_EDU_LIVE_BACKEND="client", HALFEDGE_EDU_VIZ="live")
+    manager, client = start_new_kernel(kernel_name="python3", env=env, cwd=str(tmp_path))
+    printed, errors = [], []
+
+    def collect(message):
+        if message["header"]["msg_type"] == "stream":
+            printed.append(message["content"]["text"])
+        elif message["header"]["msg_type"] == "error":
+            errors.append("\n".join(message["content"]["traceback"]))
+
+    try:
+        client.execute_interactive(KEEPS_SHOWN_ARRAYS, output_hook=collect, timeout=240)
+    finally:
+        manager.shutdown_kernel(now=True)
+    assert not errors, errors[0]
+    counts = json.loads("".join(printed).strip().splitlines()[-1])
+    # Everything the view's current scene names can still be fetched by a browser ...
+    assert counts["now"] > 0 and counts["now_cached"] == counts["now"], counts
+    # ... while the cell arrays of the scenes before the two steps were released.
+    assert counts["old"] > 0 and counts["old_cached"] == 0, counts

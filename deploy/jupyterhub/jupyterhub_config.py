@@ -51,8 +51,10 @@ c.Spawner.default_url = "/lab/tree/course"
 # CI), Jupyter refuses to start without this. SystemdSpawner's students are never root.
 if c.JupyterHub.spawner_class == "simple" and os.geteuid() == 0:
     c.Spawner.args = ["--ServerApp.allow_root=True"]
-# Measured (issue 14): 470-530 MiB per student kernel after chapter 03, about 200 MiB of
-# it the first live 3D view; rotating it costs up to a core while dragging.
+# Measured (issue 14, benchmarks/bench_class.py, PSS after chapter 03): with the views
+# drawn in the browser (the default) about 350-380 MiB per student, server plus kernel,
+# and nothing while a student rotates a view; with HALFEDGE_EDU_LIVE_BACKEND=server
+# 450-490 MiB and up to a core while dragging. RSS stays under 700 MiB either way.
 c.Spawner.mem_limit = "1G"
 c.Spawner.mem_guarantee = "512M"
 c.Spawner.cpu_limit = 1.0
@@ -60,8 +62,10 @@ c.Spawner.cpu_guarantee = 0.25
 c.Spawner.start_timeout = 120
 c.Spawner.http_timeout = 120
 
-# The live 3D view for everyone: "server" (the kernel renders; default) or "client"
-# (vtk.js draws in the browser). See README, "Deploying for a class".
+# The live 3D view for everyone: deploy/singleuser-start.sh makes it "client" (vtk.js
+# draws in the browser); HALFEDGE_EDU_LIVE_BACKEND=server in the hub's environment gives
+# everyone the kernel-rendered view instead (labels drawn; more memory and CPU). See
+# README, "Deploying for a class".
 if "HALFEDGE_EDU_LIVE_BACKEND" in os.environ:
     c.Spawner.environment = {"HALFEDGE_EDU_LIVE_BACKEND": os.environ["HALFEDGE_EDU_LIVE_BACKEND"]}
 

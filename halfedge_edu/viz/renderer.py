@@ -93,9 +93,14 @@ class View:
         else:
             # A collapsed menu is one small button in the corner; the full toolbar would
             # cover the top ~60 px of the view, where the highlighted halfedge may be.
+            trame_mode = live_backend.trame_mode()
             self.widget = scene.plotter.show(
-                jupyter_backend="trame", return_viewer=True, jupyter_kwargs={"collapse_menu": True, "mode": live_backend.trame_mode()}
+                jupyter_backend="trame", return_viewer=True, jupyter_kwargs={"collapse_menu": True, "mode": trame_mode}
             )
+            if trame_mode == "client":
+                # The browser fetches the scene's arrays after it loads the view, which
+                # may be long after the last step: keep them (see live_backend).
+                live_backend.keep_scene_arrays(self.widget.viewer)
         self.update()
 
     def update(self) -> None:
@@ -103,11 +108,11 @@ class View:
         if self.mode == "static":
             self.widget.value = self.scene.screenshot()
         else:
+            # trame-pyvista's views follow the plotter's renders (a render callback sends
+            # the new frame, or the new scene to vtk.js), so one render is the whole
+            # update. Calling the viewer's update() as well did all of it twice (measured
+            # with trame-pyvista 0.2.3: four scene serialisations a step instead of two).
             self.scene.render()
-            # trame's remote view sends a new frame on update(); a local view syncs itself.
-            update = getattr(getattr(self.widget, "viewer", None), "update", None)
-            if callable(update):
-                update()
 
 
 def prepare_plotter(look, window_size: tuple[int, int], plotter=None):

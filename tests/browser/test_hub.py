@@ -4,9 +4,12 @@ The hub of deploy/jupyterhub/jupyterhub_config.py on 127.0.0.1 spawns two studen
 servers through its REST API (deploy/singleuser-start.sh copies the course), runs
 chapter 03 in both kernels at once, steps the bunny explorer in both, and then opens
 both students' live 3D views through the hub in headless Chromium: each must be drawn,
-move its arrow on a click of ``next`` and turn when dragged. What the benchmark
-measures on the way (memory, step latency, CPU) is checked for being measured at all;
-its size is the benchmark's business, not a pass/fail line on a shared machine.
+move its arrow on a click of ``next`` and turn when dragged. The live views are the
+recipes' default, drawn by vtk.js in the browser (``make lab``'s server-rendered view
+has its own browser tests). What the benchmark measures on the way (memory, step
+latency, CPU) is checked for being measured at all; its size is the benchmark's
+business, not a pass/fail line on a shared machine. The one exception: a view drawn in
+the browser turns without the student's server, so dragging costs it (almost) no CPU.
 """
 
 from __future__ import annotations
@@ -47,7 +50,7 @@ def hub_setup(chromium_executable):
 def test_two_students_run_chapter_03_and_see_their_live_views_through_the_hub(hub_setup, screenshot_dir):
     bench = hub_setup
     result = bench.run_class(2, steps=STEPS, step_interval=0.5, rotate_seconds=2.0, browsers=2,
-                             timeout=600, screenshots=screenshot_dir)
+                             live_backend="client", timeout=600, screenshots=screenshot_dir)
     print(bench.table([result.row()]))
     assert [student.name for student in result.members] == ["student00", "student01"]
     for student in result.members:
@@ -61,7 +64,8 @@ def test_two_students_run_chapter_03_and_see_their_live_views_through_the_hub(hu
         assert "failed" not in view, view
         assert view["click_changed"] >= bench.MIN_CHANGED_SHARE, view
         assert view["rotate_changed"] >= bench.MIN_CHANGED_SHARE, view
-        assert view["drag_events"] > 0 and view["rotate_cpu_per_s"] >= 0
+        # Under 50 ms of CPU a second of dragging (server-rendered: 0.17-0.49, measured).
+        assert view["drag_events"] > 0 and 0 <= view["rotate_cpu_per_s"] < 0.05, view
         for shot in ("0-drawn", "1-next", "2-rotated"):
             assert (screenshot_dir / f"{view['student']}-{shot}.png").stat().st_size > 0
     row = result.row()
