@@ -29,7 +29,7 @@ from collections.abc import Callable, Iterable, Mapping
 import numpy as np
 
 from .actors import Actors
-from .arrows import ArrowLayer, drawable, halfedge_corners
+from .arrows import POINTS_PER_ARROW, ArrowLayer, drawable, halfedge_corners
 from .camera import Camera
 from .geometry import SceneGeometry
 from .highlights import Highlight
@@ -124,6 +124,25 @@ class HalfedgeScene:
     def drawn_halfedges(self) -> np.ndarray:
         """(k,) the halfedges that currently have an arrow."""
         return self._arrows.halfedges.copy()
+
+    def drawn_edges(self) -> np.ndarray:
+        """(k, 2) the vertex pairs drawn as edge lines now, each pair sorted, no repeats:
+        the outlines of the surface as built, the local faces' edges as their halfedges'
+        ``.vertex`` pointers are now, and on a large mesh the edges near the highlight."""
+        pairs = [self._local_edge_ends]
+        if self.windowed:
+            pairs.append(self._window_edge_ends)
+        else:
+            static = self._static_faces
+            pairs += [static[:, [0, 1]], static[:, [1, 2]], static[:, [2, 0]]]
+        pairs = np.sort(np.concatenate(pairs).astype(np.int64), axis=1)
+        return np.unique(pairs, axis=0) if len(pairs) else pairs.reshape(0, 2)
+
+    @property
+    def arrow_points(self) -> np.ndarray:
+        """(k, 7, 3) the points of each arrow, in the order of :attr:`drawn_halfedges`
+        (see :mod:`.arrows` for the seven points of one arrow)."""
+        return self._arrows.points().reshape(-1, POINTS_PER_ARROW, 3).copy()
 
     @property
     def arrow_colors(self) -> np.ndarray:
@@ -264,6 +283,8 @@ class HalfedgeScene:
         live_faces = self._geometry.live_faces
         corners = mesh.face_vertices()[live_faces]                          # (F, 3)
         static = ~np.isin(live_faces, self._local_faces)
+        self._static_faces = corners[static]                                 # (S, 3) drawn with outlines
+        self._window_edge_ends = np.zeros((0, 2), dtype=np.int64)
         surface = pv.PolyData.from_regular_faces(np.array(mesh.positions), corners[static])
         add = self._actors.add
         add("surface", surface, color=look.surface, show_edges=not self.windowed,
@@ -271,9 +292,14 @@ class HalfedgeScene:
             specular=0.0, smooth_shading=False)
         placeholder = pv.PolyData(np.zeros((3, 3)), faces=[3, 0, 1, 2])
         placeholder.cell_data["rgb"] = np.zeros((1, 3), dtype=np.uint8)
-        add("local_surface", placeholder.copy(), scalars="rgb", rgb=True, show_edges=True,
-            edge_color=look.edge, line_width=look.edge_width, ambient=0.5, diffuse=0.5,
-            specular=0.0, show_scalar_bar=False)
+        # The local faces are filled without outlines: their edges are drawn as lines from
+        # the halfedges' own ends ("local_edges"), so a half rewired face never shows an
+        # edge the pointers do not have yet (the flip's new diagonal before its .vertex
+        # pointers change).
+        add("local_surface", placeholder.copy(), scalars="rgb", rgb=True, show_edges=False,
+            ambient=0.5, diffuse=0.5, specular=0.0, show_scalar_bar=False)
+        add("local_edges", pv.PolyData(np.zeros((2, 3)), lines=[2, 0, 1]),
+            color=look.edge, line_width=look.edge_width, lighting=False)
         add("highlight_faces", placeholder.copy(), scalars="rgb", rgb=True,
             ambient=0.5, diffuse=0.5, specular=0.0, show_scalar_bar=False)
         add("arrows", placeholder.copy(), scalars="rgb", rgb=True, lighting=False, show_scalar_bar=False)
@@ -299,6 +325,7 @@ class HalfedgeScene:
         self._geometry.clear_local()
         if len(faces) == 0:
             self._actors.set("local_surface", None)
+            self._draw_local_edges(np.zeros(0, dtype=np.int64))
             return
         h0 = mesh.face_halfedge[faces]
         valid = h0 >= 0
@@ -323,6 +350,26 @@ class HalfedgeScene:
         data.cell_data["rgb"] = np.where(valid[:, None], rgb(look.surface), rgb(look.rewiring_face)).astype(np.uint8)
         self._actors.set("local_surface", data)
         self._geometry.set_local(mesh, faces, corners)
+        self._draw_local_edges(np.unique(corners))
+
+    def _draw_local_edges(self, corners: np.ndarray) -> None:
+        """Fill "local_edges" with every live edge that has an end in ``corners``, from its
+        halfedges' ``.vertex`` pointers as they are now."""
+        import pyvista as pv
+
+        mesh = self.mesh
+        self._local_edge_ends = np.zeros((0, 2), dtype=np.int64)
+        if len(corners) == 0:
+            self._actors.set("local_edges", None)
+            return
+        ends = mesh.edge_vertices()                                        # (E, 2)
+        near = np.isin(ends, corners).any(axis=1) & ~mesh.edge_deleted & (ends >= 0).all(axis=1)
+        self._local_edge_ends = ends[near]
+        if not near.any():
+            self._actors.set("local_edges", None)
+            return
+        cells = np.hstack([np.full((int(near.sum()), 1), 2), self._local_edge_ends]).ravel()
+        self._actors.set("local_edges", pv.PolyData(np.asarray(mesh.positions, dtype=np.float64), lines=cells))
 
     # ----------------------------------------------------------------------------------
     # Updating (every highlight change)
@@ -345,6 +392,7 @@ class HalfedgeScene:
                 inside, window = ring_window(mesh, seeds, self.rings)
             self._arrows.draw(mesh, window, self._geometry.scale)
             ends = mesh.edge_vertices()[np.unique(window >> 1)]             # (k, 2)
+            self._window_edge_ends = ends
             lines = pv.PolyData(mesh.positions, lines=np.hstack([np.full((len(ends), 1), 2), ends]).ravel())
             self._actors.set("window_edges", lines)
             self._actors.set("vertices", pv.PolyData(mesh.positions[inside]))

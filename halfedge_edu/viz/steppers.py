@@ -240,14 +240,17 @@ class OperationStepper(StepperWidget):
         third = np.where(((face < 0) & (opposite >= 0))[:, None], A + B - third, third)
         # Half way through its change an arrow may get the same ends and side as another
         # one (the flip's h0 lies on h5 at step 1) and hide under it: the one half way
-        # through is drawn further inside its face, so the change stays in sight.
+        # through is drawn further inside its face, so the change stays in sight. Its
+        # whole triangle slides toward the third corner (across the edge, not along it),
+        # so the arrow keeps its length and its head.
         between = ~after_match & ~before_match
         key = np.stack([origin, tip, opposite], axis=1)                   # (k, 3)
         _, group, count = np.unique(key, axis=0, return_inverse=True, return_counts=True)
-        hidden = between & (count[group.ravel()] > 1) & (opposite >= 0)
-        A = np.where(hidden[:, None], A + OVERLAP_INSET * (third - A), A)
-        B = np.where(hidden[:, None], B + OVERLAP_INSET * (third - B), B)
-        return A, B, third
+        hidden = (between & (count[group.ravel()] > 1) & (opposite >= 0))[:, None]
+        along = unit(B - A)                                                # (k, 3)
+        across = (third - A) - ((third - A) * along).sum(axis=1)[:, None] * along
+        shift = np.where(hidden, OVERLAP_INSET * across, 0.0)              # (k, 3)
+        return A + shift, B + shift, third + shift
 
     def _face_corners(self, faces):
         """Corners for faces that are half rewired: their triangle after, else before."""
@@ -476,7 +479,8 @@ class OperationStepper(StepperWidget):
 
 #: Rows of the change table shown at once (see OperationStepper._table_window).
 TABLE_WINDOW = 12
-#: How far toward its face's third corner an arrow is moved when it would lie on another.
+#: How far across its edge, toward its face's third corner, an arrow is moved when it
+#: would lie on another (a fraction of the distance from the edge to that corner).
 OVERLAP_INSET = 0.3
 
 

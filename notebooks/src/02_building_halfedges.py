@@ -129,35 +129,46 @@ import ipywidgets as widgets
 
 from halfedge_edu.viz import on_main_thread
 
-step_scene = HalfedgeScene(two, window_size=(560, 400))
-step_slider = widgets.IntSlider(value=1, min=1, max=len(story), description="step",
-                                layout=widgets.Layout(width="560px"))
-step_text = widgets.Textarea(disabled=True, rows=2, layout=widgets.Layout(width="560px"))
-step_picture = widgets.Image(format="png")
+
+def step_through():
+    """A slider over the steps of ``story`` with the step's text and picture.
+
+    Returns (slider, text, scene, box): ``box`` is what is displayed.
+    """
+    scene = HalfedgeScene(two, window_size=(560, 400))
+    slider = widgets.IntSlider(value=1, min=1, max=len(story), description="step",
+                               layout=widgets.Layout(width="560px"))
+    text = widgets.Textarea(disabled=True, rows=2, layout=widgets.Layout(width="560px"))
+    picture = widgets.Image(format="png")
+
+    def show_step(change=None):
+        """Highlight the halfedge of this step and those made before it."""
+        k = slider.value
+        current = story[k - 1][0]
+        made = sorted({h for h, _ in story[: k - 1]} - {current})
+        scene.set_roles({"current": [current], "created": made})
+        text.value = f"{k}. {story[k - 1][1]}"
+        picture.value = scene.screenshot()
+
+    # A slider move from the browser arrives on another thread; the redraw runs on the main one.
+    slider.observe(on_main_thread(show_step), names="value")
+    show_step()
+    return slider, text, scene, widgets.VBox([slider, text, picture])
 
 
-def show_step(change=None):
-    """Highlight the halfedge of this step and those made before it."""
-    k = step_slider.value
-    current = story[k - 1][0]
-    made = sorted({h for h, _ in story[: k - 1]} - {current})
-    step_scene.set_roles({"current": [current], "created": made})
-    step_text.value = f"{k}. {story[k - 1][1]}"
-    step_picture.value = step_scene.screenshot()
-
-
-# A slider move from the browser arrives on another thread; the redraw runs on the main one.
-step_slider.observe(on_main_thread(show_step), names="value")
-show_step()
-widgets.VBox([step_slider, step_text, step_picture])
+step_slider, step_text, step_scene, step_box = step_through()
+step_box
 
 # %% [markdown]
-# The slider can also be moved from code, which is how this notebook checks itself:
+# The slider can also be moved from code, which is how this notebook checks itself. The
+# check moves a second slider of its own (never shown), so the one above stays where
+# you leave it:
 
 # %%
-step_slider.value = 4
-print(step_text.value)
-print(step_scene.describe())
+check_slider, check_text, check_scene, _ = step_through()
+check_slider.value = 4
+print(check_text.value)
+print(check_scene.describe())
 
 # %% [markdown]
 # ## Twins and edges for free
@@ -261,14 +272,16 @@ explorer
 
 # %% [markdown]
 # Driven from code, the same moves as three clicks on **next** and then one on
-# **twin** and one on **next** (the boundary loop):
+# **twin** and one on **next** (the boundary loop), on a second explorer of our own
+# (never shown), so the one above stays at halfedge 0 until you click:
 
 # %%
-explorer.go("next.next.next")
-print(explorer.describe())
-explorer.go("twin")
-explorer.go("next")
-print(explorer.describe())
+walker = HalfedgeExplorer(two, halfedge=0, mode="static")   # never shown: no live view
+walker.go("next.next.next")
+print(walker.describe())
+walker.go("twin")
+walker.go("next")
+print(walker.describe())
 
 # %% [markdown]
 # ## The readable loop and the fast build agree

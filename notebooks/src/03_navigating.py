@@ -73,26 +73,28 @@ explorer = HalfedgeExplorer(patch, halfedge=7)
 explorer
 
 # %% [markdown]
-# The same moves from code. Three `next`s bring you back, because a face is a loop of
-# three halfedges:
+# The same moves from code, on a second explorer of our own (never shown), so the one
+# above stays where your clicks leave it. Three `next`s bring you back, because a face
+# is a loop of three halfedges:
 
 # %%
-explorer.go("next")
-explorer.go("next")
-explorer.go("next")
-print(explorer.describe())
+walker = HalfedgeExplorer(patch, halfedge=7, mode="static")   # never shown: no live view
+walker.go("next")
+walker.go("next")
+walker.go("next")
+print(walker.describe())
 
 # %% [markdown]
 # Now down to the rim. Face 0 is the bottom-left triangle `[0, 1, 5]`; its bottom side
 # runs along the edge of the patch, so its `twin` has nowhere to go but outside:
 
 # %%
-explorer.go(2)             # jump to halfedge 2: vertex 1 -> 5, in face 0
-explorer.go("prev")        # the bottom side of face 0: 0 -> 1
-explorer.go("twin")        # across the edge: nothing there but the outside
-print(explorer.describe())
-explorer.go("next")        # along the rim
-print(explorer.describe())
+walker.go(2)               # jump to halfedge 2: vertex 1 -> 5, in face 0
+walker.go("prev")          # the bottom side of face 0: 0 -> 1
+walker.go("twin")          # across the edge: nothing there but the outside
+print(walker.describe())
+walker.go("next")          # along the rim
+print(walker.describe())
 
 # %% [markdown]
 # ## Around a face
@@ -179,12 +181,17 @@ print("same neighbours:", sorted(cw) == sorted(ccw), "| reversed order after the
 ring_viewer = OneRingViewer(patch, vertex=5)
 ring_viewer
 
+# %% [markdown]
+# From code, on a second viewer of our own (never shown), so the one above stays at
+# vertex 5 until you turn it: two steps counter-clockwise, then one back.
+
 # %%
-ring_viewer.go("ccw")
-ring_viewer.go("ccw")
-print(ring_viewer.describe())
-ring_viewer.go("cw")
-print(ring_viewer.describe().splitlines()[-1])
+ring_walker = OneRingViewer(patch, vertex=5, mode="static")   # never shown: no live view
+ring_walker.go("ccw")
+ring_walker.go("ccw")
+print(ring_walker.describe())
+ring_walker.go("cw")
+print(ring_walker.describe().splitlines()[-1])
 
 # %% [markdown]
 # ## On the boundary

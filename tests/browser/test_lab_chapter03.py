@@ -30,6 +30,7 @@ MIN_COLOURS = 64            # distinct colours; a blank or one-colour frame has 
 # changed by more than CHANGED_LEVEL in some channel.
 CHANGED_LEVEL = 40
 MIN_CHANGED_SHARE = 0.002   # 0.2 % of the view (the arrows are thin)
+STILL_FOR = 1.0             # seconds a button must stand still before it is clicked
 
 
 def as_array(png: bytes) -> np.ndarray:
@@ -49,6 +50,32 @@ def changed_share(a: np.ndarray, b: np.ndarray) -> float:
     if a.shape != b.shape:
         return 1.0
     return float((np.abs(a - b).max(axis=2) > CHANGED_LEVEL).mean())
+
+
+def click_in_place(button, timeout: float = FRAME_TIMEOUT) -> None:
+    """Click ``button`` once it is in view and has stopped moving.
+
+    JupyterLab (4.x, windowing mode "contentVisibility", the default) lays out the cells
+    out of view with an estimated height and measures them once they scroll into view,
+    so the page shifts just after a scroll. Playwright's ``click`` scrolls a button into
+    view and then sends the mouse to where the button was: after such a shift the mouse
+    events land elsewhere (measured: none of them reached the notebook's document, the
+    view's iframe took them), no click fires and the kernel never hears of it. That was
+    issue 11's "first click of a fresh Lab session is lost": the first click is the one
+    that scrolls. Scrolling first and waiting until the button stands still for
+    ``STILL_FOR`` seconds removes the race.
+    """
+    button.scroll_into_view_if_needed(timeout=timeout * 1000)
+    last = {"box": None, "since": time.monotonic()}
+
+    def standing_still() -> bool:
+        box, now = button.bounding_box(), time.monotonic()
+        if box != last["box"]:
+            last.update(box=box, since=now)
+        return box is not None and now - last["since"] >= STILL_FOR
+
+    wait_for(standing_still, timeout, "the button to stop moving after the scroll", interval=0.25)
+    button.click(timeout=timeout * 1000)
 
 
 def wait_for(condition, timeout: float, what: str, interval: float = 0.5):
@@ -195,19 +222,13 @@ def _drive_chapter03(page, lab, shots: Path, console: list[str]) -> None:
     noise = changed_share(before, again)
     assert noise < MIN_CHANGED_SHARE / 4, f"the view changes by itself ({noise:.2%} of pixels)"
 
-    # Known open problem (issue 11, measured 2026-11-25): in a fresh Lab session the very
-    # first widget click after "run all" is lost (the kernel never runs it; the second
-    # click works). Until that is fixed, one harmless click ("go to" the current halfedge)
-    # comes first, so that this test checks what every later click does.
-    explorer.output.get_by_role("button", name="go to", exact=True).click()
-    time.sleep(3)
-    assert explorer.current_halfedge() == start, "'go to' the current halfedge moved the explorer"
-
+    # The first click of the session must take effect (issue 11): "next" is the first
+    # thing done to the explorer after "run all", with no warm-up click before it.
     expected = start
     for step, move in enumerate(["next", "twin"], start=1):
         expected = getattr(patch.halfedge(expected), move).index
         trail_before = explorer.trail()
-        explorer.output.get_by_role("button", name=move, exact=True).click()
+        click_in_place(explorer.output.get_by_role("button", name=move, exact=True))
         wait_for(lambda: explorer.current_halfedge() == expected, 30,
                  f"the pointer table to show h = {expected} after '{move}'")
         assert explorer.trail() != trail_before and explorer.trail().endswith(f"-{move}-> h{expected}")

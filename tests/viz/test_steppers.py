@@ -10,6 +10,8 @@ from PIL import Image
 
 from halfedge_edu.data import sample
 from halfedge_edu.core.ops import OperationLog, split
+from halfedge_edu.viz.arrows import HEAD, typical_edge_length
+from halfedge_edu.viz.palette import ROLES, rgb
 from halfedge_edu.viz.steppers import CollapseAtlas, CollapseStepper, FlipStepper, SplitStepper, group_changes
 
 ARRAYS = ("halfedge_next", "halfedge_prev", "halfedge_vertex", "halfedge_face", "vertex_halfedge", "face_halfedge")
@@ -233,14 +235,76 @@ def test_a_step_that_fails_to_draw_leaves_the_widget_where_it_was(flip_stepper, 
     assert flip_stepper.screenshot() == picture
 
 
-def test_an_arrow_half_way_through_its_change_does_not_hide_under_another(closing):
+def _pointer_edges(mesh) -> set[tuple[int, int]]:
+    """The live edges as the halfedges' ``.vertex`` pointers have them now: sorted vertex pairs."""
+    ends = mesh.edge_vertices()[~mesh.edge_deleted]
+    ends = ends[(ends >= 0).all(axis=1)]
+    return {tuple(sorted(int(v) for v in pair)) for pair in ends}
+
+
+def _drawn_edges(widget) -> set[tuple[int, int]]:
+    return {(int(a), int(b)) for a, b in widget.scene.drawn_edges()}
+
+
+def test_flip_pictures_draw_the_diagonal_only_when_its_pointers_have_it(closing):
+    # The strip's edge 1 is the diagonal v0-v1 = (1, 2) of the quadrilateral (0, 1, 3, 2);
+    # the flip turns it into (0, 3). Step 1 moves h0's origin, step 2 h1's.
+    widget = FlipStepper(sample("strip"), 1, mode="static")
+    closing(widget)
+    old, new = (1, 2), (0, 3)
+    # The faces being rewired are filled without outlines: every line is one of drawn_edges.
+    assert not widget.scene.plotter.actors["local_surface"].prop.show_edges
+    seen = {}
+    for step in range(widget.n_steps + 1):
+        widget.go(step)
+        drawn = _drawn_edges(widget)
+        assert drawn == _pointer_edges(widget.state), f"step {step}"
+        seen[step] = (old in drawn, new in drawn)
+    assert seen[0] == (True, False)
+    assert seen[1] == (False, False)          # half turned: edge 1 lies along v3-v1, no diagonal yet
+    assert all(seen[step] == (False, True) for step in range(2, widget.n_steps + 1))
+
+
+@pytest.mark.parametrize("make", [
+    lambda: SplitStepper(sample("open_patch"), 12, mode="static"),
+    lambda: SplitStepper(sample("strip"), 0, mode="static"),
+    lambda: CollapseStepper(sample("cube"), 0, mode="static"),
+], ids=["split-inside", "split-boundary", "collapse"])
+def test_every_step_draws_the_edges_its_pointers_have(closing, make):
+    widget = make()
+    closing(widget)
+    for step in range(widget.n_steps + 1):
+        widget.go(step)
+        assert _drawn_edges(widget) == _pointer_edges(widget.state), f"step {step}"
+
+
+def _changed_pixels(widget) -> int:
+    picture = np.asarray(Image.open(io.BytesIO(widget.screenshot())).convert("RGB"), dtype=np.int16)
+    changed = np.array(rgb(ROLES["changed"].color), dtype=np.int16)
+    return int((np.abs(picture - changed).max(axis=2) < 30).sum())
+
+
+def test_the_arrow_that_changes_at_flip_step_1_is_drawn_apart_and_in_full(closing):
     widget = FlipStepper(sample("strip"), 1, mode="static")
     closing(widget)
     widget.go(1)                              # halfedge 2 (h0) now leaves v3: it runs along h5
-    assert widget.scene.roles["changed"].tolist() == [2]
-    halfedges = np.asarray(widget.scene.drawn_halfedges)
-    A, B, _ = widget._arrow_corners(widget.state, halfedges)
+    scene = widget.scene
+    assert scene.roles["changed"].tolist() == [2]
+    halfedges = scene.drawn_halfedges
+    assert 2 in halfedges
     k = int(np.flatnonzero(halfedges == 2)[0])
-    on_top = [int(h) for j, h in enumerate(halfedges)
-              if j != k and np.allclose(A[j], A[k]) and np.allclose(B[j], B[k])]
-    assert on_top == []
+    assert tuple(scene.arrow_colors[k]) == tuple(rgb(ROLES["changed"].color))
+    points = scene.arrow_points                                       # (n, 7, 3)
+    head = 2 * HEAD * typical_edge_length(widget.state)
+    middle = points[k, [0, 5]].mean(axis=0)                           # half way from tail to tip
+    for j, h in enumerate(halfedges):
+        if j == k:
+            continue
+        tail, tip = points[j, 0], points[j, 5]
+        t = np.clip((middle - tail) @ (tip - tail) / ((tip - tail) @ (tip - tail)), 0.0, 1.0)
+        gap = float(np.linalg.norm(middle - (tail + t * (tip - tail))))
+        assert gap > head, f"the arrow of halfedge 2 lies on that of halfedge {h} ({gap:.3f} apart)"
+    # As long as a changed arrow that hides nothing: step 2 changes h1, which lies free.
+    at_step_1 = _changed_pixels(widget)
+    widget.go(2)
+    assert at_step_1 >= 0.6 * _changed_pixels(widget)
