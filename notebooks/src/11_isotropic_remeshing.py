@@ -194,7 +194,8 @@ print("degrees after flipping it:           ", {k: flipped.vertex(v.index).degre
 # **Convention: for every vertex `p`, compute the centroid `c` of its neighbours, all
 # of them first, from the old positions. Then move each interior vertex by
 # `s - (s · n) n`, where `s = c - p` and `n` is the unit, area-weighted vertex normal.
-# Boundary vertices stay put.**
+# Boundary vertices stay put.** (The library's remesher does one better and slides
+# them along the boundary; section 10.)
 #
 # Chapter 05's Laplacian smoothing moves `p` all the way to `c`. On a curved surface
 # `c` lies *inside* the surface (the centroid of points on a sphere is inside the
@@ -253,7 +254,8 @@ print(f"after 20 plain Laplacian steps:     {mean_radius(hx.smooth(before, 20)):
 # vertex at the midpoint of a *chord*, and a tangential step is straight, not curved.
 # Each step is small, but over many iterations the mesh would drift. So after each
 # smoothing, the library moves every vertex to the nearest point of the *input*
-# mesh (and a boundary vertex to the nearest point of the input's boundary). That is
+# mesh (a boundary vertex to the nearest point of the input's boundary, a vertex on a
+# crease to the nearest point of that crease: section 10). That is
 # why the `project` rows of the table barely change: the moves are a few hundredths
 # of L.
 

@@ -270,8 +270,9 @@ Image(histograms(list(trips.values()), list(trips), L_spot))
 # - **Resample** makes by far the best triangles (none below 30°, the narrowest spread
 #   of lengths), with a mean distance as small as up-then-down. Its *largest* distance
 #   is the largest of the three, though: at the tips of the horns and ears the
-#   remesher's smoothing rounds the surface off (it does not detect sharp features, as
-#   chapter 11 warned), and projection cannot restore a tip that no vertex sits on.
+#   remesher's smoothing rounds the surface off. A tip is a point, not a crease, so the
+#   feature rules of chapter 11 do not hold it, and projection cannot restore a tip
+#   that no vertex sits on.
 
 # %% [markdown]
 # ## 5. What each operation does, in one table
@@ -282,7 +283,7 @@ Image(histograms(list(trips.values()), list(trips), L_spot))
 # | Laplacian smoothing | shrinks, more with every step | much better angles and lengths | kept |
 # | Loop subdivision | smoother, a little inside (approximating) | copies the parent's angles at first | kept; V' = V + E, F' = 4F |
 # | quadric simplification | best for a given face count | ignored: slivers appear | kept |
-# | isotropic remeshing | close to the input (projection) | near equilateral, degree 6 | kept; boundaries kept |
+# | isotropic remeshing | close to the input (projection); creases kept | near equilateral, degree 6 | kept; boundaries kept |
 #
 # So when you need *both*, combine: an operation that gets the shape right, then one
 # that fixes the triangles without moving off the surface.
@@ -390,17 +391,18 @@ Image(histograms(list(answers.values()), list(answers), L_B))
 
 # %% [markdown] tags=["solution"]
 # **B** (remesh alone) and **C** (simplify, then remesh) give near-equilateral
-# triangles: no face below 30°, degrees near 6, lengths near L. Simplification alone
+# triangles: hardly a face below 30° (the few are next to the creases the remesher
+# keeps, where vertices may not move freely), degrees near 6, lengths near L. Simplification alone
 # (**A**) and **D** keep the shape best, but leave close to 40% of the faces below 30°.
 # The triangles are what the game engine asked for, so the remeshed versions win.
 #
 # They are not free: their mean distance to Spot is about three times that of A, and
 # the largest (at the tips of the horns and ears, rounded off by the smoothing) is
-# half of L or more. Between B and C there is little to choose. B projects onto the
-# original Spot, so it is a little closer; C projects onto the simplified Spot and
-# inherits its error, but on a huge input it is the practical order: simplification is
-# cheap and gets the size right, and a few remeshing iterations then fix the
-# triangles. If the horns mattered more than the triangles, you would now try a
+# about half of L. Between B and C there is little to choose. B projects onto the
+# original Spot, C onto the simplified one, whose error it inherits; here C comes out
+# no farther, because simplification has already put its vertices where the shape
+# needs them. On a huge input C is the practical order: simplification is cheap and
+# gets the size right, and a few remeshing iterations then fix the triangles. If the horns mattered more than the triangles, you would now try a
 # smaller L near them, which is where this course hands over to the research papers.
 
 # %% [markdown]
