@@ -213,10 +213,11 @@ def _refuse_pillows(faces: np.ndarray, n_vertices: int, face_lines, source) -> N
     is refused here, naming both faces. (Two faces in the *same* order share directed
     edges, which :func:`build_arrays` reports; a pillow whose edges or corners touch
     other faces is non-manifold and reported there too.) Only faces whose three corners
-    each have exactly two faces can form a lone pillow, so only those are compared.
+    each have exactly two faces can form a lone pillow, so only those are compared, and
+    only when there are three such vertices at all (most meshes have none).
     """
     two_faces = np.bincount(faces.ravel(), minlength=n_vertices) == 2    # (n,) vertices with exactly two
-    if np.count_nonzero(two_faces) < 3:                                  # a pillow needs three of them
+    if np.count_nonzero(two_faces) < 3:
         return
     candidates = np.flatnonzero(two_faces[faces].all(axis=1))           # (k,) usually none
     if len(candidates) < 2:
@@ -458,7 +459,7 @@ def build_arrays(
     pair_start = np.flatnonzero(same_as_next)                 # (P,) where each shared edge's run begins
     del same_as_next
     first_p = order[pair_start]                               # (P,) first use of each shared edge
-    second_p = order[pair_start + 1]                          # (P,) second use (first_p < second_p)
+    second_p = order[1:][pair_start]                          # (P,) second use (first_p < second_p)
     del order, pair_start
 
     # Pass 2, the numbering. Edges are numbered in order of first appearance: the
@@ -619,7 +620,7 @@ def ring_steps_total(start: np.ndarray, halfedge_prev: np.ndarray) -> int:
 
     The sum of :func:`~halfedge_edu.core.rings.ring_lengths`, without keeping a length
     per walk: every vertex walks in lockstep, and each step adds how many walks are
-    still going. That is all the fan checks need (all walks together must meet every
+    still going. That is all the fan checks need (the walks together must meet every
     halfedge), and it saves a scattered write per step. Finished walks are dropped only
     once a quarter of them have finished, since dropping copies the arrays.
 
