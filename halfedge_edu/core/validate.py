@@ -152,7 +152,7 @@ def _every_rule_holds(mesh: "HalfedgeMesh") -> bool:
       block of halfedges is still in the cache, with no index array per rule.
     * twin-involution compares each halfedge's origin with its twin's, which sits next
       to it in memory (``h ^ 1``): no gather at all.
-    * vertex-manifold sums the walks' lengths (:func:`ring_steps_total`).
+    * vertex-manifold sums the walks' lengths (:func:`~.build.ring_steps_total`).
 
     False means some rule is broken; :func:`validate` then runs the rules one by one to
     say which. A mesh with deleted or isolated elements never comes here.
