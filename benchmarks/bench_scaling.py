@@ -1,8 +1,8 @@
 """Scaling: time per face of the main operations at 10k, 100k, 1M (and 5M) faces.
 
-    python benchmarks/bench_scaling.py            # 10k, 100k, 1M faces (about 5 minutes)
+    python benchmarks/bench_scaling.py            # 10k, 100k, 1M faces (2 min on a quiet machine)
     python benchmarks/bench_scaling.py --quick    # 10k and 100k faces
-    python benchmarks/bench_scaling.py --full     # and 5M faces (about 15 minutes, ~6 GiB)
+    python benchmarks/bench_scaling.py --full     # and 5M faces (not timed yet: 10+ min, GiBs)
 
 If the cost grows linearly with the mesh, the time per face stays the same from row to
 row: each cell prints microseconds per input face and, beside it, that time over the
