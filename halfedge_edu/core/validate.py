@@ -36,6 +36,7 @@ from typing import TYPE_CHECKING, Callable
 import numpy as np
 
 from .arrays import undirected_keys
+from .build import ring_steps_total
 from .errors import MeshInputError, MeshInvariantError
 from .rings import ring_lengths
 
@@ -96,6 +97,12 @@ def validate(mesh: "HalfedgeMesh") -> None:
     if isolated.any():
         isolated[origin[~np.repeat(edge_deleted, 2)]] = False
 
+    # The common case, a mesh with every slot live: all rules at once, in a few passes.
+    # Only if one of them fails do the rules run one by one, to name the first broken
+    # rule and element.
+    if not garbage and not isolated.any() and _every_rule_holds(mesh):
+        return
+
     # Which elements to check: every slot when nothing is deleted or isolated (no gather
     # needed), otherwise the live ones, as index arrays.
     if garbage or isolated.any():
@@ -127,6 +134,70 @@ def validate(mesh: "HalfedgeMesh") -> None:
 
     # ---- duplicate-edge ---------------------------------------------------------------
     _no_duplicate_edges(origin, None if hs is None else np.flatnonzero(~edge_deleted), n_v)
+
+
+#: Halfedges checked per block in :func:`_every_rule_holds`: a block's temporaries (a few
+#: arrays of this many int32) stay in the cache while the rules read them.
+_BLOCK = 1 << 18
+
+
+def _every_rule_holds(mesh: "HalfedgeMesh") -> bool:
+    """True when every rule of the table holds, on a mesh whose slots are all live.
+
+    The same conditions as the rule-by-rule checks, in fewer passes over memory:
+
+    * deleted-reference is a range check: two reductions per pointer array.
+    * The rules that look one step ahead (next-prev-inverse, next-origin, next-cycle)
+      gather each value they need at ``next(h)`` once, and all of them read it while a
+      block of halfedges is still in the cache, with no index array per rule.
+    * twin-involution compares each halfedge's origin with its twin's, which sits next
+      to it in memory (``h ^ 1``): no gather at all.
+    * vertex-manifold sums the walks' lengths (:func:`~.build.ring_steps_total`).
+
+    False means some rule is broken; :func:`validate` then runs the rules one by one to
+    say which. A mesh with deleted or isolated elements never comes here.
+    """
+    n_v, n_h, n_f = mesh.n_vertex_slots, mesh.n_halfedge_slots, mesh.n_face_slots
+    nxt, prv, origin, face = mesh.halfedge_next, mesh.halfedge_prev, mesh.halfedge_vertex, mesh.halfedge_face
+    vertex_he, face_he = mesh.vertex_halfedge, mesh.face_halfedge
+
+    # ---- deleted-reference: every pointer in range -----------------------------------
+    for values, lowest, size in ((nxt, 0, n_h), (prv, 0, n_h), (origin, 0, n_v), (face, -1, n_f),
+                                 (face_he, 0, n_h), (vertex_he, 0, n_h)):
+        if len(values) and (values.min() < lowest or values.max() >= size):
+            return False
+
+    # ---- next-prev-inverse, twin-involution, next-origin, next-cycle ---------------------
+    for start in range(0, n_h, _BLOCK):                       # start and block length are even
+        block = slice(start, start + _BLOCK)
+        h_next, h_prev, h_face, h_origin = nxt[block], prv[block], face[block], origin[block]
+        h = np.arange(start, start + len(h_next), dtype=h_next.dtype)
+        h_tip = h_origin.reshape(-1, 2)[:, ::-1].reshape(-1)  # (k,) origin of the twin h ^ 1: where h ends
+        at_next = h_next.astype(np.intp)                      # numpy indexes with intp: convert once, not per gather
+        ok = prv[at_next] == h                                # next-prev-inverse
+        ok &= h_origin != h_tip                               # twin-involution
+        ok &= origin[at_next] == h_tip                        # next-origin
+        ok &= face[at_next] == h_face                         # next-cycle: same face (or both boundary)
+        ok &= (h_face < 0) | ((nxt[at_next] == h_prev) & (h_next != h))  # next-cycle: a triangle
+        if not ok.all():
+            return False
+
+    # ---- face-halfedge, edge-halfedge, vertex-halfedge-origin, boundary-vertex-halfedge --
+    if not np.array_equal(face[face_he], np.arange(n_f, dtype=face.dtype)):
+        return False
+    if (np.maximum(face[0::2], face[1::2]) < 0).any():
+        return False
+    if not np.array_equal(origin[vertex_he], np.arange(n_v, dtype=origin.dtype)):
+        return False
+    boundary_origins = origin[face < 0]
+    if (face[vertex_he[boundary_origins]] >= 0).any():
+        return False
+
+    # ---- vertex-manifold, then duplicate-edge (which raises itself) ----------------------
+    if ring_steps_total(vertex_he, prv) != n_h:
+        return False
+    _no_duplicate_edges(origin, None, n_v)
+    return True
 
 
 def _no_duplicate_edges(origin: np.ndarray, edges: np.ndarray | None, n_v: int) -> None:

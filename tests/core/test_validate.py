@@ -8,6 +8,7 @@ first, and checks the error's ``rule``, ``element`` and that the sentence names 
 from __future__ import annotations
 
 import re
+from unittest import mock
 
 import numpy as np
 import pytest
@@ -439,3 +440,42 @@ def test_the_local_and_the_full_check_agree_after_random_operations(drawn, steps
         array = POINTERS[field](mesh)
         array[h] = array[int(np.flatnonzero(~mesh.halfedge_deleted)[value % mesh.n_halfedges])]
     assert _raises(lambda: validate_module.validate_around(mesh, **touched)) == _raises(mesh.validate)
+
+
+# ---- the whole-mesh fast path and the rule-by-rule checks agree ------------------------------
+
+ALL_POINTERS = dict(POINTERS, vertex_halfedge=lambda mesh: mesh.vertex_halfedge,
+                    face_halfedge=lambda mesh: mesh.face_halfedge)
+
+
+@given(
+    drawn=meshes(),
+    field=st.sampled_from(sorted(ALL_POINTERS)),
+    where=st.integers(0, 10**6),
+    value=st.one_of(st.integers(0, 10**6), st.sampled_from(["-1", "one past the end"])),
+)
+def test_the_fast_path_fails_exactly_when_a_rule_by_rule_check_fails(drawn, field, where, value):
+    # One pointer gets another pointer's value from the same array (or -1, or one past
+    # the last slot); the fast path must say "broken" exactly when the rules name a rule.
+    mesh = build(drawn)
+    array = ALL_POINTERS[field](mesh)
+    slot = where % len(array)
+    array[slot] = {"-1": -1, "one past the end": len(array)}.get(value, array[int(value) % len(array)] if isinstance(value, int) else 0)
+    fast_broken = _raises(lambda: not validate_module._every_rule_holds(mesh) and _fail())
+    with mock.patch.object(validate_module, "_every_rule_holds", lambda mesh: False):
+        rules_broken = _raises(mesh.validate)
+    assert fast_broken == rules_broken
+
+
+def _fail() -> None:
+    raise hx.MeshInvariantError("fast-path", ("mesh", 0), "the fast path found a broken rule")
+
+
+def test_a_sound_mesh_takes_the_fast_path_and_a_broken_one_the_rules():
+    mesh = _mesh(shapes.torus(8, 6))
+    assert validate_module._every_rule_holds(mesh)
+    mesh.halfedge_prev[7] = mesh.halfedge_prev[8]
+    assert not validate_module._every_rule_holds(mesh)
+    with pytest.raises(hx.MeshInvariantError) as caught:
+        mesh.validate()
+    assert caught.value.rule == "next-prev-inverse"
