@@ -112,6 +112,14 @@ def click_in_place(control, timeout: float = FRAME_TIMEOUT) -> None:
     control.click(timeout=timeout * 1000)
 
 
+def hover_in_place(control, timeout: float = FRAME_TIMEOUT) -> None:
+    """Move the mouse pointer over ``control`` once it is in view and has stopped moving:
+    a hover sends the pointer to where the control is, so it races the layout shift
+    after a scroll just as :func:`click_in_place` describes."""
+    hold_still(control, timeout)
+    control.hover(timeout=timeout * 1000)
+
+
 # -- the page and the notebook -------------------------------------------------------
 
 @contextmanager

@@ -23,6 +23,7 @@ from tests.browser.lab_page import (
     ExplorerInLab,
     StepperInLab,
     changed_share,
+    hover_in_place,
     open_and_run_all,
     reported_page,
     wait_for,
@@ -74,7 +75,7 @@ def _drive(page, lab, shots: Path) -> None:
 
     # The pointer over the pointer table: the key area takes the keyboard focus (which
     # makes the explorer's cell the active one, as a click in its output would).
-    explorer.output.locator("table").first.hover()
+    hover_in_place(explorer.output.locator("table").first)
     cells = wait_for(lambda: notebook_state(page) if notebook_state(page)[1] == 1 else None, 10,
                      "the explorer's cell to become the active one")
     patch = hx.sample("open_patch")
@@ -98,7 +99,7 @@ def _drive(page, lab, shots: Path) -> None:
     stepper.output.scroll_into_view_if_needed(timeout=30_000)
     wait_for(lambda: stepper.step_shown() == 0, 30, "the flip stepper's step counter")
     _, shown = stepper.settled_picture(None, "the flip stepper's first frame")
-    stepper.output.locator("table").first.hover()
+    hover_in_place(stepper.output.locator("table").first)
     cells = wait_for(lambda: notebook_state(page) if notebook_state(page)[1] == 2 else None, 10,
                      "the stepper's cell to become the active one")
     for key, expected_step in [("ArrowRight", 1), ("ArrowRight", 2), ("ArrowLeft", 1)]:
