@@ -18,17 +18,18 @@ import numpy as np
 import pytest
 
 import halfedge_edu as hx
-from tests.browser.test_lab_chapter03 import (
-    FRAME_TIMEOUT,
+from tests.browser.lab_page import (
     MIN_CHANGED_SHARE,
     MIN_COLOURS,
     MIN_STD,
+    LiveViewInLab,
     changed_share,
+    click_in_place,
     drawn,
     open_and_run_all,
+    reported_page,
     wait_for,
 )
-from tests.browser.test_lab_chapter09 import StepperInLab
 
 pytestmark = pytest.mark.browser
 
@@ -46,12 +47,11 @@ def write_notebook(folder: Path) -> None:
     nbformat.write(notebook, folder / NOTEBOOK)
 
 
-class EditorInLab(StepperInLab):
+class EditorInLab(LiveViewInLab):
     """The "Mesh editor" output of the open notebook: its panel text and its live view."""
 
     def __init__(self, page):
-        self.output = page.locator(".jp-OutputArea-output").filter(has_text="Mesh editor").first
-        self.frame = self.output.locator("iframe").first
+        super().__init__(page.locator(".jp-OutputArea-output").filter(has_text="Mesh editor").first)
 
     def selected(self) -> str | None:
         match = re.search(r"selected: (\w+ \d+)", self.output.inner_text())
@@ -63,23 +63,8 @@ class EditorInLab(StepperInLab):
 
 def test_editor_selects_an_edge_and_flips_it_by_button_and_key(lab, browser_context, screenshot_dir):
     write_notebook(lab.root)
-    page = browser_context.new_page()
-    console = []
-    page.on("console", lambda message: console.append(f"{message.type}: {message.text}"))
-    page.on("pageerror", lambda error: console.append(f"pageerror: {error}"))
-    try:
+    with reported_page(browser_context, lab, screenshot_dir, "editor-failure-page.png") as page:
         _drive(page, lab, screenshot_dir)
-    except BaseException:
-        try:
-            page.screenshot(path=str(screenshot_dir / "editor-failure-page.png"), full_page=False)
-        except Exception:  # noqa: BLE001 - the original failure matters more
-            pass
-        print(f"screenshots so far, and editor-failure-page.png: {screenshot_dir}")
-        print("browser console:\n" + "\n".join(console[-40:]))
-        print("JupyterLab log:\n" + lab.log_tail())
-        raise
-    finally:
-        page.close()
 
 
 def _drive(page, lab, shots: Path) -> None:
@@ -93,10 +78,7 @@ def _drive(page, lab, shots: Path) -> None:
 
     open_and_run_all(page, lab, NOTEBOOK)
     editor = EditorInLab(page)
-    editor.output.scroll_into_view_if_needed(timeout=30_000)
-    editor.output.locator("iframe, img").first.wait_for(state="visible", timeout=FRAME_TIMEOUT * 1000)
-    if editor.frame.count() == 0:
-        pytest.fail("the editor shows a static image, not the live trame view")
+    editor.wait_for_live_view("the editor")
     wait_for(lambda: editor.selected() == "vertex 0", 30, "the panel to show the first selection")
     png, before = editor.settled_picture(None, "the live view's first frame")
     (shots / "editor-0-start.png").write_bytes(png)
@@ -105,7 +87,7 @@ def _drive(page, lab, shots: Path) -> None:
     # Select an edge by the index controls.
     editor.output.locator("select").first.select_option("edge")
     editor.output.locator("input[type=number]").first.fill(str(EDGE))
-    editor.output.get_by_role("button", name="select", exact=True).click()
+    click_in_place(editor.output.get_by_role("button", name="select", exact=True))
     wait_for(lambda: editor.selected() == f"edge {EDGE}", 30, f"the panel to show edge {EDGE} selected")
     png, selected = editor.settled_picture(before, "the live view to highlight the edge")
     (shots / "editor-1-selected.png").write_bytes(png)
@@ -115,7 +97,7 @@ def _drive(page, lab, shots: Path) -> None:
     cube = hx.sample("cube")
     cube.flip(EDGE)
     flipped_ends = [v.index for v in cube.edge(EDGE).vertices]
-    editor.output.get_by_role("button", name="flip", exact=True).click()
+    click_in_place(editor.output.get_by_role("button", name="flip", exact=True))
     wait_for(lambda: "pointer diff" in editor.output.inner_text(), 30, "the pointer diff after 'flip'")
     assert f"flip of edge {EDGE}" in editor.output.inner_text()
     assert f"vertices {flipped_ends[0]} - {flipped_ends[1]}" in editor.output.inner_text()
@@ -126,7 +108,7 @@ def _drive(page, lab, shots: Path) -> None:
     timings["flip by button"] = lap()
 
     # Flip back by key: type f into the keys box.
-    editor.output.locator("input[type=text]").first.click()
+    click_in_place(editor.output.locator("input[type=text]").first)
     page.keyboard.type("f")
     cube.flip(EDGE)
     back_ends = [v.index for v in cube.edge(EDGE).vertices]
@@ -173,7 +155,7 @@ def _drive(page, lab, shots: Path) -> None:
     (shots / "editor-7-dragged-vertex.png").write_bytes(png)
     # The kernel lives on: undo answers, and the view still draws the mesh.
     undos = int(re.search(r"undo: (\d+)", editor.output.inner_text()).group(1))
-    editor.output.get_by_role("button", name="undo", exact=True).click()
+    click_in_place(editor.output.get_by_role("button", name="undo", exact=True))
     wait_for(lambda: f"undo: {undos - 1}" in editor.output.inner_text(), 30, "undo after the drag")
     png, undone = editor.settled_picture(dragged, "the live view to redraw after undo")
     std, colours = drawn(undone)

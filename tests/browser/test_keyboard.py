@@ -18,15 +18,16 @@ import nbformat
 import pytest
 
 import halfedge_edu as hx
-from tests.browser.test_lab_chapter03 import (
-    FRAME_TIMEOUT,
+from tests.browser.lab_page import (
     MIN_CHANGED_SHARE,
     ExplorerInLab,
+    StepperInLab,
     changed_share,
+    hover_in_place,
     open_and_run_all,
+    reported_page,
     wait_for,
 )
-from tests.browser.test_lab_chapter09 import StepperInLab
 
 pytestmark = pytest.mark.browser
 
@@ -34,6 +35,7 @@ NOTEBOOK = "keyboard_stepping.ipynb"
 START = 7           # the explorer's first halfedge (as chapter 03's)
 FLIP_EDGE = 12      # an interior edge of the open patch
 KEY_TIMEOUT = 30    # seconds for the panel to answer a key
+FLIP_TITLE = "Edge flip: step by step"   # the flip stepper's panel title
 
 
 def write_notebook(folder: Path) -> None:
@@ -48,14 +50,6 @@ def write_notebook(folder: Path) -> None:
     nbformat.write(notebook, folder / NOTEBOOK)
 
 
-class FlipStepperInLab(StepperInLab):
-    """The "Edge flip: step by step" output of the open notebook."""
-
-    def __init__(self, page):
-        self.output = page.locator(".jp-OutputArea-output").filter(has_text="Edge flip: step by step").first
-        self.frame = self.output.locator("iframe").first
-
-
 def notebook_state(page) -> tuple[int, int]:
     """(number of cells, index of the active cell): what a key taken by JupyterLab would change."""
     return tuple(page.evaluate(
@@ -65,33 +59,15 @@ def notebook_state(page) -> tuple[int, int]:
 
 def test_keys_move_the_explorer_and_step_the_stepper_in_a_live_lab(lab, browser_context, screenshot_dir):
     write_notebook(lab.root)
-    page = browser_context.new_page()
-    console = []
-    page.on("console", lambda message: console.append(f"{message.type}: {message.text}"))
-    page.on("pageerror", lambda error: console.append(f"pageerror: {error}"))
-    try:
+    with reported_page(browser_context, lab, screenshot_dir, "keyboard-failure-page.png") as page:
         _drive(page, lab, screenshot_dir)
-    except BaseException:
-        try:
-            page.screenshot(path=str(screenshot_dir / "keyboard-failure-page.png"), full_page=False)
-        except Exception:  # noqa: BLE001 - the original failure matters more
-            pass
-        print(f"screenshots so far, and keyboard-failure-page.png: {screenshot_dir}")
-        print("browser console:\n" + "\n".join(console[-40:]))
-        print("JupyterLab log:\n" + lab.log_tail())
-        raise
-    finally:
-        page.close()
 
 
 def _drive(page, lab, shots: Path) -> None:
     clock = time.monotonic()
     open_and_run_all(page, lab, NOTEBOOK)
     explorer = ExplorerInLab(page, shots)
-    explorer.output.scroll_into_view_if_needed(timeout=30_000)
-    explorer.output.locator("iframe, img").first.wait_for(state="visible", timeout=FRAME_TIMEOUT * 1000)
-    if explorer.frame.count() == 0:
-        pytest.fail("the explorer shows a static image, not the live trame view")
+    explorer.wait_for_live_view("the explorer")
     assert "keys (pointer over here)" in explorer.output.inner_text(), "no key hint under the buttons"
     wait_for(lambda: explorer.current_halfedge() == START, 30, "the explorer's pointer table")
     png, before = explorer.settled_picture(None, "the live view's first frame")
@@ -99,7 +75,7 @@ def _drive(page, lab, shots: Path) -> None:
 
     # The pointer over the pointer table: the key area takes the keyboard focus (which
     # makes the explorer's cell the active one, as a click in its output would).
-    explorer.output.locator("table").first.hover()
+    hover_in_place(explorer.output.locator("table").first)
     cells = wait_for(lambda: notebook_state(page) if notebook_state(page)[1] == 1 else None, 10,
                      "the explorer's cell to become the active one")
     patch = hx.sample("open_patch")
@@ -119,11 +95,11 @@ def _drive(page, lab, shots: Path) -> None:
     assert notebook_state(page) == cells, "JupyterLab took a key (a cell was added or the active cell moved)"
     explorer.save("keys-3-explorer-with-panel.png", explorer.output.screenshot(timeout=30_000))
 
-    stepper = FlipStepperInLab(page)
+    stepper = StepperInLab(page, FLIP_TITLE)
     stepper.output.scroll_into_view_if_needed(timeout=30_000)
     wait_for(lambda: stepper.step_shown() == 0, 30, "the flip stepper's step counter")
     _, shown = stepper.settled_picture(None, "the flip stepper's first frame")
-    stepper.output.locator("table").first.hover()
+    hover_in_place(stepper.output.locator("table").first)
     cells = wait_for(lambda: notebook_state(page) if notebook_state(page)[1] == 2 else None, 10,
                      "the stepper's cell to become the active one")
     for key, expected_step in [("ArrowRight", 1), ("ArrowRight", 2), ("ArrowLeft", 1)]:

@@ -21,8 +21,16 @@ import pytest
 from scipy import ndimage
 
 from halfedge_edu.algorithms.bezier import de_casteljau
-from tests.browser.test_lab_chapter03 import FRAME_TIMEOUT, MIN_CHANGED_SHARE, changed_share, open_and_run_all, wait_for
-from tests.browser.test_lab_chapter09 import StepperInLab
+from tests.browser.lab_page import (
+    FRAME_TIMEOUT,
+    MIN_CHANGED_SHARE,
+    LiveViewInLab,
+    changed_share,
+    click_in_place,
+    open_and_run_all,
+    reported_page,
+    wait_for,
+)
 
 pytestmark = pytest.mark.browser
 
@@ -42,13 +50,12 @@ class SurfaceEditorInLab:
         return match.group(1) if match else None
 
 
-class CurveViewerInLab(StepperInLab):
+class CurveViewerInLab(LiveViewInLab):
     """The de Casteljau viewer's output (the one with a live view) in the open notebook."""
 
     def __init__(self, page):
-        self.output = (page.locator(".jp-OutputArea-output").filter(has_text="degree 3 curve at t =")
-                       .filter(has=page.locator("iframe")).first)
-        self.frame = self.output.locator("iframe").first
+        super().__init__(page.locator(".jp-OutputArea-output").filter(has_text="degree 3 curve at t =")
+                         .filter(has=page.locator("iframe")).first)
 
     def control_points(self) -> list[tuple[float, float]]:
         match = re.search(r"control points: (.*)", self.output.inner_text())
@@ -63,23 +70,8 @@ class CurveViewerInLab(StepperInLab):
 
 
 def test_dragging_a_control_point_redraws_the_curve_and_its_point(lab, browser_context, screenshot_dir):
-    page = browser_context.new_page()
-    console = []
-    page.on("console", lambda message: console.append(f"{message.type}: {message.text}"))
-    page.on("pageerror", lambda error: console.append(f"pageerror: {error}"))
-    try:
+    with reported_page(browser_context, lab, screenshot_dir, "bezier-failure-page.png") as page:
         _drive(page, lab, screenshot_dir)
-    except BaseException:
-        try:
-            page.screenshot(path=str(screenshot_dir / "bezier-failure-page.png"), full_page=False)
-        except Exception:  # noqa: BLE001 - the original failure matters more
-            pass
-        print(f"screenshots so far, and bezier-failure-page.png: {screenshot_dir}")
-        print("browser console:\n" + "\n".join(console[-40:]))
-        print("JupyterLab log:\n" + lab.log_tail())
-        raise
-    finally:
-        page.close()
 
 
 def _drive(page, lab, shots: Path) -> None:
@@ -117,7 +109,7 @@ def _drive(page, lab, shots: Path) -> None:
     dragged_at = time.monotonic()
 
     # reset puts the arch back, in the text and in the picture.
-    viewer.output.get_by_role("button", name="reset", exact=True).click()
+    click_in_place(viewer.output.get_by_role("button", name="reset", exact=True))
     wait_for(lambda: viewer.control_points() == ARCH, 30, "the panel to show the arch again after 'reset'")
     assert viewer.curve_point() == (t, start_point)
     png, back = viewer.settled_picture(dragged, "the live view to redraw after 'reset'")

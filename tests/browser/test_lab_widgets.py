@@ -39,7 +39,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from tests.browser.test_lab_chapter03 import as_array, changed_share, drawn, open_and_run_all
+from tests.browser.lab_page import (
+    as_array,
+    changed_share,
+    click_in_place,
+    drawn,
+    hold_still,
+    in_view,
+    open_and_run_all,
+    reported_page,
+)
 
 pytestmark = pytest.mark.browser
 
@@ -53,8 +62,8 @@ SLIDER_MOVES = 50           # chapter 02's step slider (arrow keys, up and down)
 SETTLE_TIMEOUT = 20.0       # seconds for a panel and its picture to settle after a click
 BURST_TIMEOUT = 90.0        # seconds after a burst: the kernel works through every click in turn
 QUIET = 0.6                 # seconds a no-op click is given to show a change
-# A picture "changed" when this share of its pixels moved by more than CHANGED_LEVEL.
-CHANGED_LEVEL = 40
+# A picture "changed" when this share of its pixels moved by more than
+# lab_page.CHANGED_LEVEL in some channel.
 MIN_PICTURE_CHANGE = 0.0005
 MIN_STD, MIN_COLOURS = 8.0, 48   # a drawn picture, not a blank one
 KERNEL_DEATH = re.compile(r"KernelRestarter: restarting|Kernel restarted|kernel .* died|Segmentation fault",
@@ -220,20 +229,29 @@ class WidgetInLab:
         return [b for b in self.output.locator("button.jupyter-button").all() if b.is_enabled()]
 
     def drive_buttons(self, rng: random.Random, record: Record) -> None:
-        """Checked clicks in random order, then a rapid burst, then a last check."""
+        """Checked clicks in random order, then a rapid burst, then a last check.
+
+        A checked click is made with :func:`click_in_place` (scrolled into view, then
+        clicked once the button stands still): a click lost to JupyterLab's layout shift
+        after a scroll would change nothing, and :meth:`settle` takes a click that
+        changes nothing for a quiet no-op, so it would pass unnoticed. The burst clicks
+        at once, holding a button still first only if it is out of view.
+        """
         buttons = self.buttons()
         labels = [b.inner_text().strip() or b.get_attribute("title") or "?" for b in buttons]
         order = list(range(len(buttons))) + [rng.randrange(len(buttons)) for _ in range(CHECKED_CLICKS)]
         rng.shuffle(order)
         state = self.state()
         for k in order:
-            buttons[k].click(timeout=30_000)
+            click_in_place(buttons[k], timeout=30)
             record.count(f"{self.name} '{labels[k]}'")
             state = self.settle(state, f"after '{labels[k]}'")
             self.check(f"after '{labels[k]}'")
         self.save("checked")
         for _ in range(RAPID_CLICKS):
             k = rng.randrange(len(buttons))
+            if not in_view(self.page, buttons[k]):
+                hold_still(buttons[k], timeout=30)
             buttons[k].click(timeout=30_000)
             record.count(f"{self.name} '{labels[k]}' (rapid)")
             time.sleep(0.08)
@@ -339,54 +357,48 @@ def widget_outputs(page) -> list:
 
 @pytest.mark.parametrize("notebook", sorted(CHAPTERS))
 def test_every_widget_survives_a_students_clicks(notebook, lab, browser_context, screenshot_dir):
-    page = browser_context.new_page()
-    page.set_default_timeout(60_000)
     record = Record(notebook[:2])
     log_start = len(lab.log.read_text(errors="replace"))
     shots = screenshot_dir / notebook[:2]
     shots.mkdir(exist_ok=True)
     started = time.monotonic()
-    try:
-        open_and_run_all(page, lab, notebook)
-        page.evaluate(WATCH_KERNEL)
-        ran = time.monotonic() - started
-        assert not (problems := page.evaluate(CELL_PROBLEMS)), f"cells wrote errors: {problems}"
-        outputs = widget_outputs(page)
-        assert len(outputs) >= CHAPTERS[notebook], (
-            f"{notebook}: {len(outputs)} widgets found, expected at least {CHAPTERS[notebook]}")
-        rng = random.Random(f"{SEED}-{notebook}")
-        for k, output in enumerate(outputs):
-            widget = WidgetInLab(page, output, f"w{k}", shots)
-            output.scroll_into_view_if_needed(timeout=30_000)
-            widget.settle(None, "as the notebook left it")
-            widget.check("as the notebook left it")
-            widget.save("0-as-left")
-            if notebook.startswith("08"):
-                widget.drive_dropdowns(record, changes=DROPDOWN_CHANGES)
-            else:
-                widget.drive_dropdowns(record)
-            is_step_slider = notebook.startswith("02") and "step" in widget.text().lower() and \
-                output.locator(".widget-slider").count() and not output.locator("button.jupyter-button").count()
-            widget.drive_sliders(record, moves=SLIDER_MOVES if is_step_slider else SLIDER_CAP)
-            widget.drive_text(record)
-            if widget.buttons():
-                widget.drive_buttons(rng, record)
-            widget.save("9-end")
-            assert not (problems := kernel_problems(page, lab, log_start)), f"after {widget.name}: {problems}"
-        assert not (problems := page.evaluate(CELL_PROBLEMS)), f"cells wrote errors while driven: {problems}"
-        print(f"{record.line()}\n  widgets: {len(outputs)}; run all {ran:.0f} s, "
-              f"driving {time.monotonic() - started - ran:.0f} s; screenshots in {shots}")
-    except BaseException:
+    with reported_page(browser_context, lab, shots) as page:
+        page.set_default_timeout(60_000)
         try:
-            page.screenshot(path=str(shots / "failure-page.png"))
-        except Exception:  # noqa: BLE001 - the original failure matters more
-            pass
-        print(f"clicks so far: {record.line()}")
-        print("JupyterLab log:\n" + lab.log_tail())
-        raise
-    finally:
-        try:
-            page.evaluate(SHUT_DOWN_KERNEL)  # the next chapter gets the machine's cores
-        except Exception:  # noqa: BLE001 - closing the page ends the session anyway
-            pass
-        page.close()
+            open_and_run_all(page, lab, notebook)
+            page.evaluate(WATCH_KERNEL)
+            ran = time.monotonic() - started
+            assert not (problems := page.evaluate(CELL_PROBLEMS)), f"cells wrote errors: {problems}"
+            outputs = widget_outputs(page)
+            assert len(outputs) >= CHAPTERS[notebook], (
+                f"{notebook}: {len(outputs)} widgets found, expected at least {CHAPTERS[notebook]}")
+            rng = random.Random(f"{SEED}-{notebook}")
+            for k, output in enumerate(outputs):
+                widget = WidgetInLab(page, output, f"w{k}", shots)
+                output.scroll_into_view_if_needed(timeout=30_000)
+                widget.settle(None, "as the notebook left it")
+                widget.check("as the notebook left it")
+                widget.save("0-as-left")
+                if notebook.startswith("08"):
+                    widget.drive_dropdowns(record, changes=DROPDOWN_CHANGES)
+                else:
+                    widget.drive_dropdowns(record)
+                is_step_slider = notebook.startswith("02") and "step" in widget.text().lower() and \
+                    output.locator(".widget-slider").count() and not output.locator("button.jupyter-button").count()
+                widget.drive_sliders(record, moves=SLIDER_MOVES if is_step_slider else SLIDER_CAP)
+                widget.drive_text(record)
+                if widget.buttons():
+                    widget.drive_buttons(rng, record)
+                widget.save("9-end")
+                assert not (problems := kernel_problems(page, lab, log_start)), f"after {widget.name}: {problems}"
+            assert not (problems := page.evaluate(CELL_PROBLEMS)), f"cells wrote errors while driven: {problems}"
+            print(f"{record.line()}\n  widgets: {len(outputs)}; run all {ran:.0f} s, "
+                  f"driving {time.monotonic() - started - ran:.0f} s; screenshots in {shots}")
+        except BaseException:
+            print(f"clicks so far: {record.line()}")
+            raise
+        finally:
+            try:
+                page.evaluate(SHUT_DOWN_KERNEL)  # the next chapter gets the machine's cores
+            except Exception:  # noqa: BLE001 - closing the page ends the session anyway
+                pass
