@@ -261,7 +261,12 @@ class Kernel:
             if left <= 0:
                 raise BenchError(f"no reply within {timeout:.0f} s to: {code[:80]!r}")
             self.ws.settimeout(left)
-            message = json.loads(self.ws.recv())
+            frame = self.ws.recv()
+            if isinstance(frame, bytes):
+                # A message with binary buffers (a widget's picture, a live view's arrays)
+                # comes as a binary frame; the replies waited for here never carry buffers.
+                continue
+            message = json.loads(frame)
             if message.get("parent_header", {}).get("msg_id") != msg_id:
                 continue
             kind = message["header"]["msg_type"]

@@ -78,6 +78,12 @@ class View:
 
     ``view.widget`` is what goes into the widget's layout; ``view.update()`` shows the
     scene's current state (a new PNG, or a pushed frame).
+
+    A static picture is rendered only once someone can see it: after ``shown()`` (the
+    widget was displayed) every update renders a new PNG; before, an update only marks
+    the picture stale and ``picture()`` renders it on demand. A widget a chapter drives
+    from code for its text alone then never opens a render window (about 27 MiB of
+    kernel memory each, measured on chapter 03's two such widgets).
     """
 
     def __init__(self, scene, mode: str):
@@ -85,6 +91,8 @@ class View:
 
         self.scene = scene
         self.mode = mode
+        self._shown = False
+        self._stale = True
         width, height = scene.window_size
         if mode == "static":
             self.widget = widgets.Image(format="png", width=width, height=height,
@@ -103,10 +111,28 @@ class View:
                 live_backend.keep_scene_arrays(self.widget.viewer)
         self.update()
 
+    def shown(self) -> None:
+        """The view is on screen (its widget was displayed): keep its picture current."""
+        self._shown = True
+        if self.mode == "static" and self._stale:
+            self._render_picture()
+
+    def picture(self) -> bytes:
+        """The static view's current PNG, rendered now if it is stale."""
+        if self._stale:
+            self._render_picture()
+        return bytes(self.widget.value)
+
+    def _render_picture(self) -> None:
+        self.widget.value = self.scene.screenshot()
+        self._stale = False
+
     def update(self) -> None:
         """Show the scene's current state."""
         if self.mode == "static":
-            self.widget.value = self.scene.screenshot()
+            self._stale = True
+            if self._shown:
+                self._render_picture()
         else:
             # trame-pyvista's views follow the plotter's renders (a render callback sends
             # the new frame, or the new scene to vtk.js), so one render is the whole

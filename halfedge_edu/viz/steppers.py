@@ -761,6 +761,8 @@ class CollapseAtlas:
     def _repr_mimebundle_(self, include=None, exclude=None):
         import base64
 
+        for stepper in self.steppers + self.refused:   # their pictures are part of this widget
+            stepper.view.shown()
         bundle = self.widget._repr_mimebundle_(include=include, exclude=exclude)
         bundle["text/plain"] = self.describe()
         bundle["image/png"] = base64.b64encode(self.screenshot()).decode("ascii")

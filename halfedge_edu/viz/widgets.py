@@ -209,7 +209,7 @@ class SceneWidget:
     def screenshot(self, path=None) -> bytes:
         """The view as PNG bytes (also written to ``path`` if given)."""
         if self.mode == "static" and path is None:
-            return bytes(self.view.widget.value)
+            return self.view.picture()
         return self.scene.screenshot(path)
 
     def close(self) -> None:
@@ -219,6 +219,7 @@ class SceneWidget:
         self.scene.close()
 
     def _repr_mimebundle_(self, include=None, exclude=None):
+        self.view.shown()
         bundle = self.widget._repr_mimebundle_(include=include, exclude=exclude)
         bundle["text/plain"] = self.describe()
         # A client-side live view (HALFEDGE_EDU_LIVE_BACKEND=client) renders in the

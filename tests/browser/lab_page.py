@@ -29,6 +29,7 @@ MIN_COLOURS = 64            # distinct colours; a blank or one-colour frame has 
 CHANGED_LEVEL = 40
 MIN_CHANGED_SHARE = 0.002   # 0.2 % of the view (the arrows are thin)
 STILL_FOR = 1.0             # seconds a control must stand still before it is clicked
+STILL_FOR_IN_VIEW = 0.3     # seconds a control already in view must stand still before a click
 CONSOLE_LINES = 40          # browser console lines printed with a failure
 
 
@@ -75,6 +76,10 @@ def hold_still(control, timeout: float = FRAME_TIMEOUT) -> None:
     """Scroll ``control`` (a Playwright locator) into view and wait until it has stood
     still for ``STILL_FOR`` seconds: after that, a mouse event sent to where it is lands
     on it. See :func:`click_in_place` for why the page moves after a scroll."""
+    # A control already wholly in view needs no scroll, so no layout shift follows; it
+    # must only not be moving (an output above it may still be growing) for a moment.
+    # This keeps the many clicks on buttons in view about a second faster each.
+    still_for = STILL_FOR_IN_VIEW if in_view(control.page, control) else STILL_FOR
     control.scroll_into_view_if_needed(timeout=timeout * 1000)
     last = {"box": None, "since": time.monotonic()}
 
@@ -82,7 +87,7 @@ def hold_still(control, timeout: float = FRAME_TIMEOUT) -> None:
         box, now = control.bounding_box(), time.monotonic()
         if box != last["box"]:
             last.update(box=box, since=now)
-        return box is not None and now - last["since"] >= STILL_FOR
+        return box is not None and now - last["since"] >= still_for
 
     wait_for(standing_still, timeout, "the control to stop moving after the scroll", interval=0.25)
 

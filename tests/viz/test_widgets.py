@@ -78,11 +78,26 @@ def test_unknown_move_from_code_raises(explorer):
         explorer.go("sideways")
 
 
-def test_each_step_puts_a_new_picture_in_the_static_view(explorer):
+def test_each_step_puts_a_new_picture_in_the_static_view_once_it_is_shown(explorer):
+    explorer._repr_mimebundle_()                       # what displaying it in a notebook does
     before = explorer.view.widget.value
     explorer.go("twin")
     assert explorer.view.widget.value != before
     assert Image.open(io.BytesIO(explorer.view.widget.value)).format == "PNG"
+
+
+def test_a_static_widget_never_shown_renders_only_when_a_picture_is_asked_for(monkeypatch):
+    quiet = HalfedgeExplorer(sample("open_patch"), halfedge=7, mode="static")
+    renders = []
+    original = quiet.scene.screenshot
+    monkeypatch.setattr(quiet.scene, "screenshot", lambda *a, **k: renders.append(1) or original(*a, **k))
+    for move in ("next", "twin", "prev"):
+        quiet.go(move)
+    assert renders == []                               # driven for its text: no render window needed
+    picture = quiet.screenshot()                       # asked for: rendered now, of the current state
+    assert len(renders) == 1 and Image.open(io.BytesIO(picture)).format == "PNG"
+    assert quiet.screenshot() == picture and len(renders) == 1   # not stale: not rendered again
+    quiet.close()
 
 
 def test_pointer_table_shows_the_current_halfedge(explorer):
