@@ -39,6 +39,8 @@ The modules, one concern each (as pyvista splits its plotting package), from the
 - ``main_thread``: :func:`on_main_thread`, which runs a widget callback (a click, a slider
   move) on the kernel's main thread, where VTK's OpenGL context lives; every button and
   observer of these widgets goes through it, and so should a chapter's own widget.
+- ``keys``: :class:`~.keys.KeyArea`, the part of a widget's panel that answers keys (n, p,
+  t, the arrows, space, Home, End) in a live Lab, each by clicking its button.
 - ``widgets``, ``steppers``, ``loop_stepper``, ``qem_stepper``, ``remesh_stepper``,
   ``bezier_widgets``: the notebook widgets.
 
