@@ -379,7 +379,9 @@ def run_class(n: int, *, steps: int = 20, step_interval: float = 1.0, rotate_sec
               browsers: int = 2, live_backend: str = "client", timeout: float = 900.0,
               screenshots: Path | None = None, log=print) -> ClassResult:
     """Everything the module docstring lists, for ``n`` students; always stops the hub."""
-    state = Path(tempfile.mkdtemp(prefix=f"halfedge-class-{n}-"))
+    # A short path: each student's kernels listen on Unix sockets under their home
+    # (the hub config's ipc transport), and a socket's path may be at most 107 bytes.
+    state = Path(tempfile.mkdtemp(prefix=f"hc{n}-", dir="/tmp"))
     load = os.getloadavg()[0]
     members = [Student(f"student{i:02d}", state / f"student{i:02d}") for i in range(n)]
     for student in members:

@@ -49,8 +49,14 @@ c.Spawner.cmd = [str(DEPLOY / "singleuser-start.sh"), "jupyterhub-singleuser"]
 c.Spawner.default_url = "/lab/tree/course"
 # The test spawner runs servers as the hub's own user; when that is root (a container,
 # CI), Jupyter refuses to start without this. SystemdSpawner's students are never root.
+# Kernels talk to their server over Unix sockets, not TCP ports: on one machine, servers
+# that start kernels at the same moment each pick "free" TCP ports and can pick the same
+# ones (measured: 10 students starting at once failed twice in a row, "Address already
+# in use" and a kernel that never answered). Sockets in each user's runtime folder
+# cannot collide. (Zero to JupyterHub and Binder run one server per container.)
+c.Spawner.args = ["--KernelManager.transport=ipc"]
 if c.JupyterHub.spawner_class == "simple" and os.geteuid() == 0:
-    c.Spawner.args = ["--ServerApp.allow_root=True"]
+    c.Spawner.args = [*c.Spawner.args, "--ServerApp.allow_root=True"]
 # Measured (issue 14, benchmarks/bench_class.py, PSS after chapter 03): with the views
 # drawn in the browser (the default) about 350-380 MiB per student, server plus kernel,
 # and nothing while a student rotates a view; with HALFEDGE_EDU_LIVE_BACKEND=server
