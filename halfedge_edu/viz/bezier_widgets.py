@@ -42,10 +42,9 @@ import numpy as np
 
 from ..algorithms.bezier import bezier_curve, bezier_surface, bezier_surface_points, de_casteljau
 from .main_thread import call_on_main_thread, on_main_thread
-from .painted_scene import Layer, PaintedScene, legend_html
+from .painted_scene import Layer, PaintedScene, PlotterScene, legend_html
 from .palette import BLACK, BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, SKY_BLUE, VERMILLION, panel_css
 from .palette import Preset, preset as _preset
-from .pictures import plotter_png
 from .renderer import View, choose_mode, make_plotter, prepare_plotter
 from .widgets import SceneWidget, panel_button
 
@@ -313,7 +312,7 @@ class DeCasteljauViewer:
         self.status.value = "<br>".join(html.escape(line) for line in self.describe().splitlines())
 
 
-class _CurveScene:
+class _CurveScene(PlotterScene):
     """The live picture of a :class:`DeCasteljauViewer`: its construction in the plane
     z = 0, seen from straight above, with a ball on every control point to drag.
 
@@ -401,17 +400,6 @@ class _CurveScene:
         for handle, point in zip(self.handles, control_points):
             handle.SetCenter(float(point[0]), float(point[1]), 0.0)
 
-    def render(self) -> None:
-        """Push the current state to the render window."""
-        self.plotter.render()
-
-    def screenshot(self, path=None) -> bytes:
-        """The picture as PNG bytes (also written to ``path`` if given)."""
-        return plotter_png(self.plotter, path, window_size=self.window_size)
-
-    def close(self) -> None:
-        """Free the render window."""
-        self.plotter.close()
 
 
 class BezierSurfaceEditor(SceneWidget):

@@ -65,7 +65,28 @@ class Layer:
         return {"edges": (), "vertices": (), "points": (3,), "segments": (2, 3)}[self.kind]
 
 
-class PaintedScene:
+class PlotterScene:
+    """What a scene that owns one plotter (``self.plotter``, of ``self.window_size``)
+    does with it: render, give its picture, free it. Shared by :class:`PaintedScene`
+    and the de Casteljau viewer's curve scene."""
+
+    plotter: object
+    window_size: tuple[int, int]
+
+    def render(self) -> None:
+        """Push the current state to the render window."""
+        self.plotter.render()
+
+    def screenshot(self, path=None) -> bytes:
+        """Render and return the picture as PNG bytes; also write it to ``path`` if given."""
+        return plotter_png(self.plotter, path, window_size=self.window_size)
+
+    def close(self) -> None:
+        """Free the render window."""
+        self.plotter.close()
+
+
+class PaintedScene(PlotterScene):
     """Draw a mesh and paint layers of edges, vertices, points and segments on it.
 
     Args:
@@ -202,18 +223,6 @@ class PaintedScene:
     def legend_entries(self) -> list[tuple[str, str, str]]:
         """The layers' legend as ``(text, "#RRGGBB", "edge" | "vertex")`` rows."""
         return list(self._legend)
-
-    def render(self) -> None:
-        """Push the current state to the render window."""
-        self.plotter.render()
-
-    def screenshot(self, path=None) -> bytes:
-        """Render and return the picture as PNG bytes; also write it to ``path`` if given."""
-        return plotter_png(self.plotter, path, window_size=self.window_size)
-
-    def close(self) -> None:
-        """Free the render window."""
-        self.plotter.close()
 
     # -- internals -------------------------------------------------------------------------
 
