@@ -479,3 +479,28 @@ def test_a_sound_mesh_takes_the_fast_path_and_a_broken_one_the_rules():
     with pytest.raises(hx.MeshInvariantError) as caught:
         mesh.validate()
     assert caught.value.rule == "next-prev-inverse"
+
+
+@pytest.mark.parametrize("block", ["first", "middle", "last"])
+def test_the_fast_path_checks_every_block_of_halfedges(block):
+    # The fast path reads the halfedges in blocks of _BLOCK; a broken pointer in any
+    # block, the last (partial) one included, must be found. The broken face pointer is
+    # put on a halfedge whose prev lies in the same block and that is not its face's
+    # own halfedge, so only that block's next-cycle check can see it.
+    mesh = _mesh(shapes.torus(120, 80))                      # 57,600 halfedges: several blocks
+    size = validate_module._BLOCK
+    n_blocks = -(-mesh.n_halfedge_slots // size)
+    assert n_blocks >= 3, "the mesh must span several blocks for this test to mean anything"
+    index = {"first": 0, "middle": n_blocks // 2, "last": n_blocks - 1}[block]
+    in_block = np.arange(index * size, min((index + 1) * size, mesh.n_halfedge_slots))
+    seen_only_here = ((mesh.halfedge_prev[in_block] // size == index)
+                      & (mesh.halfedge_face[in_block] >= 0)
+                      & (mesh.face_halfedge[mesh.halfedge_face[in_block]] != in_block))
+    assert seen_only_here.any()
+    h = int(in_block[np.argmax(seen_only_here)])
+    assert validate_module._every_rule_holds(mesh)
+    mesh.halfedge_face[h] = (mesh.halfedge_face[h] + 1) % mesh.n_face_slots
+    assert not validate_module._every_rule_holds(mesh)
+    with pytest.raises(hx.MeshInvariantError) as caught:
+        mesh.validate()
+    assert caught.value.rule == "next-cycle"
