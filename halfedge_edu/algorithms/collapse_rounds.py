@@ -31,12 +31,27 @@ from typing import Callable, NamedTuple
 
 import numpy as np
 
-from ..core.arrays import cross_rows, expand, sort_undirected
+from ..core.arrays import cross_rows, expand, face_halfedges, sort_undirected
 
 __all__ = [
-    "FOLD_ANGLE", "RoundTables", "choose_round", "collapse_topology_ok", "drop_folding_neighbours", "independent_edges",
-    "no_turned_faces", "one_collapse_per_opposite_vertex", "round_tables",
+    "FOLD_ANGLE", "RoundMesh", "RoundTables", "choose_round", "collapse_topology_ok", "drop_folding_neighbours",
+    "gather_rings", "independent_edges", "no_turned_faces", "one_collapse_per_opposite_vertex", "round_tables",
 ]
+
+
+def gather_rings(rings: tuple[np.ndarray, np.ndarray] | np.ndarray, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Gather the ring rows ``rows`` (k,) at once: ``(owner, items)``, as :func:`expand`.
+
+    ``rings`` is a vertex's faces or neighbours either as CSR ``(offsets, values)``
+    (from :func:`round_tables`) or as a padded (n, D) table with -1 in unused slots
+    (a :class:`RoundMesh`'s, where a row can grow and shrink without rebuilding the
+    others). ``items[j]`` came from row ``rows[owner[j]]``; owners ascend.
+    """
+    if isinstance(rings, tuple):
+        return expand(*rings, rows)
+    block = np.take(rings, rows, axis=0)                               # (k, D)
+    filled = np.flatnonzero(block.reshape(-1) >= 0)
+    return filled // block.shape[1], np.take(block.reshape(-1), filled)
 
 
 def collapse_topology_ok(
@@ -84,9 +99,8 @@ def collapse_topology_ok(
     ok = ~(~boundary_edge & boundary_vertex[a] & boundary_vertex[b])
 
     # Link condition: common neighbours of a and b must be exactly the opposite vertices.
-    nbr_offsets, nbr = neighbours
-    owner_a, around_a = expand(nbr_offsets, nbr, a)
-    owner_b, around_b = expand(nbr_offsets, nbr, b)
+    owner_a, around_a = gather_rings(neighbours, a)
+    owner_b, around_b = gather_rings(neighbours, b)
     owner = np.concatenate([owner_a, owner_b])
     around = np.concatenate([around_a, around_b])
     key = np.sort(owner * n + around)
@@ -152,7 +166,7 @@ def _moved_faces(vertices, faces, faces_around, points, keep, remove) -> _MovedF
     k = len(keep)
     end = np.concatenate([keep, remove])                                # (2k,) the moving ends
     other = np.concatenate([remove, keep])
-    row, face = expand(*faces_around, end)                              # faces_around from vertex_faces()
+    row, face = gather_rings(faces_around, end)                         # faces_around from vertex_faces()
     # One column of corners at a time, gathered with np.take from the flat face array:
     # several times faster than fancy indexing rows of a 2-D array.
     flat = faces.reshape(-1)
@@ -240,7 +254,7 @@ def no_turned_faces(
     # u and w but neither end of the collapse.
     flat = faces.reshape(-1)
     if face_across is None:
-        row, neighbour = expand(*faces_around, w)
+        row, neighbour = gather_rings(faces_around, w)
         row, neighbour = _keep_where(_holds_any(tuple(faces[neighbour].T), u[row]), row, neighbour)
     else:
         neighbour = np.take(face_across.reshape(-1), 3 * moved.face + (position + 1) % 3)   # across u -> w
@@ -308,6 +322,188 @@ def round_tables(faces: np.ndarray, n: int) -> RoundTables:
     faces_around, neighbours = _vertex_rings(corner_vertex, next_vertex, boundary_halfedge, n)
     return RoundTables(np.stack([keys // n, keys % n], axis=1), count == 1, boundary_halfedge,
                        across.reshape(-1, 3), faces_around, neighbours)
+
+
+def _padded(offsets: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """The CSR rows ``(offsets (n + 1,), values)`` as a padded (n, D) table, -1 in unused slots."""
+    counts = np.diff(offsets)
+    table = np.full((len(counts), max(1, int(counts.max(initial=0)))), -1, dtype=np.int64)
+    column = np.arange(len(values)) - np.repeat(offsets[:-1], counts)
+    table[np.repeat(np.arange(len(counts)), counts), column] = values
+    return table
+
+
+def _merged_rows(first: np.ndarray, second: np.ndarray) -> np.ndarray:
+    """(k, D1 + D2): row i of ``first`` and row i of ``second`` side by side, filled slots first."""
+    rows = np.concatenate([first, second], axis=1)
+    order = np.argsort(rows < 0, axis=1, kind="stable")
+    return np.take_along_axis(rows, order, axis=1)
+
+
+class RoundMesh:
+    """A face array that rounds of collapses shrink in place, with the tables a round asks.
+
+    :func:`round_tables` rebuilds a round's tables from the whole face array with two
+    sorts. But a round changes only the neighbourhoods of its collapses, so this class
+    builds the tables once and then, after each round, rewrites only the rows the
+    round touched (:meth:`collapse`):
+
+    * ``faces`` (m, 3): a collapsed face stays in its row, marked dead in ``alive``
+      (m,), so face and halfedge numbers never change;
+    * ``twin`` (3m,): the halfedge across halfedge ``3 f + k`` (the directed edge
+      ``faces[f, k] -> faces[f, k + 1]``), -1 on the boundary;
+    * ``is_edge`` (3m,): True at one halfedge of every edge, its name (the smaller of
+      its two numbers, or its only one on the boundary);
+    * ``faces_around`` (n, D) and ``neighbours`` (n, D'): each vertex's faces and
+      neighbours, padded with -1 (see :func:`gather_rings`); a row may hold -1 between
+      its entries;
+    * ``degree`` (n,) each vertex's number of edges, ``boundary_vertex`` (n,).
+    """
+
+    def __init__(self, faces: np.ndarray, n: int):
+        tables = round_tables(faces, n)
+        self.faces = faces.copy()
+        self.alive = np.ones(len(faces), dtype=bool)
+        self.n_faces = len(faces)
+        self.twin = _halfedge_twins(faces, n)
+        halfedge = np.arange(len(self.twin))
+        self.is_edge = (self.twin < 0) | (halfedge < self.twin)
+        self.faces_around = _padded(*tables.faces_around)
+        self.neighbours = _padded(*tables.neighbours)
+        self.degree = np.diff(tables.neighbours[0])
+        self.boundary_vertex = np.zeros(n, dtype=bool)
+        self.boundary_vertex[tables.edges[tables.boundary].reshape(-1)] = True
+
+    def ends(self, halfedges: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The tail and head vertex of each of ``halfedges`` (k,)."""
+        flat = self.faces.reshape(-1)
+        return np.take(flat, halfedges), np.take(flat, halfedges - halfedges % 3 + (halfedges + 1) % 3)
+
+    def face_across(self) -> np.ndarray:
+        """(m, 3) the face across each face's edge ``k``, -1 on the boundary (as :class:`RoundTables`)."""
+        return self.twin.reshape(-1, 3) // 3                  # -1 // 3 is -1: the boundary stays -1
+
+    def edges_at(self, vertices: np.ndarray) -> np.ndarray:
+        """The edges (their names, see ``is_edge``) at ``vertices``, each edge once if no two are neighbours.
+
+        Every interior edge at v leaves v in exactly one of v's faces; a boundary edge
+        at v leaves or enters it in its only face.
+        """
+        owner, face = gather_rings(self.faces_around, vertices)
+        flat = self.faces.reshape(-1)
+        first = 3 * face
+        position = np.where(np.take(flat, first) == vertices[owner], 0,
+                            np.where(np.take(flat, first + 1) == vertices[owner], 1, 2))
+        leaving = first + position
+        entering = first + (position + 2) % 3
+        halfedges = np.concatenate([leaving, entering[np.take(self.twin, entering) < 0]])
+        twin = np.take(self.twin, halfedges)
+        return np.where((twin >= 0) & (twin < halfedges), twin, halfedges)
+
+    def collapse(self, keep: np.ndarray, remove: np.ndarray) -> None:
+        """Merge vertex ``remove[i]`` into ``keep[i]`` for every i, and update the tables.
+
+        The collapses must be allowed (:func:`collapse_topology_ok`) and apart as a
+        round's are (:func:`choose_round`): then no face, halfedge or table entry is
+        touched by two of them, and each update below is a plain write.
+        """
+        flat = self.faces.reshape(-1)
+        owner, face = gather_rings(self.faces_around, remove)            # the faces around each removed end
+        c0, c1, c2 = (np.take(flat, 3 * face + i) for i in range(3))
+        kept, removed = keep[owner], remove[owner]
+        vanishes = (c0 == kept) | (c1 == kept) | (c2 == kept)          # holds both ends: the collapse removes it
+
+        # Faces that stay: their corner at the removed end is now the kept end.
+        moved = ~vanishes
+        position = np.where(c0 == removed, 0, np.where(c1 == removed, 1, 2))
+        flat[3 * face[moved] + position[moved]] = kept[moved]
+
+        # Faces that go: the two faces across their edges at the opposite vertex become neighbours.
+        gone, gone_owner = face[vanishes], owner[vanishes]
+        opposite = (c0 + c1 + c2 - kept - removed)[vanishes]            # the corner that is neither end
+        at_opposite = np.where(c0[vanishes] == opposite, 0, np.where(c1[vanishes] == opposite, 1, 2))
+        leaving = 3 * gone + at_opposite                                 # opposite -> next corner
+        entering = 3 * gone + (at_opposite + 2) % 3                      # previous corner -> opposite
+        across_leaving, across_entering = self.twin[leaving], self.twin[entering]
+        for this, other in ((across_leaving, across_entering), (across_entering, across_leaving)):
+            inside = this >= 0
+            self.twin[this[inside]] = other[inside]
+            self.is_edge[this[inside]] = (other[inside] < 0) | (this[inside] < other[inside])
+        dead = (3 * gone[:, None] + np.arange(3)).reshape(-1)
+        self.twin[dead] = -1
+        self.is_edge[dead] = False
+        self.alive[gone] = False
+        self.n_faces -= len(gone)
+
+        # Rings: the kept end gets both ends' faces and neighbours (less the gone ones);
+        # the opposite vertices lose the gone faces and the removed end; every other
+        # neighbour of the removed end now has the kept end in its place.
+        self._drop_entries(self.faces_around, opposite, gone)
+        faces_kept = np.take(self.faces_around, keep, axis=0)
+        faces_removed = np.take(self.faces_around, remove, axis=0)
+        for rows in (faces_kept, faces_removed):
+            rows[(rows >= 0) & ~self.alive[rows]] = -1
+        self.faces_around = self._write_rows(self.faces_around, keep, _merged_rows(faces_kept, faces_removed))
+
+        neighbours_kept = np.take(self.neighbours, keep, axis=0)
+        neighbours_removed = np.take(self.neighbours, remove, axis=0)
+        neighbours_kept[neighbours_kept == remove[:, None]] = -1
+        neighbours_removed[neighbours_removed == keep[:, None]] = -1
+        opposite_of = np.full((len(keep), 2), -1)                     # (k, 2) each collapse's opposite vertices
+        second = np.zeros(len(gone_owner), dtype=bool)
+        second[1:] = gone_owner[1:] == gone_owner[:-1]
+        opposite_of[gone_owner, second.astype(np.int64)] = opposite
+        for column in range(2):
+            neighbours_removed[neighbours_removed == opposite_of[:, column:column + 1]] = -1
+        moved_owner, moved_neighbour = gather_rings(neighbours_removed, np.arange(len(keep)))
+        self._replace_entries(self.neighbours, moved_neighbour, remove[moved_owner], keep[moved_owner])
+        self._drop_entries(self.neighbours, opposite, remove[gone_owner])
+        np.subtract.at(self.degree, opposite, 1)
+        merged = _merged_rows(neighbours_kept, neighbours_removed)
+        self.degree[keep] = (merged >= 0).sum(axis=1)
+        self.neighbours = self._write_rows(self.neighbours, keep, merged)
+        for table in (self.faces_around, self.neighbours):
+            table[remove] = -1
+        self.degree[remove] = 0
+        self.boundary_vertex[keep] |= self.boundary_vertex[remove]
+
+    @staticmethod
+    def _drop_entries(table: np.ndarray, rows: np.ndarray, values: np.ndarray) -> None:
+        """Clear the entry ``values[i]`` from row ``rows[i]`` of ``table``, for every i."""
+        RoundMesh._replace_entries(table, rows, values, np.full(len(rows), -1))
+
+    @staticmethod
+    def _replace_entries(table: np.ndarray, rows: np.ndarray, values: np.ndarray, new: np.ndarray) -> None:
+        """Overwrite the entry ``values[i]`` of row ``rows[i]`` of ``table`` with ``new[i]``, for every i."""
+        hit = np.flatnonzero((np.take(table, rows, axis=0) == values[:, None]).reshape(-1))
+        width = table.shape[1]
+        table[rows[hit // width], hit % width] = new[hit // width]
+
+    @staticmethod
+    def _write_rows(table: np.ndarray, rows: np.ndarray, content: np.ndarray) -> np.ndarray:
+        """``table`` with rows ``rows`` set to ``content`` (filled slots first), widened if they need it."""
+        width = max(1, int((content >= 0).sum(axis=1).max(initial=0)))
+        if width > table.shape[1]:
+            table = np.concatenate([table, np.full((len(table), width - table.shape[1]), -1, dtype=table.dtype)], axis=1)
+        content = content[:, :table.shape[1]]
+        table[rows, :content.shape[1]] = content
+        table[rows, content.shape[1]:] = -1
+        return table
+
+    def live_faces(self) -> np.ndarray:
+        """(m', 3) the faces still there, in their original order."""
+        return self.faces[self.alive]
+
+
+def _halfedge_twins(faces: np.ndarray, n: int) -> np.ndarray:
+    """(3m,) the halfedge across each halfedge ``3 f + k`` of ``faces`` (m, 3), -1 on the boundary."""
+    tail, head = face_halfedges(faces)
+    order, sorted_key = sort_undirected(tail, head, n)
+    pair = np.flatnonzero(sorted_key[1:] == sorted_key[:-1])             # two uses of one edge, side by side
+    twin = np.full(len(tail), -1, dtype=np.int64)
+    twin[order[pair]] = order[pair + 1]
+    twin[order[pair + 1]] = order[pair]
+    return twin
 
 
 def _grouping_order(rows: np.ndarray, n: int) -> np.ndarray:
@@ -410,11 +606,14 @@ def one_collapse_per_opposite_vertex(chosen: np.ndarray, opposite_owner: np.ndar
     return result
 
 
-def independent_edges(edges: np.ndarray, priority: np.ndarray, all_edges: np.ndarray, n: int) -> np.ndarray:
+def independent_edges(edges: np.ndarray, priority: np.ndarray, all_edges: np.ndarray | None, n: int, *,
+                      neighbours: tuple[np.ndarray, np.ndarray] | np.ndarray | None = None) -> np.ndarray:
     """(k,) True for the ``edges`` (k, 2) that are the cheapest within one ring of both their ends.
 
     ``priority`` (k,) distinct, lowest first; ``all_edges`` (E, 2) every edge of the
-    mesh (the rings run along them); ``n`` the number of vertices.
+    mesh (the rings run along them); ``n`` the number of vertices. Or, instead of
+    ``all_edges``, the rings themselves: ``neighbours``, each vertex's neighbours (CSR
+    or padded, see :func:`gather_rings`).
 
     ``m1[x]`` is the lowest priority among candidate edges at vertex x; ``m2[y]`` the
     lowest ``m1`` over y and its neighbours. An edge taken only where it equals ``m2`` at
@@ -428,12 +627,17 @@ def independent_edges(edges: np.ndarray, priority: np.ndarray, all_edges: np.nda
     # m2 is read only at the ends of the given edges, and only neighbours with an m1
     # can lower it: so only the mesh edges between two such vertices take part.
     has = m1 < big
-    x, y = all_edges[:, 0], all_edges[:, 1]
-    near = np.flatnonzero(has[x] & has[y])          # indices and np.take: a 2-D boolean mask is slower
-    x, y = np.take(x, near), np.take(y, near)
     m2 = m1.copy()
-    np.minimum.at(m2, x, m1[y])
-    np.minimum.at(m2, y, m1[x])
+    if neighbours is not None:
+        ends = np.flatnonzero(has)
+        owner, around = gather_rings(neighbours, ends)
+        np.minimum.at(m2, np.take(ends, owner), np.take(m1, around))
+    else:
+        x, y = all_edges[:, 0], all_edges[:, 1]
+        near = np.flatnonzero(has[x] & has[y])          # indices and np.take: a 2-D boolean mask is slower
+        x, y = np.take(x, near), np.take(y, near)
+        np.minimum.at(m2, x, m1[y])
+        np.minimum.at(m2, y, m1[x])
     return (m2[edges[:, 0]] == priority) & (m2[edges[:, 1]] == priority)
 
 
@@ -471,9 +675,11 @@ def choose_round(
     vertex has lost an edge drop out before a pass picks, not after.
 
     ``neighbours``: the vertex adjacency as CSR (from
-    :func:`halfedge_edu.core.arrays.vertex_neighbours`), if the caller has it: then
-    the ring around the accepted edges is gathered from their ends' rows instead of
-    found by a scan of every edge.
+    :func:`halfedge_edu.core.arrays.vertex_neighbours`) or padded (a
+    :class:`RoundMesh`'s), if the caller has it: then the rings (for independence,
+    and around the accepted edges) are gathered from the rows of the candidates' ends
+    instead of found by scans of every edge, and ``edges`` need only hold the rows
+    the candidates name.
     """
     chosen = np.zeros(len(candidates), dtype=bool)
     open_ = open_.copy()
@@ -489,7 +695,8 @@ def choose_round(
         if not open_.any():
             break
         still_open = np.flatnonzero(open_)
-        picked = still_open[independent_edges(cand_edges[still_open], priority[still_open], edges, n)]
+        picked = still_open[independent_edges(cand_edges[still_open], priority[still_open], edges, n,
+                                              neighbours=neighbours)]
         ok, opposite_owner, opposite_vertex = check_topology(picked)
         known_owner = np.concatenate([known_owner, opposite_owner])     # repeats do no harm
         known_vertex = np.concatenate([known_vertex, opposite_vertex])
@@ -510,7 +717,7 @@ def choose_round(
             blocked[edges[at_end[edges[:, 0]], 1]] = True
             blocked[edges[at_end[edges[:, 1]], 0]] = True
         else:
-            blocked[expand(*neighbours, ends)[1]] = True
+            blocked[gather_rings(neighbours, ends)[1]] = True
         opposite_used[opposite_vertex[passed[opposite_owner]]] = True
     return chosen
 
