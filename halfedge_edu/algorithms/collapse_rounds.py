@@ -334,10 +334,20 @@ def _padded(offsets: np.ndarray, values: np.ndarray) -> np.ndarray:
 
 
 def _merged_rows(first: np.ndarray, second: np.ndarray) -> np.ndarray:
-    """(k, D1 + D2): row i of ``first`` and row i of ``second`` side by side, filled slots first."""
-    rows = np.concatenate([first, second], axis=1)
-    order = np.argsort(rows < 0, axis=1, kind="stable")
-    return np.take_along_axis(rows, order, axis=1)
+    """(k, W): the filled slots of row i of ``first`` and then of ``second``, packed to the left, -1 after.
+
+    ``W`` is the longest merged row. Each filled slot goes to its row at the column
+    that counts the filled slots before it.
+    """
+    rows = np.concatenate([first, second], axis=1)                     # (k, D1 + D2)
+    filled = np.flatnonzero(rows.reshape(-1) >= 0)
+    row = filled // rows.shape[1]
+    count = np.bincount(row, minlength=len(rows))                       # (k,) filled slots per row
+    width = max(1, int(count.max(initial=0)))
+    column = np.arange(len(filled)) - np.repeat(np.cumsum(count) - count, count)
+    merged = np.full((len(rows), width), -1, dtype=rows.dtype)
+    merged.reshape(-1)[row * width + column] = np.take(rows.reshape(-1), filled)
+    return merged
 
 
 class RoundMesh:
@@ -481,11 +491,10 @@ class RoundMesh:
 
     @staticmethod
     def _write_rows(table: np.ndarray, rows: np.ndarray, content: np.ndarray) -> np.ndarray:
-        """``table`` with rows ``rows`` set to ``content`` (filled slots first), widened if they need it."""
-        width = max(1, int((content >= 0).sum(axis=1).max(initial=0)))
-        if width > table.shape[1]:
-            table = np.concatenate([table, np.full((len(table), width - table.shape[1]), -1, dtype=table.dtype)], axis=1)
-        content = content[:, :table.shape[1]]
+        """``table`` with rows ``rows`` set to ``content`` (from :func:`_merged_rows`), widened if they need it."""
+        if content.shape[1] > table.shape[1]:
+            table = np.concatenate([table, np.full((len(table), content.shape[1] - table.shape[1]), -1,
+                                                   dtype=table.dtype)], axis=1)
         table[rows, :content.shape[1]] = content
         table[rows, content.shape[1]:] = -1
         return table
