@@ -157,11 +157,12 @@ def _keep_where(mask: np.ndarray, *arrays: np.ndarray) -> tuple[np.ndarray, ...]
     return tuple(np.take(array, rows, axis=0) for array in arrays)
 
 
-def _moved_faces(vertices, faces, faces_around, points, keep, remove) -> _MovedFaces:
+def _moved_faces(vertices, faces, faces_around, points, keep, remove, face_normals=None) -> _MovedFaces:
     """Every face around ``keep[i]`` or ``remove[i]`` that survives collapse i, moved to ``points[i]``.
 
     The two faces holding both ends vanish and are left out. Rows come in the order of
-    ``keep``'s faces, then ``remove``'s.
+    ``keep``'s faces, then ``remove``'s. ``face_normals`` (m, 3), if the caller keeps
+    them, are the faces' cross products before the move (read instead of computed).
     """
     k = len(keep)
     end = np.concatenate([keep, remove])                                # (2k,) the moving ends
@@ -184,9 +185,13 @@ def _moved_faces(vertices, faces, faces_around, points, keep, remove) -> _MovedF
     # (mover, u, w) is a rotation of the face's corners, so (u - x) x (w - x) is its
     # cross product for x at the mover's old place and at the new point.
     at_u, at_w = np.take(vertices, u, axis=0), np.take(vertices, w, axis=0)
-    before, after = np.take(vertices, mover, axis=0), np.take(points, owner, axis=0)
-    return _MovedFaces(owner, face, position, u, w,
-                       cross_rows(at_u - before, at_w - before), cross_rows(at_u - after, at_w - after))
+    after = np.take(points, owner, axis=0)
+    if face_normals is None:
+        before = np.take(vertices, mover, axis=0)
+        normal_before = cross_rows(at_u - before, at_w - before)
+    else:
+        normal_before = np.take(face_normals, face, axis=0)
+    return _MovedFaces(owner, face, position, u, w, normal_before, cross_rows(at_u - after, at_w - after))
 
 
 def _unit(rows: np.ndarray) -> np.ndarray:
@@ -204,6 +209,7 @@ def no_turned_faces(
     max_normal_cos: float,
     *,
     face_across: np.ndarray | None = None,
+    face_normals: np.ndarray | None = None,
 ) -> np.ndarray:
     """(k,) True where moving both ends of edge ``keep[i] - remove[i]`` to ``points[i]``
     turns no face over and folds no pair of neighbouring faces.
@@ -227,8 +233,11 @@ def no_turned_faces(
     across each face's edge ``faces[f, k] -> faces[f, k + 1]``, -1 on the boundary. It
     names the unmoved neighbour of each moved face directly; without it the neighbour
     is searched for among the faces around the far edge's end, several times the work.
+    ``face_normals`` (m, 3), if the caller keeps them current: each face's cross product
+    ``(b - a) x (c - a)`` (:func:`halfedge_edu.core.arrays.face_cross`), read for the
+    faces as they are instead of computed again.
     """
-    moved = _moved_faces(vertices, faces, faces_around, points, keep, remove)
+    moved = _moved_faces(vertices, faces, faces_around, points, keep, remove, face_normals)
     owner, position, u, w = moved.owner, moved.position, moved.u, moved.w
     n_before, n_after = moved.normal_before, moved.normal_after
     length_before = np.sqrt(np.einsum("ij,ij->i", n_before, n_before))
@@ -241,12 +250,15 @@ def no_turned_faces(
     fold_cos = float(np.cos(np.radians(FOLD_ANGLE)))
 
     # Moved faces that share an edge at the new vertex: after the collapse both faces
-    # hold the kept vertex (the removed one renamed) and one more common vertex.
-    rows = np.repeat(np.arange(len(owner)), 2)
-    key = owner[rows] * len(vertices) + np.stack([u, w], axis=1).reshape(-1)   # (2j,) owner and far end
-    order = _grouping_order(key, len(keep) * len(vertices))
-    same = key[order][1:] == key[order][:-1]
-    first, second = rows[order][:-1][same], rows[order][1:][same]
+    # hold the kept vertex (the removed one renamed) and one more common vertex y; the
+    # face turning counter-clockwise from the edge holds y as u, the other one as w.
+    key_u = owner * len(vertices) + u                                   # (j,) owner and far end
+    key_w = owner * len(vertices) + w
+    by_w = _grouping_order(key_w, len(keep) * len(vertices))
+    sorted_w = key_w[by_w]
+    at = np.minimum(np.searchsorted(sorted_w, key_u), max(len(sorted_w) - 1, 0))
+    first = np.flatnonzero(np.take(sorted_w, at) == key_u) if len(sorted_w) else at
+    second = by_w[at[first]]
     folded = np.einsum("ij,ij->i", unit_after[first], unit_after[second]) < fold_cos
     turned[first[folded]] = True
 
@@ -260,9 +272,13 @@ def no_turned_faces(
         neighbour = np.take(face_across.reshape(-1), 3 * moved.face + (position + 1) % 3)   # across u -> w
         row, neighbour = _keep_where(neighbour >= 0, np.arange(len(owner)), neighbour)
     b0, b1, b2 = (np.take(flat, 3 * neighbour + i) for i in range(3))
-    row, b0, b1, b2 = _keep_where(~_holds_any((b0, b1, b2), keep[owner[row]], remove[owner[row]]), row, b0, b1, b2)
-    at_b0 = np.take(vertices, b0, axis=0)
-    n_beyond = _unit(cross_rows(np.take(vertices, b1, axis=0) - at_b0, np.take(vertices, b2, axis=0) - at_b0))
+    row, neighbour, b0, b1, b2 = _keep_where(~_holds_any((b0, b1, b2), keep[owner[row]], remove[owner[row]]),
+                                             row, neighbour, b0, b1, b2)
+    if face_normals is None:
+        at_b0 = np.take(vertices, b0, axis=0)
+        n_beyond = _unit(cross_rows(np.take(vertices, b1, axis=0) - at_b0, np.take(vertices, b2, axis=0) - at_b0))
+    else:
+        n_beyond = _unit(np.take(face_normals, neighbour, axis=0))
     folded = np.einsum("ij,ij->i", unit_after[row], n_beyond) < fold_cos
     turned[row[folded]] = True
 

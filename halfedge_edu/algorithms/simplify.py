@@ -51,7 +51,9 @@ from ..core.arrays import compact, face_cross
 from ..core.errors import MeshWarning
 from ..core.mesh import HalfedgeMesh
 from .arguments import check_simplify
-from .collapse_rounds import RoundMesh, choose_round, collapse_topology_ok, drop_folding_neighbours, no_turned_faces
+from .collapse_rounds import (
+    RoundMesh, choose_round, collapse_topology_ok, drop_folding_neighbours, gather_rings, no_turned_faces,
+)
 
 
 @dataclass
@@ -406,6 +408,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
     cost_floor = 1e-12 * float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0))) ** 4
     bar = _progress_bar(progress, faces_before - target_faces)
     rounds = 0
+    face_normals = face_cross(vertices[faces])                         # (m, 3) kept current for the checks
     prices = _EdgePrices(len(mesh_now.twin))
     prices.update(np.flatnonzero(mesh_now.is_edge), mesh_now, vertices, quadrics)
     while mesh_now.n_faces > target_faces:
@@ -437,7 +440,8 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
 
         def check_turned_faces(indices: np.ndarray) -> np.ndarray:
             ok = no_turned_faces(vertices, mesh_now.faces, mesh_now.faces_around, points[indices],
-                                 keep[indices], remove[indices], max_normal_cos, face_across=face_across)
+                                 keep[indices], remove[indices], max_normal_cos, face_across=face_across,
+                                 face_normals=face_normals)
             # Where the best point turns a face over, an endpoint may not: in a flat
             # region all three cost nothing, and moving onto a neighbour folds less
             # often than moving to the middle of a long edge. Accept an endpoint only
@@ -454,7 +458,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
             cheap = np.flatnonzero(passes)
             passes[cheap] = no_turned_faces(vertices, mesh_now.faces, mesh_now.faces_around, option[cheap],
                                             keep[twice[cheap]], remove[twice[cheap]], max_normal_cos,
-                                            face_across=face_across)
+                                            face_across=face_across, face_normals=face_normals)
             r = len(retry)
             pick = np.where(passes[:r], np.arange(r), np.arange(r) + r)    # (r,) the kept end if it passes
             good = passes[pick]
@@ -487,6 +491,8 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         quadrics[:, keep_c] += quadrics[:, remove_c]
         faces_left = mesh_now.n_faces
         mesh_now.collapse(keep_c, remove_c)
+        moved = gather_rings(mesh_now.faces_around, keep_c)[1]
+        face_normals[moved] = face_cross(vertices[mesh_now.faces[moved]])
         prices.update(mesh_now.edges_at(keep_c), mesh_now, vertices, quadrics)
         if bar is not None:
             bar.update(faces_left - mesh_now.n_faces)
