@@ -428,8 +428,8 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         # Everything a round asks about its candidates, by candidate index.
         candidate_edges = np.stack(mesh_now.ends(candidates), axis=1)              # (k, 2)
         boundary_edge = np.take(mesh_now.twin, candidates) < 0
-        points, cost = prices.points[candidates], prices.cost[candidates]
-        keep, remove = prices.keep[candidates], prices.remove[candidates]
+        points, cost = np.take(prices.points, candidates, axis=0), np.take(prices.cost, candidates)
+        keep, remove = np.take(prices.keep, candidates), np.take(prices.remove, candidates)
         face_across = mesh_now.face_across()
 
         def check_topology(indices: np.ndarray):
@@ -492,7 +492,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         faces_left = mesh_now.n_faces
         mesh_now.collapse(keep_c, remove_c)
         moved = gather_rings(mesh_now.faces_around, keep_c)[1]
-        face_normals[moved] = face_cross(vertices[mesh_now.faces[moved]])
+        face_normals[moved] = face_cross(np.take(vertices, np.take(mesh_now.faces, moved, axis=0), axis=0))
         prices.update(mesh_now.edges_at(keep_c), mesh_now, vertices, quadrics)
         if bar is not None:
             bar.update(faces_left - mesh_now.n_faces)
