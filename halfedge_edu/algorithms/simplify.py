@@ -305,23 +305,24 @@ class _EdgePrices:
     def update(self, edges: np.ndarray, mesh: RoundMesh, vertices: np.ndarray, quadrics: np.ndarray) -> None:
         """Price the ``edges`` (t,) (their names in ``mesh``) from the packed ``quadrics`` (10, n)."""
         a, b = mesh.ends(edges)
-        boundary_edge = np.take(mesh.twin, edges) < 0
-        boundary_vertex = mesh.boundary_vertex
         quadric = np.take(quadrics, a, axis=1) + np.take(quadrics, b, axis=1)        # (10, t)
-        vertex_rows = np.ascontiguousarray(vertices.T)                                 # (3, n)
-        midpoint = 0.5 * (np.take(vertex_rows, a, axis=1) + np.take(vertex_rows, b, axis=1))
+        midpoint = 0.5 * (np.take(vertices, a, axis=0) + np.take(vertices, b, axis=0)).T   # (3, t)
         x, c = _packed_optimal_points(quadric, midpoint)
         p = np.ascontiguousarray(x.T)                                                 # (t, 3)
+        keep, remove = a, b
         # An interior edge with one boundary end collapses onto that end, keeping the outline.
-        a_fixed = boundary_vertex[a] & ~boundary_edge & ~boundary_vertex[b]
-        b_fixed = boundary_vertex[b] & ~boundary_edge & ~boundary_vertex[a]
-        p[a_fixed] = vertices[a[a_fixed]]
-        p[b_fixed] = vertices[b[b_fixed]]
-        pinned = np.flatnonzero(a_fixed | b_fixed)
-        c[pinned] = _packed_cost(quadric[:, pinned], p[pinned].T)
+        a_on, b_on = mesh.boundary_vertex[a], mesh.boundary_vertex[b]
+        one_on = np.flatnonzero(a_on != b_on)
+        if len(one_on):
+            interior = np.take(mesh.twin, edges[one_on]) >= 0
+            pinned = one_on[interior]                          # the boundary end stays where it is
+            keep, remove = a.copy(), b.copy()
+            keep[pinned] = np.where(b_on[pinned], b[pinned], a[pinned])
+            remove[pinned] = np.where(b_on[pinned], a[pinned], b[pinned])
+            p[pinned] = vertices[keep[pinned]]
+            c[pinned] = _packed_cost(quadric[:, pinned], p[pinned].T)
         self.points[edges], self.cost[edges] = p, c
-        self.keep[edges] = np.where(b_fixed, b, a)
-        self.remove[edges] = np.where(b_fixed, a, b)
+        self.keep[edges], self.remove[edges] = keep, remove
 
 
 def simplify(
