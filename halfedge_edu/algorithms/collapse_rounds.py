@@ -134,7 +134,7 @@ class _MovedFaces(NamedTuple):
     position: np.ndarray       # (j,) 0, 1 or 2: which corner moves
     u: np.ndarray              # (j,) the corner after the moving one
     w: np.ndarray              # (j,) the corner after u
-    normal_before: np.ndarray  # (j, 3) cross products, length twice the area
+    normal_before: np.ndarray | None  # (j, 3) cross products, length twice the area
     normal_after: np.ndarray   # (j, 3)
 
 
@@ -157,12 +157,12 @@ def _keep_where(mask: np.ndarray, *arrays: np.ndarray) -> tuple[np.ndarray, ...]
     return tuple(np.take(array, rows, axis=0) for array in arrays)
 
 
-def _moved_faces(vertices, faces, faces_around, points, keep, remove, face_normals=None) -> _MovedFaces:
+def _moved_faces(vertices, faces, faces_around, points, keep, remove, before: bool = True) -> _MovedFaces:
     """Every face around ``keep[i]`` or ``remove[i]`` that survives collapse i, moved to ``points[i]``.
 
     The two faces holding both ends vanish and are left out. Rows come in the order of
-    ``keep``'s faces, then ``remove``'s. ``face_normals`` (m, 3), if the caller keeps
-    them, are the faces' cross products before the move (read instead of computed).
+    ``keep``'s faces, then ``remove``'s. With ``before=False`` the normals before the
+    move are not computed (``normal_before`` is None): the caller has them.
     """
     k = len(keep)
     end = np.concatenate([keep, remove])                                # (2k,) the moving ends
@@ -186,11 +186,10 @@ def _moved_faces(vertices, faces, faces_around, points, keep, remove, face_norma
     # cross product for x at the mover's old place and at the new point.
     at_u, at_w = np.take(vertices, u, axis=0), np.take(vertices, w, axis=0)
     after = np.take(points, owner, axis=0)
-    if face_normals is None:
-        before = np.take(vertices, mover, axis=0)
-        normal_before = cross_rows(at_u - before, at_w - before)
-    else:
-        normal_before = np.take(face_normals, face, axis=0)
+    normal_before = None
+    if before:
+        at_mover = np.take(vertices, mover, axis=0)
+        normal_before = cross_rows(at_u - at_mover, at_w - at_mover)
     return _MovedFaces(owner, face, position, u, w, normal_before, cross_rows(at_u - after, at_w - after))
 
 
@@ -209,7 +208,7 @@ def no_turned_faces(
     max_normal_cos: float,
     *,
     face_across: np.ndarray | None = None,
-    face_normals: np.ndarray | None = None,
+    face_normals: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> np.ndarray:
     """(k,) True where moving both ends of edge ``keep[i] - remove[i]`` to ``points[i]``
     turns no face over and folds no pair of neighbouring faces.
@@ -233,20 +232,26 @@ def no_turned_faces(
     across each face's edge ``faces[f, k] -> faces[f, k + 1]``, -1 on the boundary. It
     names the unmoved neighbour of each moved face directly; without it the neighbour
     is searched for among the faces around the far edge's end, several times the work.
-    ``face_normals`` (m, 3), if the caller keeps them current: each face's cross product
-    ``(b - a) x (c - a)`` (:func:`halfedge_edu.core.arrays.face_cross`), read for the
-    faces as they are instead of computed again.
+    ``face_normals``, if the caller keeps them current: ``(unit (m, 3), length (m,))``,
+    each face's unit normal (zero for a face without area) and the length of its cross
+    product ``(b - a) x (c - a)`` (twice its area), read for the faces as they are
+    instead of computed again.
     """
-    moved = _moved_faces(vertices, faces, faces_around, points, keep, remove, face_normals)
+    moved = _moved_faces(vertices, faces, faces_around, points, keep, remove, before=face_normals is None)
     owner, position, u, w = moved.owner, moved.position, moved.u, moved.w
-    n_before, n_after = moved.normal_before, moved.normal_after
-    length_before = np.sqrt(np.einsum("ij,ij->i", n_before, n_before))
+    n_after = moved.normal_after
     length_after = np.sqrt(np.einsum("ij,ij->i", n_after, n_after))
+    if face_normals is None:
+        length_before = np.sqrt(np.einsum("ij,ij->i", moved.normal_before, moved.normal_before))
+        unit_before = moved.normal_before / np.maximum(length_before, 1e-300)[:, None]
+    else:
+        unit_before = np.take(face_normals[0], moved.face, axis=0)
+        length_before = np.take(face_normals[1], moved.face)
     had_normal = length_before > 1e-12 * length_after
-    cosine = np.einsum("ij,ij->i", n_before, n_after) / np.maximum(length_before * length_after, 1e-300)
-    turned = had_normal & (cosine < max_normal_cos)
+    # The swing: cos(angle) = unit_before . n_after / |n_after|, compared without dividing.
+    turned = had_normal & (np.einsum("ij,ij->i", unit_before, n_after) < max_normal_cos * length_after)
     turned |= length_after <= 1e-12 * np.maximum(length_before, 1e-300)
-    unit_after = _unit(n_after)
+    unit_after = n_after / np.maximum(length_after, 1e-300)[:, None]
     fold_cos = float(np.cos(np.radians(FOLD_ANGLE)))
 
     # Moved faces that share an edge at the new vertex: after the collapse both faces
@@ -278,7 +283,7 @@ def no_turned_faces(
         at_b0 = np.take(vertices, b0, axis=0)
         n_beyond = _unit(cross_rows(np.take(vertices, b1, axis=0) - at_b0, np.take(vertices, b2, axis=0) - at_b0))
     else:
-        n_beyond = _unit(np.take(face_normals, neighbour, axis=0))
+        n_beyond = np.take(face_normals[0], neighbour, axis=0)
     folded = np.einsum("ij,ij->i", unit_after[row], n_beyond) < fold_cos
     turned[row[folded]] = True
 

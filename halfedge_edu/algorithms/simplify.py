@@ -409,7 +409,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
     cost_floor = 1e-12 * float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0))) ** 4
     bar = _progress_bar(progress, faces_before - target_faces)
     rounds = 0
-    face_normals = face_cross(vertices[faces])                         # (m, 3) kept current for the checks
+    face_normals = _unit_normals(face_cross(vertices[faces]))          # (m, 3), (m,): kept current for the checks
     prices = _EdgePrices(len(mesh_now.twin))
     prices.update(np.flatnonzero(mesh_now.is_edge), mesh_now, vertices, quadrics)
     while mesh_now.n_faces > target_faces:
@@ -493,7 +493,8 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         faces_left = mesh_now.n_faces
         mesh_now.collapse(keep_c, remove_c)
         moved = gather_rings(mesh_now.faces_around, keep_c)[1]
-        face_normals[moved] = face_cross(np.take(vertices, np.take(mesh_now.faces, moved, axis=0), axis=0))
+        for table, new in zip(face_normals, _unit_normals(face_cross(np.take(vertices, mesh_now.faces[moved], axis=0)))):
+            table[moved] = new
         prices.update(mesh_now.edges_at(keep_c), mesh_now, vertices, quadrics)
         if bar is not None:
             bar.update(faces_left - mesh_now.n_faces)
@@ -511,6 +512,12 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         )
     result = HalfedgeMesh.from_faces(*compact(vertices, faces)[:2])
     return SimplifyResult(result, SimplifyReport(faces_before, len(faces), target_faces, rounds, reached))
+
+
+def _unit_normals(cross: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Unit normals (k, 3) (zero where a face has no area) and lengths (k,) of face cross products (k, 3)."""
+    length = np.sqrt(np.einsum("ij,ij->i", cross, cross))
+    return cross / np.maximum(length, 1e-300)[:, None], length
 
 
 def _progress_bar(enabled: bool, total: int):
