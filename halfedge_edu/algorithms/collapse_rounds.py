@@ -382,7 +382,8 @@ class RoundMesh:
     * ``faces`` (m, 3): a collapsed face stays in its row, marked dead in ``alive``
       (m,), so face and halfedge numbers never change;
     * ``twin`` (3m,): the halfedge across halfedge ``3 f + k`` (the directed edge
-      ``faces[f, k] -> faces[f, k + 1]``), -1 on the boundary;
+      ``faces[f, k] -> faces[f, k + 1]``), -1 on the boundary, and ``face_across``
+      (m, 3) its face, ``twin // 3`` (as :class:`RoundTables` has it);
     * ``is_edge`` (3m,): True at one halfedge of every edge, its name (the smaller of
       its two numbers, or its only one on the boundary);
     * ``faces_around`` (n, D) and ``neighbours`` (n, D'): each vertex's faces and
@@ -397,6 +398,7 @@ class RoundMesh:
         self.alive = np.ones(len(faces), dtype=bool)
         self.n_faces = len(faces)
         self.twin = _halfedge_twins(faces, n)
+        self.face_across = self.twin.reshape(-1, 3) // 3                # -1 // 3 is -1: the boundary stays -1
         halfedge = np.arange(len(self.twin))
         self.is_edge = (self.twin < 0) | (halfedge < self.twin)
         self.faces_around = _padded(*tables.faces_around)
@@ -409,10 +411,6 @@ class RoundMesh:
         """The tail and head vertex of each of ``halfedges`` (k,)."""
         flat = self.faces.reshape(-1)
         return np.take(flat, halfedges), np.take(flat, halfedges - halfedges % 3 + (halfedges + 1) % 3)
-
-    def face_across(self) -> np.ndarray:
-        """(m, 3) the face across each face's edge ``k``, -1 on the boundary (as :class:`RoundTables`)."""
-        return self.twin.reshape(-1, 3) // 3                  # -1 // 3 is -1: the boundary stays -1
 
     def edges_at(self, vertices: np.ndarray) -> np.ndarray:
         """The edges (their names, see ``is_edge``) at ``vertices``, each edge once if no two are neighbours.
@@ -456,12 +454,15 @@ class RoundMesh:
         leaving = 3 * gone + at_opposite                                 # opposite -> next corner
         entering = 3 * gone + (at_opposite + 2) % 3                      # previous corner -> opposite
         across_leaving, across_entering = self.twin[leaving], self.twin[entering]
+        face_across = self.face_across.reshape(-1)
         for this, other in ((across_leaving, across_entering), (across_entering, across_leaving)):
             inside = this >= 0
             self.twin[this[inside]] = other[inside]
+            face_across[this[inside]] = other[inside] // 3
             self.is_edge[this[inside]] = (other[inside] < 0) | (this[inside] < other[inside])
         dead = (3 * gone[:, None] + np.arange(3)).reshape(-1)
         self.twin[dead] = -1
+        face_across[dead] = -1
         self.is_edge[dead] = False
         self.alive[gone] = False
         self.n_faces -= len(gone)

@@ -431,7 +431,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         boundary_edge = np.take(mesh_now.twin, candidates) < 0
         points, cost = np.take(prices.points, candidates, axis=0), np.take(prices.cost, candidates)
         keep, remove = np.take(prices.keep, candidates), np.take(prices.remove, candidates)
-        face_across = mesh_now.face_across()
+        face_across = mesh_now.face_across
 
         def check_topology(indices: np.ndarray):
             ok, owner, vertex = collapse_topology_ok(n, candidate_edges[indices], boundary_edge[indices],
