@@ -31,7 +31,7 @@ from typing import Callable, NamedTuple
 
 import numpy as np
 
-from ..core.arrays import cross_rows, expand, face_halfedges, sort_undirected
+from ..core.arrays import cross_rows, expand, sort_undirected
 
 __all__ = [
     "FOLD_ANGLE", "RoundMesh", "RoundTables", "choose_round", "collapse_topology_ok", "drop_folding_neighbours",
@@ -322,6 +322,11 @@ def round_tables(faces: np.ndarray, n: int) -> RoundTables:
     face. The corners sorted by vertex give the faces and the neighbours around every
     vertex (:func:`_vertex_rings`).
     """
+    return _round_tables_and_twins(faces, n)[0]
+
+
+def _round_tables_and_twins(faces: np.ndarray, n: int) -> tuple[RoundTables, np.ndarray]:
+    """:func:`round_tables`, and the halfedge across each halfedge (3m,), -1 on the boundary."""
     corner_vertex = faces.reshape(-1)                                  # (3m,) tail of directed edge 3f + k
     next_vertex = np.empty_like(corner_vertex)                         # (3m,) its head, faces[f, k + 1]
     next_vertex.reshape(-1, 3)[:, :2] = faces[:, 1:]
@@ -336,13 +341,14 @@ def round_tables(faces: np.ndarray, n: int) -> RoundTables:
     first = order[starts]
     inner = count == 2
     second = order[starts[inner] + 1]
-    across = np.full(n_halfedges, -1, dtype=np.int64)
-    across[first[inner]] = second // 3
-    across[second] = first[inner] // 3
+    twin = np.full(n_halfedges, -1, dtype=np.int64)                    # the halfedge across each one
+    twin[first[inner]] = second
+    twin[second] = first[inner]
+    across = twin // 3                                                 # -1 // 3 is -1: the boundary stays -1
     boundary_halfedge = first[count == 1]
     faces_around, neighbours = _vertex_rings(corner_vertex, next_vertex, boundary_halfedge, n)
     return RoundTables(np.stack([keys // n, keys % n], axis=1), count == 1, boundary_halfedge,
-                       across.reshape(-1, 3), faces_around, neighbours)
+                       across.reshape(-1, 3), faces_around, neighbours), twin
 
 
 def _padded(offsets: np.ndarray, values: np.ndarray) -> np.ndarray:
@@ -393,12 +399,11 @@ class RoundMesh:
     """
 
     def __init__(self, faces: np.ndarray, n: int):
-        tables = round_tables(faces, n)
+        tables, self.twin = _round_tables_and_twins(faces, n)
         self.faces = faces.copy()
         self.alive = np.ones(len(faces), dtype=bool)
         self.n_faces = len(faces)
-        self.twin = _halfedge_twins(faces, n)
-        self.face_across = self.twin.reshape(-1, 3) // 3                # -1 // 3 is -1: the boundary stays -1
+        self.face_across = tables.face_across
         halfedge = np.arange(len(self.twin))
         self.is_edge = (self.twin < 0) | (halfedge < self.twin)
         self.faces_around = _padded(*tables.faces_around)
@@ -524,17 +529,6 @@ class RoundMesh:
     def live_faces(self) -> np.ndarray:
         """(m', 3) the faces still there, in their original order."""
         return self.faces[self.alive]
-
-
-def _halfedge_twins(faces: np.ndarray, n: int) -> np.ndarray:
-    """(3m,) the halfedge across each halfedge ``3 f + k`` of ``faces`` (m, 3), -1 on the boundary."""
-    tail, head = face_halfedges(faces)
-    order, sorted_key = sort_undirected(tail, head, n)
-    pair = np.flatnonzero(sorted_key[1:] == sorted_key[:-1])             # two uses of one edge, side by side
-    twin = np.full(len(tail), -1, dtype=np.int64)
-    twin[order[pair]] = order[pair + 1]
-    twin[order[pair + 1]] = order[pair]
-    return twin
 
 
 def _grouping_order(rows: np.ndarray, n: int) -> np.ndarray:

@@ -396,7 +396,8 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
     max_normal_cos = float(np.cos(np.radians(max_normal_angle)))
 
     # The vertex quadrics, packed (see _pack_quadrics) from the start: ten columns, not sixteen.
-    quadrics = _accumulate_rows(_packed_outer(*_face_planes(vertices, faces)), faces, n)       # (n, 10)
+    area, plane = _face_planes(vertices, faces)
+    quadrics = _accumulate_rows(_packed_outer(area, plane), faces, n)     # (n, 10)
     mesh_now = RoundMesh(faces, n)                                     # kept and updated from round to round
     boundary_halfedges = np.flatnonzero(mesh_now.twin < 0)
     if len(boundary_halfedges):
@@ -409,7 +410,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
     cost_floor = 1e-12 * float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0))) ** 4
     bar = _progress_bar(progress, faces_before - target_faces)
     rounds = 0
-    face_normals = _unit_normals(face_cross(vertices[faces]))          # (m, 3), (m,): kept current for the checks
+    face_normals = (plane[:, :3].copy(), 2.0 * area)                  # unit (m, 3), length (m,): kept current
     prices = _EdgePrices(len(mesh_now.twin))
     prices.update(np.flatnonzero(mesh_now.is_edge), mesh_now, vertices, quadrics)
     while mesh_now.n_faces > target_faces:
