@@ -23,6 +23,9 @@ A round needs the same few tables of the face array every time: the edges, the f
 across each edge, the faces and the neighbours around every vertex.
 :func:`round_tables` builds them all from two sorts, and the checks take them as
 keyword arguments (``face_across``, ``neighbours``) where they replace a search.
+:class:`RoundMesh` keeps them from round to round instead (``simplify`` does), the
+rings padded so a row can change alone, and after a round rewrites only the rows of
+the faces and vertices its collapses touched.
 """
 
 from __future__ import annotations

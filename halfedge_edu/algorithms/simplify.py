@@ -14,15 +14,17 @@ The idea, in four sentences:
 
 The course's version (see ``simplify_sequential``) pops one edge at a time from a priority
 queue. This default version does the same work in *rounds*: each round prices, all at
-once, the edges whose ends changed in the last round (the other prices are kept), then
+once, the edges at the vertices the last round kept (the other prices are kept), then
 collapses a set of cheap edges that are far enough apart not to disturb each other (no
 two within one ring of each other), all at once, with numpy. An edge is taken only if
 it is the cheapest in its neighbourhood, so the order stays close to the queue's, and
 about twenty rounds replace tens of thousands of Python steps. A round can take at
 most about one face in seven (the collapses must stay apart), so the rounds cannot get
-much fewer; what a round costs is kept down instead: two sorts of the face array per
-round (:func:`~.collapse_rounds.round_tables`), the quadrics as ten packed numbers,
-and checks that gather only what the picked edges touch.
+much fewer; what a round costs is kept down instead: the face array and its tables
+(edges, faces across, rings) are built once and then updated only where a round
+collapsed (:class:`~.collapse_rounds.RoundMesh`), the quadrics are ten packed numbers,
+the face normals are kept current for the checks, and the checks gather only what the
+picked edges touch.
 
 Every collapse must pass the same checks as :func:`halfedge_edu.core.ops.can_collapse`: the
 link condition (the endpoints share exactly the two opposite vertices, one on the
