@@ -363,17 +363,17 @@ def _padded(offsets: np.ndarray, values: np.ndarray) -> np.ndarray:
     return table
 
 
-def _merged_rows(first: np.ndarray, second: np.ndarray) -> np.ndarray:
+def _merged_rows(first: np.ndarray, second: np.ndarray, width: int = 1) -> np.ndarray:
     """(k, W): the filled slots of row i of ``first`` and then of ``second``, packed to the left, -1 after.
 
-    ``W`` is the longest merged row. Each filled slot goes to its row at the column
-    that counts the filled slots before it.
+    ``W`` is ``width``, or the longest merged row if that is longer. Each filled slot
+    goes to its row at the column that counts the filled slots before it.
     """
     rows = np.concatenate([first, second], axis=1)                     # (k, D1 + D2)
     filled = np.flatnonzero(rows.reshape(-1) >= 0)
     row = filled // rows.shape[1]
     count = np.bincount(row, minlength=len(rows))                       # (k,) filled slots per row
-    width = max(1, int(count.max(initial=0)))
+    width = max(width, int(count.max(initial=0)))
     column = np.arange(len(filled)) - np.repeat(np.cumsum(count) - count, count)
     merged = np.full((len(rows), width), -1, dtype=rows.dtype)
     merged.reshape(-1)[row * width + column] = np.take(rows.reshape(-1), filled)
@@ -483,7 +483,8 @@ class RoundMesh:
         faces_removed = np.take(self.faces_around, remove, axis=0)
         for rows in (faces_kept, faces_removed):
             rows[(rows >= 0) & ~self.alive[rows]] = -1
-        self.faces_around = self._write_rows(self.faces_around, keep, _merged_rows(faces_kept, faces_removed))
+        self.faces_around = self._write_rows(self.faces_around, keep,
+                                             _merged_rows(faces_kept, faces_removed, self.faces_around.shape[1]))
 
         neighbours_kept = np.take(self.neighbours, keep, axis=0)
         neighbours_removed = np.take(self.neighbours, remove, axis=0)
@@ -499,7 +500,7 @@ class RoundMesh:
         self._replace_entries(self.neighbours, moved_neighbour, remove[moved_owner], keep[moved_owner])
         self._drop_entries(self.neighbours, opposite, remove[gone_owner])
         np.subtract.at(self.degree, opposite, 1)
-        merged = _merged_rows(neighbours_kept, neighbours_removed)
+        merged = _merged_rows(neighbours_kept, neighbours_removed, self.neighbours.shape[1])
         self.degree[keep] = (merged >= 0).sum(axis=1)
         self.neighbours = self._write_rows(self.neighbours, keep, merged)
         for table in (self.faces_around, self.neighbours):
@@ -521,12 +522,11 @@ class RoundMesh:
 
     @staticmethod
     def _write_rows(table: np.ndarray, rows: np.ndarray, content: np.ndarray) -> np.ndarray:
-        """``table`` with rows ``rows`` set to ``content`` (from :func:`_merged_rows`), widened if they need it."""
+        """``table`` with rows ``rows`` set to ``content`` (:func:`_merged_rows`), widened if it needs more columns."""
         if content.shape[1] > table.shape[1]:
             table = np.concatenate([table, np.full((len(table), content.shape[1] - table.shape[1]), -1,
                                                    dtype=table.dtype)], axis=1)
-        table[rows, :content.shape[1]] = content
-        table[rows, content.shape[1]:] = -1
+        table[rows] = content
         return table
 
     def live_faces(self) -> np.ndarray:

@@ -496,7 +496,8 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         faces_left = mesh_now.n_faces
         mesh_now.collapse(keep_c, remove_c)
         moved = gather_rings(mesh_now.faces_around, keep_c)[1]
-        for table, new in zip(face_normals, _unit_normals(face_cross(np.take(vertices, mesh_now.faces[moved], axis=0)))):
+        corners = np.take(vertices, mesh_now.faces[moved], axis=0)          # (j, 3, 3)
+        for table, new in zip(face_normals, _unit_normals(face_cross(corners))):
             table[moved] = new
         prices.update(mesh_now.edges_at(keep_c), mesh_now, vertices, quadrics)
         if bar is not None:
