@@ -31,15 +31,14 @@ from halfedge_edu.algorithms.simplify import simplify, simplify_with_report
 
 #: The phases of a round, as the functions that do them (cumulative time of each).
 PHASES = [
-    ("tables, built once", "_round_tables_and_twins"),
-    ("tables, updated after each round", "collapse"),
+    ("edge and ring tables", "round_tables"),
     ("pricing (re-price changed edges)", "update"),
     ("round choice, all passes", "choose_round"),
     ("  topology checks", "collapse_topology_ok"),
     ("  turned-face checks", "no_turned_faces"),
     ("  independence", "independent_edges"),
     ("folds between collapses", "drop_folding_neighbours"),
-    ("edges to re-price", "edges_at"),
+    ("apply (merge vertices)", "merge_vertices"),
     ("vertex quadrics (start)", "_accumulate_rows"),
 ]
 

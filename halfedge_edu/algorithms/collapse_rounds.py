@@ -23,9 +23,6 @@ A round needs the same few tables of the face array every time: the edges, the f
 across each edge, the faces and the neighbours around every vertex.
 :func:`round_tables` builds them all from two sorts, and the checks take them as
 keyword arguments (``face_across``, ``neighbours``) where they replace a search.
-:class:`RoundMesh` keeps them from round to round instead (``simplify`` does), the
-rings padded so a row can change alone, and after a round rewrites only the rows of
-the faces and vertices its collapses touched.
 """
 
 from __future__ import annotations
@@ -37,24 +34,9 @@ import numpy as np
 from ..core.arrays import cross_rows, expand, sort_undirected
 
 __all__ = [
-    "FOLD_ANGLE", "RoundMesh", "RoundTables", "choose_round", "collapse_topology_ok", "drop_folding_neighbours",
-    "gather_rings", "independent_edges", "no_turned_faces", "one_collapse_per_opposite_vertex", "round_tables",
+    "FOLD_ANGLE", "RoundTables", "choose_round", "collapse_topology_ok", "drop_folding_neighbours", "independent_edges",
+    "no_turned_faces", "one_collapse_per_opposite_vertex", "round_tables",
 ]
-
-
-def gather_rings(rings: tuple[np.ndarray, np.ndarray] | np.ndarray, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Gather the ring rows ``rows`` (k,) at once: ``(owner, items)``, as :func:`expand`.
-
-    ``rings`` is a vertex's faces or neighbours either as CSR ``(offsets, values)``
-    (from :func:`round_tables`) or as a padded (n, D) table with -1 in unused slots
-    (a :class:`RoundMesh`'s, where a row can grow and shrink without rebuilding the
-    others). ``items[j]`` came from row ``rows[owner[j]]``; owners ascend.
-    """
-    if isinstance(rings, tuple):
-        return expand(*rings, rows)
-    block = np.take(rings, rows, axis=0)                               # (k, D)
-    filled = np.flatnonzero(block.reshape(-1) >= 0)
-    return filled // block.shape[1], np.take(block.reshape(-1), filled)
 
 
 def collapse_topology_ok(
@@ -102,8 +84,9 @@ def collapse_topology_ok(
     ok = ~(~boundary_edge & boundary_vertex[a] & boundary_vertex[b])
 
     # Link condition: common neighbours of a and b must be exactly the opposite vertices.
-    owner_a, around_a = gather_rings(neighbours, a)
-    owner_b, around_b = gather_rings(neighbours, b)
+    nbr_offsets, nbr = neighbours
+    owner_a, around_a = expand(nbr_offsets, nbr, a)
+    owner_b, around_b = expand(nbr_offsets, nbr, b)
     owner = np.concatenate([owner_a, owner_b])
     around = np.concatenate([around_a, around_b])
     key = np.sort(owner * n + around)
@@ -137,7 +120,7 @@ class _MovedFaces(NamedTuple):
     position: np.ndarray       # (j,) 0, 1 or 2: which corner moves
     u: np.ndarray              # (j,) the corner after the moving one
     w: np.ndarray              # (j,) the corner after u
-    normal_before: np.ndarray | None  # (j, 3) cross products, length twice the area
+    normal_before: np.ndarray  # (j, 3) cross products, length twice the area
     normal_after: np.ndarray   # (j, 3)
 
 
@@ -160,17 +143,16 @@ def _keep_where(mask: np.ndarray, *arrays: np.ndarray) -> tuple[np.ndarray, ...]
     return tuple(np.take(array, rows, axis=0) for array in arrays)
 
 
-def _moved_faces(vertices, faces, faces_around, points, keep, remove, before: bool = True) -> _MovedFaces:
+def _moved_faces(vertices, faces, faces_around, points, keep, remove) -> _MovedFaces:
     """Every face around ``keep[i]`` or ``remove[i]`` that survives collapse i, moved to ``points[i]``.
 
     The two faces holding both ends vanish and are left out. Rows come in the order of
-    ``keep``'s faces, then ``remove``'s. With ``before=False`` the normals before the
-    move are not computed (``normal_before`` is None): the caller has them.
+    ``keep``'s faces, then ``remove``'s.
     """
     k = len(keep)
     end = np.concatenate([keep, remove])                                # (2k,) the moving ends
     other = np.concatenate([remove, keep])
-    row, face = gather_rings(faces_around, end)                         # faces_around from vertex_faces()
+    row, face = expand(*faces_around, end)                              # faces_around from vertex_faces()
     # One column of corners at a time, gathered with np.take from the flat face array:
     # several times faster than fancy indexing rows of a 2-D array.
     flat = faces.reshape(-1)
@@ -188,12 +170,9 @@ def _moved_faces(vertices, faces, faces_around, points, keep, remove, before: bo
     # (mover, u, w) is a rotation of the face's corners, so (u - x) x (w - x) is its
     # cross product for x at the mover's old place and at the new point.
     at_u, at_w = np.take(vertices, u, axis=0), np.take(vertices, w, axis=0)
-    after = np.take(points, owner, axis=0)
-    normal_before = None
-    if before:
-        at_mover = np.take(vertices, mover, axis=0)
-        normal_before = cross_rows(at_u - at_mover, at_w - at_mover)
-    return _MovedFaces(owner, face, position, u, w, normal_before, cross_rows(at_u - after, at_w - after))
+    before, after = np.take(vertices, mover, axis=0), np.take(points, owner, axis=0)
+    return _MovedFaces(owner, face, position, u, w,
+                       cross_rows(at_u - before, at_w - before), cross_rows(at_u - after, at_w - after))
 
 
 def _unit(rows: np.ndarray) -> np.ndarray:
@@ -211,7 +190,6 @@ def no_turned_faces(
     max_normal_cos: float,
     *,
     face_across: np.ndarray | None = None,
-    face_normals: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> np.ndarray:
     """(k,) True where moving both ends of edge ``keep[i] - remove[i]`` to ``points[i]``
     turns no face over and folds no pair of neighbouring faces.
@@ -235,31 +213,22 @@ def no_turned_faces(
     across each face's edge ``faces[f, k] -> faces[f, k + 1]``, -1 on the boundary. It
     names the unmoved neighbour of each moved face directly; without it the neighbour
     is searched for among the faces around the far edge's end, several times the work.
-    ``face_normals``, if the caller keeps them current: ``(unit (m, 3), length (m,))``,
-    each face's unit normal (zero for a face without area) and the length of its cross
-    product ``(b - a) x (c - a)`` (twice its area), read for the faces as they are
-    instead of computed again.
     """
-    moved = _moved_faces(vertices, faces, faces_around, points, keep, remove, before=face_normals is None)
+    moved = _moved_faces(vertices, faces, faces_around, points, keep, remove)
     owner, position, u, w = moved.owner, moved.position, moved.u, moved.w
-    n_after = moved.normal_after
+    n_before, n_after = moved.normal_before, moved.normal_after
+    length_before = np.sqrt(np.einsum("ij,ij->i", n_before, n_before))
     length_after = np.sqrt(np.einsum("ij,ij->i", n_after, n_after))
-    if face_normals is None:
-        length_before = np.sqrt(np.einsum("ij,ij->i", moved.normal_before, moved.normal_before))
-        unit_before = moved.normal_before / np.maximum(length_before, 1e-300)[:, None]
-    else:
-        unit_before = np.take(face_normals[0], moved.face, axis=0)
-        length_before = np.take(face_normals[1], moved.face)
     had_normal = length_before > 1e-12 * length_after
-    # The swing: cos(angle) = unit_before . n_after / |n_after|, compared without dividing.
-    turned = had_normal & (np.einsum("ij,ij->i", unit_before, n_after) < max_normal_cos * length_after)
+    cosine = np.einsum("ij,ij->i", n_before, n_after) / np.maximum(length_before * length_after, 1e-300)
+    turned = had_normal & (cosine < max_normal_cos)
     turned |= length_after <= 1e-12 * np.maximum(length_before, 1e-300)
-    unit_after = n_after / np.maximum(length_after, 1e-300)[:, None]
+    unit_after = _unit(n_after)
     fold_cos = float(np.cos(np.radians(FOLD_ANGLE)))
 
     # Moved faces that share an edge at the new vertex: after the collapse both faces
     # hold the kept vertex (the removed one renamed) and one more common vertex y; the
-    # face turning counter-clockwise from the edge holds y as u, the other one as w.
+    # face on one side of that edge holds y as its u, the face on the other side as its w.
     key_u = owner * len(vertices) + u                                   # (j,) owner and far end
     key_w = owner * len(vertices) + w
     by_w = _grouping_order(key_w, len(keep) * len(vertices))
@@ -274,19 +243,15 @@ def no_turned_faces(
     # u and w but neither end of the collapse.
     flat = faces.reshape(-1)
     if face_across is None:
-        row, neighbour = gather_rings(faces_around, w)
+        row, neighbour = expand(*faces_around, w)
         row, neighbour = _keep_where(_holds_any(tuple(faces[neighbour].T), u[row]), row, neighbour)
     else:
         neighbour = np.take(face_across.reshape(-1), 3 * moved.face + (position + 1) % 3)   # across u -> w
         row, neighbour = _keep_where(neighbour >= 0, np.arange(len(owner)), neighbour)
     b0, b1, b2 = (np.take(flat, 3 * neighbour + i) for i in range(3))
-    row, neighbour, b0, b1, b2 = _keep_where(~_holds_any((b0, b1, b2), keep[owner[row]], remove[owner[row]]),
-                                             row, neighbour, b0, b1, b2)
-    if face_normals is None:
-        at_b0 = np.take(vertices, b0, axis=0)
-        n_beyond = _unit(cross_rows(np.take(vertices, b1, axis=0) - at_b0, np.take(vertices, b2, axis=0) - at_b0))
-    else:
-        n_beyond = np.take(face_normals[0], neighbour, axis=0)
+    row, b0, b1, b2 = _keep_where(~_holds_any((b0, b1, b2), keep[owner[row]], remove[owner[row]]), row, b0, b1, b2)
+    at_b0 = np.take(vertices, b0, axis=0)
+    n_beyond = _unit(cross_rows(np.take(vertices, b1, axis=0) - at_b0, np.take(vertices, b2, axis=0) - at_b0))
     folded = np.einsum("ij,ij->i", unit_after[row], n_beyond) < fold_cos
     turned[row[folded]] = True
 
@@ -325,11 +290,6 @@ def round_tables(faces: np.ndarray, n: int) -> RoundTables:
     face. The corners sorted by vertex give the faces and the neighbours around every
     vertex (:func:`_vertex_rings`).
     """
-    return _round_tables_and_twins(faces, n)[0]
-
-
-def _round_tables_and_twins(faces: np.ndarray, n: int) -> tuple[RoundTables, np.ndarray]:
-    """:func:`round_tables`, and the halfedge across each halfedge (3m,), -1 on the boundary."""
     corner_vertex = faces.reshape(-1)                                  # (3m,) tail of directed edge 3f + k
     next_vertex = np.empty_like(corner_vertex)                         # (3m,) its head, faces[f, k + 1]
     next_vertex.reshape(-1, 3)[:, :2] = faces[:, 1:]
@@ -344,194 +304,13 @@ def _round_tables_and_twins(faces: np.ndarray, n: int) -> tuple[RoundTables, np.
     first = order[starts]
     inner = count == 2
     second = order[starts[inner] + 1]
-    twin = np.full(n_halfedges, -1, dtype=np.int64)                    # the halfedge across each one
-    twin[first[inner]] = second
-    twin[second] = first[inner]
-    across = twin // 3                                                 # -1 // 3 is -1: the boundary stays -1
+    across = np.full(n_halfedges, -1, dtype=np.int64)
+    across[first[inner]] = second // 3
+    across[second] = first[inner] // 3
     boundary_halfedge = first[count == 1]
     faces_around, neighbours = _vertex_rings(corner_vertex, next_vertex, boundary_halfedge, n)
     return RoundTables(np.stack([keys // n, keys % n], axis=1), count == 1, boundary_halfedge,
-                       across.reshape(-1, 3), faces_around, neighbours), twin
-
-
-def _padded(offsets: np.ndarray, values: np.ndarray) -> np.ndarray:
-    """The CSR rows ``(offsets (n + 1,), values)`` as a padded (n, D) table, -1 in unused slots."""
-    counts = np.diff(offsets)
-    table = np.full((len(counts), max(1, int(counts.max(initial=0)))), -1, dtype=np.int64)
-    column = np.arange(len(values)) - np.repeat(offsets[:-1], counts)
-    table[np.repeat(np.arange(len(counts)), counts), column] = values
-    return table
-
-
-def _merged_rows(first: np.ndarray, second: np.ndarray, width: int = 1) -> np.ndarray:
-    """(k, W): the filled slots of row i of ``first`` and then of ``second``, packed to the left, -1 after.
-
-    ``W`` is ``width``, or the longest merged row if that is longer. Each filled slot
-    goes to its row at the column that counts the filled slots before it.
-    """
-    rows = np.concatenate([first, second], axis=1)                     # (k, D1 + D2)
-    filled = np.flatnonzero(rows.reshape(-1) >= 0)
-    row = filled // rows.shape[1]
-    count = np.bincount(row, minlength=len(rows))                       # (k,) filled slots per row
-    width = max(width, int(count.max(initial=0)))
-    column = np.arange(len(filled)) - np.repeat(np.cumsum(count) - count, count)
-    merged = np.full((len(rows), width), -1, dtype=rows.dtype)
-    merged.reshape(-1)[row * width + column] = np.take(rows.reshape(-1), filled)
-    return merged
-
-
-class RoundMesh:
-    """A face array that rounds of collapses shrink in place, with the tables a round asks.
-
-    :func:`round_tables` rebuilds a round's tables from the whole face array with two
-    sorts. But a round changes only the neighbourhoods of its collapses, so this class
-    builds the tables once and then, after each round, rewrites only the rows the
-    round touched (:meth:`collapse`):
-
-    * ``faces`` (m, 3): a collapsed face stays in its row, marked dead in ``alive``
-      (m,), so face and halfedge numbers never change;
-    * ``twin`` (3m,): the halfedge across halfedge ``3 f + k`` (the directed edge
-      ``faces[f, k] -> faces[f, k + 1]``), -1 on the boundary, and ``face_across``
-      (m, 3) its face, ``twin // 3`` (as :class:`RoundTables` has it);
-    * ``is_edge`` (3m,): True at one halfedge of every edge, its name (the smaller of
-      its two numbers, or its only one on the boundary);
-    * ``faces_around`` (n, D) and ``neighbours`` (n, D'): each vertex's faces and
-      neighbours, padded with -1 (see :func:`gather_rings`); a row may hold -1 between
-      its entries;
-    * ``degree`` (n,) each vertex's number of edges, ``boundary_vertex`` (n,).
-    """
-
-    def __init__(self, faces: np.ndarray, n: int):
-        tables, self.twin = _round_tables_and_twins(faces, n)
-        self.faces = faces.copy()
-        self.alive = np.ones(len(faces), dtype=bool)
-        self.n_faces = len(faces)
-        self.face_across = tables.face_across
-        halfedge = np.arange(len(self.twin))
-        self.is_edge = (self.twin < 0) | (halfedge < self.twin)
-        self.faces_around = _padded(*tables.faces_around)
-        self.neighbours = _padded(*tables.neighbours)
-        self.degree = np.diff(tables.neighbours[0])
-        self.boundary_vertex = np.zeros(n, dtype=bool)
-        self.boundary_vertex[tables.edges[tables.boundary].reshape(-1)] = True
-
-    def ends(self, halfedges: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The tail and head vertex of each of ``halfedges`` (k,)."""
-        flat = self.faces.reshape(-1)
-        return np.take(flat, halfedges), np.take(flat, halfedges - halfedges % 3 + (halfedges + 1) % 3)
-
-    def edges_at(self, vertices: np.ndarray) -> np.ndarray:
-        """The edges (their names, see ``is_edge``) at ``vertices``, each edge once if no two are neighbours.
-
-        Every interior edge at v leaves v in exactly one of v's faces; a boundary edge
-        at v leaves or enters it in its only face.
-        """
-        owner, face = gather_rings(self.faces_around, vertices)
-        flat = self.faces.reshape(-1)
-        first = 3 * face
-        position = np.where(np.take(flat, first) == vertices[owner], 0,
-                            np.where(np.take(flat, first + 1) == vertices[owner], 1, 2))
-        leaving = first + position
-        entering = first + (position + 2) % 3
-        halfedges = np.concatenate([leaving, entering[np.take(self.twin, entering) < 0]])
-        twin = np.take(self.twin, halfedges)
-        return np.where((twin >= 0) & (twin < halfedges), twin, halfedges)
-
-    def collapse(self, keep: np.ndarray, remove: np.ndarray) -> None:
-        """Merge vertex ``remove[i]`` into ``keep[i]`` for every i, and update the tables.
-
-        The collapses must be allowed (:func:`collapse_topology_ok`) and apart as a
-        round's are (:func:`choose_round`): then no face, halfedge or table entry is
-        touched by two of them, and each update below is a plain write.
-        """
-        flat = self.faces.reshape(-1)
-        owner, face = gather_rings(self.faces_around, remove)            # the faces around each removed end
-        c0, c1, c2 = (np.take(flat, 3 * face + i) for i in range(3))
-        kept, removed = keep[owner], remove[owner]
-        vanishes = (c0 == kept) | (c1 == kept) | (c2 == kept)          # holds both ends: the collapse removes it
-
-        # Faces that stay: their corner at the removed end is now the kept end.
-        moved = ~vanishes
-        position = np.where(c0 == removed, 0, np.where(c1 == removed, 1, 2))
-        flat[3 * face[moved] + position[moved]] = kept[moved]
-
-        # Faces that go: the two faces across their edges at the opposite vertex become neighbours.
-        gone, gone_owner = face[vanishes], owner[vanishes]
-        opposite = (c0 + c1 + c2 - kept - removed)[vanishes]            # the corner that is neither end
-        at_opposite = np.where(c0[vanishes] == opposite, 0, np.where(c1[vanishes] == opposite, 1, 2))
-        leaving = 3 * gone + at_opposite                                 # opposite -> next corner
-        entering = 3 * gone + (at_opposite + 2) % 3                      # previous corner -> opposite
-        across_leaving, across_entering = self.twin[leaving], self.twin[entering]
-        face_across = self.face_across.reshape(-1)
-        for this, other in ((across_leaving, across_entering), (across_entering, across_leaving)):
-            inside = this >= 0
-            self.twin[this[inside]] = other[inside]
-            face_across[this[inside]] = other[inside] // 3
-            self.is_edge[this[inside]] = (other[inside] < 0) | (this[inside] < other[inside])
-        dead = (3 * gone[:, None] + np.arange(3)).reshape(-1)
-        self.twin[dead] = -1
-        face_across[dead] = -1
-        self.is_edge[dead] = False
-        self.alive[gone] = False
-        self.n_faces -= len(gone)
-
-        # Rings: the kept end gets both ends' faces and neighbours (less the gone ones);
-        # the opposite vertices lose the gone faces and the removed end; every other
-        # neighbour of the removed end now has the kept end in its place.
-        self._drop_entries(self.faces_around, opposite, gone)
-        faces_kept = np.take(self.faces_around, keep, axis=0)
-        faces_removed = np.take(self.faces_around, remove, axis=0)
-        for rows in (faces_kept, faces_removed):
-            rows[(rows >= 0) & ~self.alive[rows]] = -1
-        self.faces_around = self._write_rows(self.faces_around, keep,
-                                             _merged_rows(faces_kept, faces_removed, self.faces_around.shape[1]))
-
-        neighbours_kept = np.take(self.neighbours, keep, axis=0)
-        neighbours_removed = np.take(self.neighbours, remove, axis=0)
-        neighbours_kept[neighbours_kept == remove[:, None]] = -1
-        neighbours_removed[neighbours_removed == keep[:, None]] = -1
-        opposite_of = np.full((len(keep), 2), -1)                     # (k, 2) each collapse's opposite vertices
-        second = np.zeros(len(gone_owner), dtype=bool)
-        second[1:] = gone_owner[1:] == gone_owner[:-1]
-        opposite_of[gone_owner, second.astype(np.int64)] = opposite
-        for column in range(2):
-            neighbours_removed[neighbours_removed == opposite_of[:, column:column + 1]] = -1
-        moved_owner, moved_neighbour = gather_rings(neighbours_removed, np.arange(len(keep)))
-        self._replace_entries(self.neighbours, moved_neighbour, remove[moved_owner], keep[moved_owner])
-        self._drop_entries(self.neighbours, opposite, remove[gone_owner])
-        np.subtract.at(self.degree, opposite, 1)
-        merged = _merged_rows(neighbours_kept, neighbours_removed, self.neighbours.shape[1])
-        self.degree[keep] = (merged >= 0).sum(axis=1)
-        self.neighbours = self._write_rows(self.neighbours, keep, merged)
-        for table in (self.faces_around, self.neighbours):
-            table[remove] = -1
-        self.degree[remove] = 0
-        self.boundary_vertex[keep] |= self.boundary_vertex[remove]
-
-    @staticmethod
-    def _drop_entries(table: np.ndarray, rows: np.ndarray, values: np.ndarray) -> None:
-        """Clear the entry ``values[i]`` from row ``rows[i]`` of ``table``, for every i."""
-        RoundMesh._replace_entries(table, rows, values, np.full(len(rows), -1))
-
-    @staticmethod
-    def _replace_entries(table: np.ndarray, rows: np.ndarray, values: np.ndarray, new: np.ndarray) -> None:
-        """Overwrite the entry ``values[i]`` of row ``rows[i]`` of ``table`` with ``new[i]``, for every i."""
-        hit = np.flatnonzero((np.take(table, rows, axis=0) == values[:, None]).reshape(-1))
-        width = table.shape[1]
-        table[rows[hit // width], hit % width] = new[hit // width]
-
-    @staticmethod
-    def _write_rows(table: np.ndarray, rows: np.ndarray, content: np.ndarray) -> np.ndarray:
-        """``table`` with rows ``rows`` set to ``content`` (:func:`_merged_rows`), widened if it needs more columns."""
-        if content.shape[1] > table.shape[1]:
-            table = np.concatenate([table, np.full((len(table), content.shape[1] - table.shape[1]), -1,
-                                                   dtype=table.dtype)], axis=1)
-        table[rows] = content
-        return table
-
-    def live_faces(self) -> np.ndarray:
-        """(m', 3) the faces still there, in their original order."""
-        return self.faces[self.alive]
+                       across.reshape(-1, 3), faces_around, neighbours)
 
 
 def _grouping_order(rows: np.ndarray, n: int) -> np.ndarray:
@@ -634,14 +413,11 @@ def one_collapse_per_opposite_vertex(chosen: np.ndarray, opposite_owner: np.ndar
     return result
 
 
-def independent_edges(edges: np.ndarray, priority: np.ndarray, all_edges: np.ndarray | None, n: int, *,
-                      neighbours: tuple[np.ndarray, np.ndarray] | np.ndarray | None = None) -> np.ndarray:
+def independent_edges(edges: np.ndarray, priority: np.ndarray, all_edges: np.ndarray, n: int) -> np.ndarray:
     """(k,) True for the ``edges`` (k, 2) that are the cheapest within one ring of both their ends.
 
     ``priority`` (k,) distinct, lowest first; ``all_edges`` (E, 2) every edge of the
-    mesh (the rings run along them); ``n`` the number of vertices. Or, instead of
-    ``all_edges``, the rings themselves: ``neighbours``, each vertex's neighbours (CSR
-    or padded, see :func:`gather_rings`).
+    mesh (the rings run along them); ``n`` the number of vertices.
 
     ``m1[x]`` is the lowest priority among candidate edges at vertex x; ``m2[y]`` the
     lowest ``m1`` over y and its neighbours. An edge taken only where it equals ``m2`` at
@@ -655,17 +431,12 @@ def independent_edges(edges: np.ndarray, priority: np.ndarray, all_edges: np.nda
     # m2 is read only at the ends of the given edges, and only neighbours with an m1
     # can lower it: so only the mesh edges between two such vertices take part.
     has = m1 < big
+    x, y = all_edges[:, 0], all_edges[:, 1]
+    near = np.flatnonzero(has[x] & has[y])          # indices and np.take: a 2-D boolean mask is slower
+    x, y = np.take(x, near), np.take(y, near)
     m2 = m1.copy()
-    if neighbours is not None:
-        ends = np.flatnonzero(has)
-        owner, around = gather_rings(neighbours, ends)
-        np.minimum.at(m2, np.take(ends, owner), np.take(m1, around))
-    else:
-        x, y = all_edges[:, 0], all_edges[:, 1]
-        near = np.flatnonzero(has[x] & has[y])          # indices and np.take: a 2-D boolean mask is slower
-        x, y = np.take(x, near), np.take(y, near)
-        np.minimum.at(m2, x, m1[y])
-        np.minimum.at(m2, y, m1[x])
+    np.minimum.at(m2, x, m1[y])
+    np.minimum.at(m2, y, m1[x])
     return (m2[edges[:, 0]] == priority) & (m2[edges[:, 1]] == priority)
 
 
@@ -703,11 +474,9 @@ def choose_round(
     vertex has lost an edge drop out before a pass picks, not after.
 
     ``neighbours``: the vertex adjacency as CSR (from
-    :func:`halfedge_edu.core.arrays.vertex_neighbours`) or padded (a
-    :class:`RoundMesh`'s), if the caller has it: then the rings (for independence,
-    and around the accepted edges) are gathered from the rows of the candidates' ends
-    instead of found by scans of every edge, and ``edges`` need only hold the rows
-    the candidates name.
+    :func:`halfedge_edu.core.arrays.vertex_neighbours`), if the caller has it: then
+    the ring around the accepted edges is gathered from their ends' rows instead of
+    found by a scan of every edge.
     """
     chosen = np.zeros(len(candidates), dtype=bool)
     open_ = open_.copy()
@@ -723,8 +492,7 @@ def choose_round(
         if not open_.any():
             break
         still_open = np.flatnonzero(open_)
-        picked = still_open[independent_edges(cand_edges[still_open], priority[still_open], edges, n,
-                                              neighbours=neighbours)]
+        picked = still_open[independent_edges(cand_edges[still_open], priority[still_open], edges, n)]
         ok, opposite_owner, opposite_vertex = check_topology(picked)
         known_owner = np.concatenate([known_owner, opposite_owner])     # repeats do no harm
         known_vertex = np.concatenate([known_vertex, opposite_vertex])
@@ -745,7 +513,7 @@ def choose_round(
             blocked[edges[at_end[edges[:, 0]], 1]] = True
             blocked[edges[at_end[edges[:, 1]], 0]] = True
         else:
-            blocked[gather_rings(neighbours, ends)[1]] = True
+            blocked[expand(*neighbours, ends)[1]] = True
         opposite_used[opposite_vertex[passed[opposite_owner]]] = True
     return chosen
 

@@ -14,17 +14,15 @@ The idea, in four sentences:
 
 The course's version (see ``simplify_sequential``) pops one edge at a time from a priority
 queue. This default version does the same work in *rounds*: each round prices, all at
-once, the edges at the vertices the last round kept (the other prices are kept), then
+once, the edges whose ends changed in the last round (the other prices are kept), then
 collapses a set of cheap edges that are far enough apart not to disturb each other (no
 two within one ring of each other), all at once, with numpy. An edge is taken only if
 it is the cheapest in its neighbourhood, so the order stays close to the queue's, and
 about twenty rounds replace tens of thousands of Python steps. A round can take at
 most about one face in seven (the collapses must stay apart), so the rounds cannot get
-much fewer; what a round costs is kept down instead: the face array and its tables
-(edges, faces across, rings) are built once and then updated only where a round
-collapsed (:class:`~.collapse_rounds.RoundMesh`), the quadrics are ten packed numbers,
-the face normals are kept current for the checks, and the checks gather only what the
-picked edges touch.
+much fewer; what a round costs is kept down instead: two sorts of the face array per
+round (:func:`~.collapse_rounds.round_tables`), the quadrics as ten packed numbers,
+and checks that gather only what the picked edges touch.
 
 Every collapse must pass the same checks as :func:`halfedge_edu.core.ops.can_collapse`: the
 link condition (the endpoints share exactly the two opposite vertices, one on the
@@ -49,12 +47,12 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..core.arrays import compact, face_cross
+from ..core.arrays import compact, face_cross, merge_vertices
 from ..core.errors import MeshWarning
 from ..core.mesh import HalfedgeMesh
 from .arguments import check_simplify
 from .collapse_rounds import (
-    RoundMesh, choose_round, collapse_topology_ok, drop_folding_neighbours, gather_rings, no_turned_faces,
+    choose_round, collapse_topology_ok, drop_folding_neighbours, no_turned_faces, round_tables,
 )
 
 
@@ -291,40 +289,51 @@ def _packed_optimal_points(packed: np.ndarray, midpoint: np.ndarray) -> tuple[np
 class _EdgePrices:
     """Collapse point and cost of every edge, kept from round to round.
 
-    Edges are named as a :class:`~.collapse_rounds.RoundMesh` names them, by one of
-    their halfedge numbers, which no round changes. An edge's price depends only on its
-    two vertices' quadrics and positions (and on which of them are on the boundary), so
-    after a round only the edges at a kept vertex need new prices (:meth:`update`); the
-    others keep theirs. The entries of edges that are gone are simply never read again.
+    An edge's price depends only on its two vertices' quadrics and positions (and on
+    which of them are on the boundary, which collapses do not change). So each round
+    re-prices just the edges at a vertex that changed (moved, or merged into another);
+    the others are the previous round's edges with no changed end, in the same order:
+    both lists are sorted by key and hold the same edges, so they match one to one.
     """
 
-    def __init__(self, n_halfedges: int):
-        self.cost = np.full(n_halfedges, np.inf)
-        self.points = np.zeros((n_halfedges, 3))
-        self.keep = np.zeros(n_halfedges, dtype=np.int64)
-        self.remove = np.zeros(n_halfedges, dtype=np.int64)
+    def __init__(self):
+        self.edges = np.empty((0, 2), dtype=np.int64)
 
-    def update(self, edges: np.ndarray, mesh: RoundMesh, vertices: np.ndarray, quadrics: np.ndarray) -> None:
-        """Price the ``edges`` (t,) (their names in ``mesh``) from the packed ``quadrics`` (10, n)."""
-        a, b = mesh.ends(edges)
+    def update(self, edges, boundary_edge, boundary_vertex, vertices, quadrics, changed):
+        """Prices of ``edges`` (E, 2, key order): ``(points (E, 3), cost, keep, remove)``.
+
+        ``changed`` (n,) marks the vertices moved or merged away since the last call.
+        """
+        stale = changed[edges[:, 0]] | changed[edges[:, 1]]
+        points = np.empty((len(edges), 3))
+        cost = np.empty(len(edges))
+        keep = np.empty(len(edges), dtype=np.int64)
+        if len(self.edges):
+            unchanged = np.flatnonzero(~(changed[self.edges[:, 0]] | changed[self.edges[:, 1]]))
+            fresh = np.flatnonzero(~stale)               # indices and np.take: faster than boolean masks
+            points[fresh] = np.take(self.points, unchanged, axis=0)
+            cost[fresh] = np.take(self.cost, unchanged)
+            keep[fresh] = np.take(self.keep, unchanged)
+        todo = np.flatnonzero(stale)
+        a, b = np.take(edges[:, 0], todo), np.take(edges[:, 1], todo)
         quadric = np.take(quadrics, a, axis=1) + np.take(quadrics, b, axis=1)        # (10, t)
         midpoint = 0.5 * (np.take(vertices, a, axis=0) + np.take(vertices, b, axis=0)).T   # (3, t)
         x, c = _packed_optimal_points(quadric, midpoint)
         p = np.ascontiguousarray(x.T)                                                 # (t, 3)
-        keep, remove = a, b
+        kept = a
         # An interior edge with one boundary end collapses onto that end, keeping the outline.
-        a_on, b_on = mesh.boundary_vertex[a], mesh.boundary_vertex[b]
-        one_on = np.flatnonzero(a_on != b_on)
+        a_on, b_on = boundary_vertex[a], boundary_vertex[b]
+        one_on = np.flatnonzero(a_on != b_on)                      # few: the rest skips this
         if len(one_on):
-            interior = np.take(mesh.twin, edges[one_on]) >= 0
-            pinned = one_on[interior]                          # the boundary end stays where it is
-            keep, remove = a.copy(), b.copy()
-            keep[pinned] = np.where(b_on[pinned], b[pinned], a[pinned])
-            remove[pinned] = np.where(b_on[pinned], a[pinned], b[pinned])
-            p[pinned] = vertices[keep[pinned]]
+            pinned = one_on[~boundary_edge[todo[one_on]]]
+            kept = a.copy()
+            kept[pinned] = np.where(b_on[pinned], b[pinned], a[pinned])
+            p[pinned] = vertices[kept[pinned]]
             c[pinned] = _packed_cost(quadric[:, pinned], p[pinned].T)
-        self.points[edges], self.cost[edges] = p, c
-        self.keep[edges], self.remove[edges] = keep, remove
+        points[todo], cost[todo], keep[todo] = p, c, kept
+        self.edges, self.points, self.cost, self.keep = edges, points, cost, keep
+        remove = np.where(keep == edges[:, 0], edges[:, 1], edges[:, 0])
+        return points, cost, keep, remove
 
 
 def simplify(
@@ -398,13 +407,12 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
     max_normal_cos = float(np.cos(np.radians(max_normal_angle)))
 
     # The vertex quadrics, packed (see _pack_quadrics) from the start: ten columns, not sixteen.
-    area, plane = _face_planes(vertices, faces)
-    quadrics = _accumulate_rows(_packed_outer(area, plane), faces, n)     # (n, 10)
-    mesh_now = RoundMesh(faces, n)                                     # kept and updated from round to round
-    boundary_halfedges = np.flatnonzero(mesh_now.twin < 0)
-    if len(boundary_halfedges):
-        boundary_edges = np.stack(mesh_now.ends(boundary_halfedges), axis=1)
-        planes = _boundary_planes(vertices, faces, boundary_edges, boundary_halfedges // 3, boundary_weight)
+    quadrics = _accumulate_rows(_packed_outer(*_face_planes(vertices, faces)), faces, n)       # (n, 10)
+    this_round = round_tables(faces, n)                                # the first round's tables
+    if this_round.boundary.any():
+        boundary_edges = this_round.edges[this_round.boundary]
+        boundary_faces = this_round.boundary_halfedge // 3            # the one face of each
+        planes = _boundary_planes(vertices, faces, boundary_edges, boundary_faces, boundary_weight)
         quadrics += _accumulate_rows(_packed_outer(*planes), boundary_edges, n)   # each to both ends
     quadrics = np.ascontiguousarray(quadrics.T)                        # (10, n)
 
@@ -412,45 +420,45 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
     cost_floor = 1e-12 * float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0))) ** 4
     bar = _progress_bar(progress, faces_before - target_faces)
     rounds = 0
-    face_normals = (plane[:, :3].copy(), 2.0 * area)                  # unit (m, 3), length (m,): kept current
-    prices = _EdgePrices(len(mesh_now.twin))
-    prices.update(np.flatnonzero(mesh_now.is_edge), mesh_now, vertices, quadrics)
-    while mesh_now.n_faces > target_faces:
+    priced = _EdgePrices()
+    changed = np.ones(n, dtype=bool)           # vertices moved or merged away: their edges need new prices
+    while len(faces) > target_faces:
         rounds += 1
-        edge_names = np.flatnonzero(mesh_now.is_edge)                 # (E,)
-        edge_cost = prices.cost[edge_names]
+        edges, boundary_edge, face_across = this_round.edges, this_round.boundary, this_round.face_across
+        boundary_vertex = np.zeros(n, dtype=bool)
+        boundary_vertex[edges[boundary_edge].reshape(-1)] = True
+        degree = np.bincount(edges.reshape(-1), minlength=n)
+        points, cost, keep, remove = priced.update(edges, boundary_edge, boundary_vertex, vertices, quadrics, changed)
 
         # Consider the cheapest edges only, and not many more than the faces still to go.
-        faces_to_remove = mesh_now.n_faces - target_faces
-        n_candidates = int(max(64, candidate_fraction * len(edge_names)))
-        n_candidates = min(n_candidates, max(64, 4 * faces_to_remove), len(edge_names))
-        if n_candidates < len(edge_names):
-            order = np.argpartition(edge_cost, n_candidates - 1)[:n_candidates]
+        faces_to_remove = len(faces) - target_faces
+        n_candidates = int(max(64, candidate_fraction * len(edges)))
+        n_candidates = min(n_candidates, max(64, 4 * faces_to_remove), len(edges))
+        if n_candidates < len(edges):
+            candidates = np.argpartition(cost, n_candidates - 1)[:n_candidates]
         else:
-            order = np.arange(len(edge_names))
-        candidates = edge_names[order[np.argsort(edge_cost[order], kind="stable")]]   # (k,) cheapest first
-        # Everything a round asks about its candidates, by candidate index.
-        candidate_edges = np.stack(mesh_now.ends(candidates), axis=1)              # (k, 2)
-        boundary_edge = np.take(mesh_now.twin, candidates) < 0
-        points, cost = np.take(prices.points, candidates, axis=0), np.take(prices.cost, candidates)
-        keep, remove = np.take(prices.keep, candidates), np.take(prices.remove, candidates)
-        face_across = mesh_now.face_across
+            candidates = np.arange(len(edges))
+        candidates = candidates[np.argsort(cost[candidates], kind="stable")]
+
+        faces_around, neighbours = this_round.faces_around, this_round.neighbours
 
         def check_topology(indices: np.ndarray):
-            ok, owner, vertex = collapse_topology_ok(n, candidate_edges[indices], boundary_edge[indices],
-                                                     mesh_now.boundary_vertex, mesh_now.degree,
-                                                     mesh_now.neighbours)
+            chosen_edges = candidates[indices]
+            ok, owner, vertex = collapse_topology_ok(n, edges[chosen_edges], boundary_edge[chosen_edges],
+                                                     boundary_vertex, degree, neighbours)
             return ok, indices[owner], vertex
 
+
         def check_turned_faces(indices: np.ndarray) -> np.ndarray:
-            ok = no_turned_faces(vertices, mesh_now.faces, mesh_now.faces_around, points[indices],
-                                 keep[indices], remove[indices], max_normal_cos, face_across=face_across,
-                                 face_normals=face_normals)
+            chosen_edges = candidates[indices]
+            ok = no_turned_faces(vertices, faces, faces_around, points[chosen_edges],
+                                 keep[chosen_edges], remove[chosen_edges], max_normal_cos,
+                                 face_across=face_across)
             # Where the best point turns a face over, an endpoint may not: in a flat
             # region all three cost nothing, and moving onto a neighbour folds less
             # often than moving to the middle of a long edge. Accept an endpoint only
             # if it costs at most twice as much (or next to nothing).
-            retry = indices[~ok]                                       # (r,)
+            retry = chosen_edges[~ok]                                  # (r,)
             if len(retry) == 0:
                 return ok
             # Both endpoints in one check, the kept end's rows first; the kept end wins where both pass.
@@ -460,52 +468,48 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
             option_cost = _packed_cost(quadric, option.T)
             passes = option_cost <= 2.0 * cost[twice] + cost_floor
             cheap = np.flatnonzero(passes)
-            passes[cheap] = no_turned_faces(vertices, mesh_now.faces, mesh_now.faces_around, option[cheap],
-                                            keep[twice[cheap]], remove[twice[cheap]], max_normal_cos,
-                                            face_across=face_across, face_normals=face_normals)
+            passes[cheap] = no_turned_faces(vertices, faces, faces_around, option[cheap], keep[twice[cheap]],
+                                            remove[twice[cheap]], max_normal_cos, face_across=face_across)
             r = len(retry)
             pick = np.where(passes[:r], np.arange(r), np.arange(r) + r)    # (r,) the kept end if it passes
             good = passes[pick]
             points[retry[good]] = option[pick[good]]
             cost[retry[good]] = option_cost[pick[good]]
-            # The new price stays with the edge for later rounds, as long as its ends do not change.
-            prices.points[candidates[retry[good]]] = points[retry[good]]
-            prices.cost[candidates[retry[good]]] = cost[retry[good]]
             ok[np.flatnonzero(~ok)[good]] = True
             return ok
 
-        everything = np.arange(len(candidates))
-        chosen = everything[choose_round(candidate_edges, everything, np.ones(len(candidates), dtype=bool), n,
-                                         check_topology, check_turned_faces, neighbours=mesh_now.neighbours)]
+        chosen_mask = choose_round(edges, candidates, np.ones(len(candidates), dtype=bool), n,
+                                   check_topology, check_turned_faces, neighbours=neighbours)
+        chosen = candidates[chosen_mask]
         # Stop exactly at the target: take chosen edges in cost order until enough faces go.
         removes_faces = np.where(boundary_edge[chosen], 1, 2)
         chosen = chosen[np.cumsum(removes_faces) <= faces_to_remove]
-        chosen = chosen[drop_folding_neighbours(vertices, mesh_now.faces, mesh_now.faces_around, points[chosen],
+        chosen = chosen[drop_folding_neighbours(vertices, faces, faces_around, points[chosen],
                                                 keep[chosen], remove[chosen], face_across=face_across)]
         if len(chosen) == 0:
             # Nothing passed the geometric check, or only interior collapses are left with
             # one face to go (then one more collapse is the nearest we can get).
+            everything = np.arange(len(candidates))
             allowed = everything[check_topology(everything)[0]]
-            chosen = allowed[check_turned_faces(allowed)][:1]
-            if len(chosen) == 0:
+            allowed = allowed[check_turned_faces(allowed)][:1]
+            if len(allowed) == 0:
                 break
+            chosen = candidates[allowed]
 
         keep_c, remove_c = keep[chosen], remove[chosen]
         vertices[keep_c] = points[chosen]
         quadrics[:, keep_c] += quadrics[:, remove_c]
-        faces_left = mesh_now.n_faces
-        mesh_now.collapse(keep_c, remove_c)
-        moved = gather_rings(mesh_now.faces_around, keep_c)[1]
-        corners = np.take(vertices, mesh_now.faces[moved], axis=0)          # (j, 3, 3)
-        for table, new in zip(face_normals, _unit_normals(face_cross(corners))):
-            table[moved] = new
-        prices.update(mesh_now.edges_at(keep_c), mesh_now, vertices, quadrics)
+        changed[:] = False
+        changed[keep_c] = True
+        changed[remove_c] = True
+        faces_left = len(faces)
+        faces = merge_vertices(faces, remove_c, keep_c, n)
+        this_round = round_tables(faces, n)
         if bar is not None:
-            bar.update(faces_left - mesh_now.n_faces)
+            bar.update(faces_left - len(faces))
 
     if bar is not None:
         bar.close()
-    faces = mesh_now.live_faces()
     reached = len(faces) <= target_faces
     if not reached:
         warnings.warn(
@@ -516,12 +520,6 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         )
     result = HalfedgeMesh.from_faces(*compact(vertices, faces)[:2])
     return SimplifyResult(result, SimplifyReport(faces_before, len(faces), target_faces, rounds, reached))
-
-
-def _unit_normals(cross: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Unit normals (k, 3) (zero where a face has no area) and lengths (k,) of face cross products (k, 3)."""
-    length = np.sqrt(np.einsum("ij,ij->i", cross, cross))
-    return cross / np.maximum(length, 1e-300)[:, None], length
 
 
 def _progress_bar(enabled: bool, total: int):
