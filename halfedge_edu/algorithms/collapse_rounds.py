@@ -227,12 +227,15 @@ def no_turned_faces(
     fold_cos = float(np.cos(np.radians(FOLD_ANGLE)))
 
     # Moved faces that share an edge at the new vertex: after the collapse both faces
-    # hold the kept vertex (the removed one renamed) and one more common vertex.
-    rows = np.repeat(np.arange(len(owner)), 2)
-    key = owner[rows] * len(vertices) + np.stack([u, w], axis=1).reshape(-1)   # (2j,) owner and far end
-    order = _grouping_order(key, len(keep) * len(vertices))
-    same = key[order][1:] == key[order][:-1]
-    first, second = rows[order][:-1][same], rows[order][1:][same]
+    # hold the kept vertex (the removed one renamed) and one more common vertex y; the
+    # face on one side of that edge holds y as its u, the face on the other side as its w.
+    key_u = owner * len(vertices) + u                                   # (j,) owner and far end
+    key_w = owner * len(vertices) + w
+    by_w = _grouping_order(key_w, len(keep) * len(vertices))
+    sorted_w = key_w[by_w]
+    at = np.minimum(np.searchsorted(sorted_w, key_u), max(len(sorted_w) - 1, 0))
+    first = np.flatnonzero(np.take(sorted_w, at) == key_u) if len(sorted_w) else at
+    second = by_w[at[first]]
     folded = np.einsum("ij,ij->i", unit_after[first], unit_after[second]) < fold_cos
     turned[first[folded]] = True
 

@@ -315,20 +315,22 @@ class _EdgePrices:
             cost[fresh] = np.take(self.cost, unchanged)
             keep[fresh] = np.take(self.keep, unchanged)
         todo = np.flatnonzero(stale)
-        a, b = edges[todo, 0], edges[todo, 1]
+        a, b = np.take(edges[:, 0], todo), np.take(edges[:, 1], todo)
         quadric = np.take(quadrics, a, axis=1) + np.take(quadrics, b, axis=1)        # (10, t)
-        vertex_rows = np.ascontiguousarray(vertices.T)                                 # (3, n)
-        midpoint = 0.5 * (np.take(vertex_rows, a, axis=1) + np.take(vertex_rows, b, axis=1))
+        midpoint = 0.5 * (np.take(vertices, a, axis=0) + np.take(vertices, b, axis=0)).T   # (3, t)
         x, c = _packed_optimal_points(quadric, midpoint)
         p = np.ascontiguousarray(x.T)                                                 # (t, 3)
+        kept = a
         # An interior edge with one boundary end collapses onto that end, keeping the outline.
-        a_fixed = boundary_vertex[a] & ~boundary_edge[todo] & ~boundary_vertex[b]
-        b_fixed = boundary_vertex[b] & ~boundary_edge[todo] & ~boundary_vertex[a]
-        p[a_fixed] = vertices[a[a_fixed]]
-        p[b_fixed] = vertices[b[b_fixed]]
-        pinned = np.flatnonzero(a_fixed | b_fixed)
-        c[pinned] = _packed_cost(quadric[:, pinned], p[pinned].T)
-        points[todo], cost[todo], keep[todo] = p, c, np.where(b_fixed, b, a)
+        a_on, b_on = boundary_vertex[a], boundary_vertex[b]
+        one_on = np.flatnonzero(a_on != b_on)                      # few: the rest skips this
+        if len(one_on):
+            pinned = one_on[~boundary_edge[todo[one_on]]]
+            kept = a.copy()
+            kept[pinned] = np.where(b_on[pinned], b[pinned], a[pinned])
+            p[pinned] = vertices[kept[pinned]]
+            c[pinned] = _packed_cost(quadric[:, pinned], p[pinned].T)
+        points[todo], cost[todo], keep[todo] = p, c, kept
         self.edges, self.points, self.cost, self.keep = edges, points, cost, keep
         remove = np.where(keep == edges[:, 0], edges[:, 1], edges[:, 0])
         return points, cost, keep, remove

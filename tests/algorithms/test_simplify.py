@@ -182,6 +182,13 @@ def test_input_mesh_is_not_modified():
     assert all(np.array_equal(x, y) for x, y in zip(before, after))
 
 
+def test_the_same_input_gives_the_same_mesh_every_time():
+    mesh = hx.sample("bunny")
+    first = simplify(mesh, 2000).to_arrays()
+    second = simplify(mesh.copy(), 2000).to_arrays()
+    assert all(np.array_equal(a, b) for a, b in zip(first, second))
+
+
 def test_a_flat_patch_stays_flat_and_keeps_its_outline():
     # A 9 x 9 grid in the plane z = 0: all collapses cost nothing, none may leave the plane
     # or move the square's outline.
