@@ -80,9 +80,14 @@ class Features(NamedTuple):
 
     def mask(self, table: EdgeTable) -> np.ndarray:
         """(E,) True for the edges of ``table`` (of the same vertices) that are feature edges."""
-        mask = np.zeros(len(table.keys), dtype=bool)
+        return self.edge_mask(table.keys)
+
+    def edge_mask(self, keys: np.ndarray) -> np.ndarray:
+        """(E,) True for the edges with sorted keys ``keys`` (``low * n + high``, n the
+        number of vertices) that are feature edges; every feature edge must be among them."""
+        mask = np.zeros(len(keys), dtype=bool)
         if len(self.edges):
-            mask[np.searchsorted(table.keys, _keys(self.edges, len(self.corners)))] = True
+            mask[np.searchsorted(keys, _keys(self.edges, len(self.corners)))] = True
         return mask
 
     def line_neighbours(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -63,7 +63,7 @@ from ..core.arrays import (
     vertex_neighbours,
 )
 from .arguments import check_mesh, check_remesh, real_number, whole_number
-from .collapse_rounds import choose_round, collapse_topology_ok, no_turned_faces
+from .collapse_rounds import choose_round, collapse_topology_ok, no_turned_faces, round_tables
 from .features import DEFAULT_FEATURE_ANGLE, Features, feature_arrays
 from .normals import area_weighted_vertex_normals
 
@@ -182,10 +182,26 @@ def _line_turning(vertices, line_edges: np.ndarray, n: int) -> np.ndarray:
     (0 where the line runs straight, up to 2)."""
     d = vertices[line_edges[:, 1]] - vertices[line_edges[:, 0]]
     d /= np.maximum(np.linalg.norm(d, axis=1), 1e-300)[:, None]
-    total = np.zeros((n, 3))
-    np.add.at(total, line_edges[:, 0], d)
-    np.add.at(total, line_edges[:, 1], -d)
+    total = np.empty((n, 3))
+    for axis in range(3):           # sums per vertex: bincount is many times faster than np.add.at
+        total[:, axis] = (np.bincount(line_edges[:, 0], weights=d[:, axis], minlength=n)
+                          - np.bincount(line_edges[:, 1], weights=d[:, axis], minlength=n))
     return np.linalg.norm(total, axis=1)
+
+
+def _farthest_neighbour(vertices: np.ndarray, neighbours: tuple[np.ndarray, np.ndarray], ends: np.ndarray,
+                        places: np.ndarray) -> np.ndarray:
+    """(k,) the largest distance from ``places[i]`` (k, 3) to a neighbour of vertex ``ends[i]``.
+
+    The neighbours of all ends are gathered at once (:func:`expand`, one row after the
+    other), so the largest per row is one ``np.maximum.reduceat`` at the rows' starts
+    (every vertex of an edge has at least one neighbour, so no row is empty).
+    """
+    offsets, _ = neighbours
+    counts = offsets[ends + 1] - offsets[ends]
+    owner, around = expand(*neighbours, ends)
+    gap = np.take(vertices, around, axis=0) - np.take(places, owner, axis=0)
+    return np.sqrt(np.maximum.reduceat(np.einsum("ij,ij->i", gap, gap), np.cumsum(counts) - counts))
 
 
 class _Refused:
@@ -207,13 +223,13 @@ class _Refused:
         at = np.minimum(np.searchsorted(self.keys, keys), len(self.keys) - 1)
         return (self.keys[at] == keys) & ~self.dirty[a] & ~self.dirty[b]
 
-    def update(self, keys: np.ndarray, merged: np.ndarray, faces: np.ndarray) -> None:
-        """Remember ``keys`` as refused; mark the ``merged`` vertices and their neighbours dirty."""
-        self.keys = np.unique(keys)
+    def update(self, keys: np.ndarray, merged: np.ndarray, neighbours: tuple[np.ndarray, np.ndarray]) -> None:
+        """Remember ``keys`` (distinct) as refused; mark the ``merged`` vertices (both ends
+        of every collapse) and their neighbours before the merge (``neighbours``, CSR) dirty."""
+        self.keys = np.sort(keys)
         self.dirty[:] = False
         self.dirty[merged] = True
-        around = self.dirty[faces].any(axis=1)
-        self.dirty[faces[around].reshape(-1)] = True
+        self.dirty[expand(*neighbours, merged)[1]] = True
 
 
 def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Refused, features: Features | None):
@@ -233,17 +249,18 @@ def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Re
     longer than 4/3 L is taken; an edge with none is not collapsed this time.
     """
     n = len(vertices)
-    table = edge_table(faces, n)
-    edges = table.edges
-    boundary_edge = table.count == 1
-    boundary_vertex = table.boundary_vertices(n)
+    tables = round_tables(faces, n)
+    edges, boundary_edge, neighbours = tables.edges, tables.boundary, tables.neighbours
+    keys = edges[:, 0] * np.int64(n) + edges[:, 1]                     # (E,) ascending
+    boundary_vertex = np.zeros(n, dtype=bool)
+    boundary_vertex[edges[boundary_edge].reshape(-1)] = True
     if features is None:
         line_edge, on_line, corner = boundary_edge, boundary_vertex, np.zeros(n, dtype=bool)
     else:
-        line_edge, on_line, corner = features.mask(table), features.counts() > 0, features.corners
+        line_edge, on_line, corner = features.edge_mask(keys), features.counts() > 0, features.corners
     length = _edge_lengths(vertices, edges)
     short = np.flatnonzero(length < COLLAPSE_BELOW * target_length)
-    stale = refused.still_refused(table.keys[short], edges[short, 0], edges[short, 1])
+    stale = refused.still_refused(keys[short], edges[short, 0], edges[short, 1])
     candidates = short[~stale]
     if len(candidates) == 0:
         return vertices, faces, features, 0
@@ -259,8 +276,7 @@ def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Re
         swap |= along & ((corner[b] & ~corner[a]) | ((corner[b] == corner[a]) & (turning[b] > turning[a])))
     first, second = np.where(swap, b, a), np.where(swap, a, b)
 
-    degree = np.bincount(edges.reshape(-1), minlength=n)
-    neighbours = vertex_neighbours(edges, n)
+    degree = np.diff(neighbours[0])                                    # (n,) each row lists every neighbour once
     valid, opposite_owner, opposite_vertex = collapse_topology_ok(
         n, edges[candidates], boundary_edge[candidates], boundary_vertex, degree, neighbours
     )
@@ -280,21 +296,18 @@ def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Re
         todo = np.flatnonzero(valid & allowed & np.isnan(points[:, 0]))
         if len(todo) == 0:
             continue
-        longest = np.zeros(len(todo))
-        for end in (a, b):
-            owner, around = expand(*neighbours, end[todo])
-            np.maximum.at(longest, owner, np.linalg.norm(vertices[around] - place[todo][owner], axis=1))
+        longest = np.maximum(_farthest_neighbour(vertices, neighbours, a[todo], place[todo]),
+                             _farthest_neighbour(vertices, neighbours, b[todo], place[todo]))
         fits = todo[longest <= SPLIT_ABOVE * target_length]
         points[fits] = place[fits]
         keep[fits] = kept[fits]
         remove[fits] = np.where(kept[fits] == first[fits], second[fits], first[fits])
     valid &= ~np.isnan(points[:, 0])
     turned = np.zeros(len(candidates), dtype=bool)
-    faces_around = vertex_faces(faces, n)
 
     def check_turned_faces(indices: np.ndarray) -> np.ndarray:
-        ok = no_turned_faces(vertices, faces, faces_around, points[indices], keep[indices],
-                              remove[indices], max_normal_cos)
+        ok = no_turned_faces(vertices, faces, tables.faces_around, points[indices], keep[indices],
+                             remove[indices], max_normal_cos, face_across=tables.face_across)
         turned[indices[~ok]] = True
         return ok
 
@@ -307,17 +320,17 @@ def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Re
 
     if valid.any():
         chosen = choose_round(edges, candidates, valid, n, check_topology, check_turned_faces,
-                               known_opposites=(opposite_owner, opposite_vertex))
+                              known_opposites=(opposite_owner, opposite_vertex), neighbours=neighbours)
     else:
         chosen = np.zeros(len(candidates), dtype=bool)
-    refused_keys = np.concatenate([table.keys[short[stale]], table.keys[candidates[~valid | turned]]])
+    refused_keys = np.concatenate([keys[short[stale]], keys[candidates[~valid | turned]]])
     if chosen.any():
         vertices = vertices.copy()
         vertices[keep[chosen]] = points[chosen]
         faces = merge_vertices(faces, remove[chosen], keep[chosen], n)
         if features is not None:
             features = features.merge(remove[chosen], keep[chosen])
-    refused.update(refused_keys, keep[chosen], faces)
+    refused.update(refused_keys, np.concatenate([keep[chosen], remove[chosen]]), neighbours)
     return vertices, faces, features, int(chosen.sum())
 
 
