@@ -494,44 +494,44 @@ def tangential_smoothing(vertices: np.ndarray, faces: np.ndarray, features: Feat
 # Phase 5: projection onto the input
 # ----------------------------------------------------------------------------------------
 
+def _triangle_coordinates(d1: np.ndarray, d2: np.ndarray, ab_ab: np.ndarray, ab_ac: np.ndarray,
+                          ac_ac: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(s, t)``, each like ``d1``: the point of triangle ``a, b, c`` nearest to a point
+    ``p`` is ``a + s (b - a) + t (c - a)``.
+
+    Ericson's method (Real-Time Collision Detection, 5.1.5): find which of the seven
+    regions (3 corners, 3 edges, the inside) ``p`` projects into, from six dot products.
+    All six follow from two, ``d1 = (b - a).(p - a)`` and ``d2 = (c - a).(p - a)``, and
+    the triangle's own three (``ab_ab = (b - a).(b - a)``, ``ab_ac``, ``ac_ac``), which a
+    caller asking about the same triangles again and again computes once.
+    """
+    d3, d4, d5, d6 = d1 - ab_ab, d2 - ab_ac, d1 - ab_ac, d2 - ac_ac    # (b-a).(p-b), (c-a).(p-b), ... (p-c)
+    va, vb, vc = d3 * d6 - d5 * d4, d5 * d2 - d1 * d6, d1 * d4 - d3 * d2
+    safe = lambda x: np.where(np.abs(x) > 1e-300, x, 1e-300)  # noqa: E731
+    with np.errstate(over="ignore", invalid="ignore"):      # formulas of the regions a row is not in
+        on_bc = (d4 - d3) / safe((d4 - d3) + (d5 - d6))
+        inside = safe(va + vb + vc)
+        # Where several region tests hold, the one Ericson makes first wins: np.select
+        # takes the first true condition, so they come in his order.
+        regions = [(d1 <= 0) & (d2 <= 0), (d3 >= 0) & (d4 <= d3), (vc <= 0) & (d1 >= 0) & (d3 <= 0),
+                   (d6 >= 0) & (d5 <= d6), (vb <= 0) & (d2 >= 0) & (d6 <= 0),
+                   (va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0)]
+        #            corner a, corner b, edge ab,              corner c, edge ac,            edge bc
+        s = np.select(regions, [0.0, 1.0, d1 / safe(d1 - d3), 0.0, 0.0, 1.0 - on_bc], vb / inside)
+        t = np.select(regions, [0.0, 0.0, 0.0, 1.0, d2 / safe(d2 - d6), on_bc], vc / inside)
+    return s, t
+
+
 def closest_points_on_triangles(points: np.ndarray, a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
     """(k, 3) the point of triangle ``(a[i], b[i], c[i])`` nearest to ``points[i]``.
 
-    Ericson's method (Real-Time Collision Detection, 5.1.5): find which of the seven
-    regions (3 corners, 3 edges, the inside) the point projects into, from six dot
-    products, all rows at once.
+    Ericson's method (Real-Time Collision Detection, 5.1.5), all rows at once: see
+    :func:`_triangle_coordinates`.
     """
     dot = lambda u, v: np.einsum("ij,ij->i", u, v)  # noqa: E731
-    ab, ac = b - a, c - a
-    ap, bp, cp = points - a, points - b, points - c
-    d1, d2, d3, d4, d5, d6 = dot(ab, ap), dot(ac, ap), dot(ab, bp), dot(ac, bp), dot(ab, cp), dot(ac, cp)
-    va, vb, vc = d3 * d6 - d5 * d4, d5 * d2 - d1 * d6, d1 * d4 - d3 * d2
-    safe = lambda x: np.where(np.abs(x) > 1e-300, x, 1e-300)  # noqa: E731
-    # Which region each point falls in; where several tests hold, the one Ericson makes
-    # first wins, so they are written here last. Each region's formula is then worked
-    # out only for its own rows.
-    region = np.zeros(len(points), dtype=np.int8)                     # 0: inside
-    region[(va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0)] = 1          # on edge bc
-    region[(vb <= 0) & (d2 >= 0) & (d6 <= 0)] = 2                     # on edge ac
-    region[(d6 >= 0) & (d5 <= d6)] = 3                                # at corner c
-    region[(vc <= 0) & (d1 >= 0) & (d3 <= 0)] = 4                     # on edge ab
-    region[(d3 >= 0) & (d4 <= d3)] = 5                                # at corner b
-    region[(d1 <= 0) & (d2 <= 0)] = 6                                 # at corner a
-    result = np.empty_like(points)
-    rows = np.flatnonzero(region == 0)
-    denominator = safe(va[rows] + vb[rows] + vc[rows])
-    result[rows] = a[rows] + ab[rows] * (vb[rows] / denominator)[:, None] + ac[rows] * (vc[rows] / denominator)[:, None]
-    rows = np.flatnonzero(region == 1)
-    t = (d4[rows] - d3[rows]) / safe((d4[rows] - d3[rows]) + (d5[rows] - d6[rows]))
-    result[rows] = b[rows] + (c[rows] - b[rows]) * t[:, None]
-    rows = np.flatnonzero(region == 2)
-    result[rows] = a[rows] + ac[rows] * (d2[rows] / safe(d2[rows] - d6[rows]))[:, None]
-    rows = np.flatnonzero(region == 4)
-    result[rows] = a[rows] + ab[rows] * (d1[rows] / safe(d1[rows] - d3[rows]))[:, None]
-    for code, corner in ((3, c), (5, b), (6, a)):
-        rows = np.flatnonzero(region == code)
-        result[rows] = corner[rows]
-    return result
+    ab, ac, ap = b - a, c - a, points - a
+    s, t = _triangle_coordinates(dot(ab, ap), dot(ac, ap), dot(ab, ab), dot(ab, ac), dot(ac, ac))
+    return a + ab * s[:, None] + ac * t[:, None]
 
 
 def closest_points_on_segments(points: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -548,8 +548,15 @@ class _Surface:
     def __init__(self, vertices: np.ndarray, faces: np.ndarray, features: Features | None = None):
         from scipy.spatial import cKDTree
 
-        self.corners = vertices[faces]                                 # (F, 3, 3)
-        self.tree = cKDTree(self.corners.mean(axis=1))
+        corners = vertices[faces]                                      # (F, 3, 3)
+        self.tree = cKDTree(corners.mean(axis=1))
+        # Each triangle as a corner and two sides, with the sides' dot products: what
+        # every query of the triangle asks again (see _triangle_coordinates).
+        self.origin = corners[:, 0]                                    # (F, 3)
+        self.sides = corners[:, 1:] - corners[:, :1]                   # (F, 2, 3) b - a, c - a
+        ab, ac = self.sides[:, 0], self.sides[:, 1]
+        self.gram = np.stack([np.einsum("ij,ij->i", ab, ab), np.einsum("ij,ij->i", ab, ac),
+                              np.einsum("ij,ij->i", ac, ac)], axis=1)  # (F, 3)
         table = edge_table(faces, len(vertices))
         segments = table.edges[table.count == 1]
         self.segments = vertices[segments]                             # (S, 2, 3)
@@ -558,21 +565,30 @@ class _Surface:
         self.crease_segments = vertices[creases]                       # (C, 2, 3)
         self.crease_tree = cKDTree(self.crease_segments.mean(axis=1)) if len(creases) else None
 
-    @staticmethod
-    def _nearest(points, tree, k, closest):
-        k = min(k, tree.n)
-        _, near = tree.query(points, k=k)
-        near = near.reshape(len(points), k)
-        repeated = np.repeat(points, k, axis=0)
-        found = closest(repeated, near.reshape(-1)).reshape(len(points), k, 3)
-        gap = np.einsum("ikj,ikj->ik", found - points[:, None], found - points[:, None])
-        return found[np.arange(len(points)), np.argmin(gap, axis=1)]
-
     def project(self, points: np.ndarray) -> np.ndarray:
-        """Nearest points on the input triangles (among the nearest few by centroid)."""
-        corners = self.corners
-        return self._nearest(points, self.tree, PROJECTION_CANDIDATES,
-                             lambda p, f: closest_points_on_triangles(p, corners[f, 0], corners[f, 1], corners[f, 2]))
+        """Nearest points on the input triangles (among the ``PROJECTION_CANDIDATES``
+        whose centroids are nearest).
+
+        Only two dot products per point and candidate: the squared distance to the
+        nearest point ``a + s ab + t ac`` is ``|ap|^2 - 2 s d1 - 2 t d2 + s^2 ab.ab +
+        2 s t ab.ac + t^2 ac.ac``, all numbers already at hand, so the point itself is
+        built only for the winning candidate.
+        """
+        k = min(PROJECTION_CANDIDATES, self.tree.n)
+        _, near = self.tree.query(points, k=k)
+        near = near.reshape(len(points), k)                            # (P, k)
+        ap = points[:, None, :] - self.origin[near]                    # (P, k, 3)
+        sides = self.sides[near]                                       # (P, k, 2, 3)
+        d1 = np.einsum("pkj,pkj->pk", sides[:, :, 0], ap)
+        d2 = np.einsum("pkj,pkj->pk", sides[:, :, 1], ap)
+        ab_ab, ab_ac, ac_ac = np.moveaxis(self.gram[near], 2, 0)       # (P, k) each
+        s, t = _triangle_coordinates(d1, d2, ab_ab, ab_ac, ac_ac)
+        gap = np.einsum("pkj,pkj->pk", ap, ap) - 2 * (s * d1 + t * d2) + s * s * ab_ab + 2 * s * t * ab_ac + t * t * ac_ac
+        best = np.argmin(gap, axis=1)                                  # (P,)
+        rows = np.arange(len(points))
+        face = near[rows, best]
+        return (self.origin[face] + self.sides[face, 0] * s[rows, best][:, None]
+                + self.sides[face, 1] * t[rows, best][:, None])
 
     def project_to_boundary(self, points: np.ndarray) -> np.ndarray:
         """Nearest points on the input's boundary polyline."""
@@ -582,9 +598,16 @@ class _Surface:
         """Nearest points on the input's crease polylines (feature edges off the boundary)."""
         return self._nearest_on_segments(points, self.crease_segments, self.crease_tree)
 
-    def _nearest_on_segments(self, points, segments, tree):
-        return self._nearest(points, tree, 4,
-                             lambda p, s: closest_points_on_segments(p, segments[s, 0], segments[s, 1]))
+    @staticmethod
+    def _nearest_on_segments(points, segments, tree):
+        """The nearest point on the 4 segments whose midpoints are nearest."""
+        k = min(4, tree.n)
+        _, near = tree.query(points, k=k)
+        near = near.reshape(-1)                                        # (P k,)
+        repeated = np.repeat(points, k, axis=0)
+        found = closest_points_on_segments(repeated, segments[near, 0], segments[near, 1]).reshape(len(points), k, 3)
+        gap = np.einsum("ikj,ikj->ik", found - points[:, None], found - points[:, None])
+        return found[np.arange(len(points)), np.argmin(gap, axis=1)]
 
 
 def _nearly_flat(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
