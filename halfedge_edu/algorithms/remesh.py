@@ -74,6 +74,9 @@ COLLAPSE_BELOW = 4.0 / 5.0
 MAX_SPLIT_PASSES = 10
 MAX_COLLAPSE_ROUNDS = 30
 MAX_FLIP_PASSES = 10
+#: Flip passes stop once a pass flips at most this fraction of the faces' count: the
+#: last few flips (a handful of edges each pass) are left to the next iteration.
+MIN_FLIP_FRACTION = 0.001
 #: Collapse rounds stop early once a round collapses at most this fraction of the faces'
 #: count: the last few short edges are then left to the next iteration, where smoothing
 #: has given them room, instead of paying a whole round each.
@@ -121,11 +124,11 @@ def _split_pass(vertices: np.ndarray, faces: np.ndarray, max_length: float, feat
     feature edge leaves two feature halves (``features`` None: none are tracked).
     """
     n = len(vertices)
+    if not _has_long_side(vertices, faces, max_length):            # the usual last pass: no edge table needed
+        return vertices, faces, features, 0
     table = edge_table(faces, n)
     long = _edge_lengths(vertices, table.edges) > max_length
     n_split = int(long.sum())
-    if n_split == 0:
-        return vertices, faces, features, 0
     midpoint_of = np.full(len(table.edges), -1, dtype=np.int64)
     midpoint_of[long] = n + np.arange(n_split)
     if features is not None:
@@ -161,6 +164,18 @@ def _split_pass(vertices: np.ndarray, faces: np.ndarray, max_length: float, feat
     v0, v1, v2, m0, m1, m2 = (v[three, 0], v[three, 1], v[three, 2], m[three, 0], m[three, 1], m[three, 2])
     pieces += [np.stack(corner, axis=1) for corner in ((v0, m0, m2), (m0, v1, m1), (m2, m1, v2), (m0, m1, m2))]
     return vertices, np.concatenate(pieces), features, n_split
+
+
+def _has_long_side(vertices: np.ndarray, faces: np.ndarray, max_length: float) -> bool:
+    """Whether any face has a side longer than ``max_length``: each interior edge is
+    measured twice, but no sort is needed to find the edges first."""
+    corners = [np.take(vertices, faces[:, k], axis=0) for k in range(3)]     # (m, 3) each
+    limit = max_length * max_length
+    for k in range(3):
+        side = corners[(k + 1) % 3] - corners[k]
+        if (np.einsum("ij,ij->i", side, side) > limit).any():
+            return True
+    return False
 
 
 def _split_long_edges(vertices, faces, target_length, features: Features | None):
@@ -446,7 +461,7 @@ def _flip_to_regular_degrees(vertices, faces, rng, features: Features | None):
     max_crease_cos = math.cos(math.radians(MAX_FLIP_DIHEDRAL))
     for _ in range(MAX_FLIP_PASSES):
         faces, n_flipped = _flip_pass(vertices, faces, rng, max_crease_cos, features)
-        if n_flipped == 0:
+        if n_flipped <= MIN_FLIP_FRACTION * len(faces):
             break
     return faces
 
