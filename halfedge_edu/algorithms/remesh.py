@@ -231,6 +231,7 @@ class _Refused:
     def __init__(self, n: int):
         self.keys = np.empty(0, dtype=np.int64)
         self.dirty = np.zeros(n, dtype=bool)
+        self.gone = np.zeros(n, dtype=bool)            # merged into another vertex
 
     def still_refused(self, keys: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
         if len(self.keys) == 0:
@@ -238,17 +239,36 @@ class _Refused:
         at = np.minimum(np.searchsorted(self.keys, keys), len(self.keys) - 1)
         return (self.keys[at] == keys) & ~self.dirty[a] & ~self.dirty[b]
 
-    def update(self, keys: np.ndarray, merged: np.ndarray, neighbours: tuple[np.ndarray, np.ndarray]) -> None:
+    def update(self, keys: np.ndarray, region_keys: np.ndarray | None, merged: np.ndarray,
+               neighbours: tuple[np.ndarray, np.ndarray]) -> None:
         """Remember ``keys`` (distinct) as refused; mark the ``merged`` vertices (both ends
-        of every collapse) and their neighbours before the merge (``neighbours``, CSR) dirty."""
+        of every collapse) and their neighbours before the merge (``neighbours``, CSR) dirty.
+
+        ``region_keys`` (sorted): the edges the round looked at (None: all of them). A
+        refused edge outside them was not looked at again, so it stays refused, unless
+        an earlier round's merge removed one of its ends (the edge is gone).
+        """
+        if region_keys is not None and len(self.keys) and len(region_keys):
+            at = np.minimum(np.searchsorted(region_keys, self.keys), len(region_keys) - 1)
+            n = len(self.dirty)
+            outside = (region_keys[at] != self.keys) & ~self.gone[self.keys // n] & ~self.gone[self.keys % n]
+            keys = np.concatenate([self.keys[outside], keys])
         self.keys = np.sort(keys)
         self.dirty[:] = False
         self.dirty[merged] = True
         self.dirty[expand(*neighbours, merged)[1]] = True
 
 
-def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Refused, features: Features | None):
-    """One round of collapses of short edges. Returns ``(vertices, faces, features, n_collapsed)``.
+def _collapse_round(vertices, faces, region: np.ndarray | None, target_length, max_normal_cos, refused: _Refused,
+                    features: Features | None):
+    """One round of collapses of short edges among ``faces[region]`` (None: all faces).
+
+    Returns ``(faces, features, n_collapsed, live)``; ``vertices`` (n, 3) is moved in
+    place. ``live`` (n,) marks the ends of the short edges that the next round will try
+    (:func:`_short_edge_ends`). The region must hold every face within two rings of the
+    ends of the short edges that are not refused (:func:`_faces_near`): the checks of an
+    edge read its ends' faces and neighbours, and their neighbours' faces; a round on
+    that region chooses exactly what a round on the whole mesh would.
 
     The *lines* are the boundary, and with ``features`` the feature lines too (the
     boundary is one of them). Where a collapse may put the merged vertex, in order of
@@ -264,6 +284,9 @@ def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Re
     longer than 4/3 L is taken; an edge with none is not collapsed this time.
     """
     n = len(vertices)
+    whole = faces
+    if region is not None:
+        faces = faces[region]
     tables = round_tables(faces, n)
     edges, boundary_edge, neighbours = tables.edges, tables.boundary, tables.neighbours
     keys = edges[:, 0] * np.int64(n) + edges[:, 1]                     # (E,) ascending
@@ -278,7 +301,7 @@ def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Re
     stale = refused.still_refused(keys[short], edges[short, 0], edges[short, 1])
     candidates = short[~stale]
     if len(candidates) == 0:
-        return vertices, faces, features, 0
+        return whole, features, 0, np.zeros(n, dtype=bool)
     candidates = candidates[np.argsort(length[candidates], kind="stable")]   # shortest first
     a, b = edges[candidates, 0], edges[candidates, 1]
     along = line_edge[candidates]
@@ -339,14 +362,57 @@ def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Re
     else:
         chosen = np.zeros(len(candidates), dtype=bool)
     refused_keys = np.concatenate([keys[short[stale]], keys[candidates[~valid | turned]]])
+    refused.update(refused_keys, None if region is None else keys, np.concatenate([keep[chosen], remove[chosen]]),
+                   neighbours)
     if chosen.any():
-        vertices = vertices.copy()
         vertices[keep[chosen]] = points[chosen]
-        faces = merge_vertices(faces, remove[chosen], keep[chosen], n)
+        refused.gone[remove[chosen]] = True
+        relabel = np.arange(n)
+        relabel[remove[chosen]] = keep[chosen]
+        faces = relabel[faces]                          # only faces of the region hold a removed vertex
+        degenerate = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 2] == faces[:, 0])
+        if region is None:
+            whole = faces[~degenerate]
+        else:
+            whole = whole.copy()
+            whole[region] = faces
+            whole = np.delete(whole, region[degenerate], axis=0)     # the other faces keep their order
+            faces = faces[~degenerate]
         if features is not None:
             features = features.merge(remove[chosen], keep[chosen])
-    refused.update(refused_keys, np.concatenate([keep[chosen], remove[chosen]]), neighbours)
-    return vertices, faces, features, int(chosen.sum())
+    live = _short_edge_ends(vertices, faces, target_length, refused)
+    return whole, features, int(chosen.sum()), live
+
+
+def _short_edge_ends(vertices, faces, target_length, refused: _Refused) -> np.ndarray:
+    """(n,) True at the ends of the sides of ``faces`` (a round's region, after its
+    collapses) that are short and not refused: the next round's candidates.
+
+    None lie outside the region: a short edge elsewhere was either refused and kept
+    its ends (still refused) or was a candidate, whose ends lie in the region.
+    """
+    live = np.zeros(len(vertices), dtype=bool)
+    limit = COLLAPSE_BELOW * target_length
+    for k in range(3):
+        a, b = faces[:, k], faces[:, (k + 1) % 3]
+        side = np.take(vertices, a, axis=0) - np.take(vertices, b, axis=0)
+        short = np.flatnonzero(np.einsum("ij,ij->i", side, side) < limit * limit)
+        a, b = a[short], b[short]
+        key = np.minimum(a, b) * np.int64(len(vertices)) + np.maximum(a, b)
+        trying = ~refused.still_refused(key, a, b)
+        live[a[trying]] = True
+        live[b[trying]] = True
+    return live
+
+
+def _faces_near(faces: np.ndarray, marked: np.ndarray) -> np.ndarray:
+    """Indices of the faces within two rings of the ``marked`` (n,) vertices: those
+    with a corner at a marked vertex or at a neighbour of one."""
+    columns = [faces[:, k] for k in range(3)]
+    at_marked = marked[columns[0]] | marked[columns[1]] | marked[columns[2]]
+    near = marked.copy()
+    near[faces[at_marked].reshape(-1)] = True                          # the marked vertices and their neighbours
+    return np.flatnonzero(near[columns[0]] | near[columns[1]] | near[columns[2]])
 
 
 def _collapse_short_edges(vertices, faces, target_length, features: Features | None = None):
@@ -355,11 +421,14 @@ def _collapse_short_edges(vertices, faces, target_length, features: Features | N
     Returns ``(vertices, faces, features)``, compacted (unused vertices dropped)."""
     max_normal_cos = math.cos(math.radians(MAX_COLLAPSE_NORMAL_ANGLE))
     refused = _Refused(len(vertices))
+    vertices = vertices.copy()                      # the rounds move vertices in place
+    region = None                                   # the first round looks at every face
     for _ in range(MAX_COLLAPSE_ROUNDS):
-        vertices, faces, features, n_collapsed = _collapse_round(
-            vertices, faces, target_length, max_normal_cos, refused, features)
-        if n_collapsed <= MIN_COLLAPSE_FRACTION * len(faces):
+        faces, features, n_collapsed, live = _collapse_round(
+            vertices, faces, region, target_length, max_normal_cos, refused, features)
+        if n_collapsed <= MIN_COLLAPSE_FRACTION * len(faces) or not live.any():
             break
+        region = _faces_near(faces, live)
     vertices, faces, kept = compact(vertices, faces)
     if features is not None:
         features = features.renumber(kept)
