@@ -86,7 +86,7 @@ MAX_COLLAPSE_NORMAL_ANGLE = 30.0
 #: An edge whose two faces meet at a sharper angle than this is a crease: never flipped.
 MAX_FLIP_DIHEDRAL = 20.0
 #: Candidate input triangles examined per vertex when projecting (the nearest centroids).
-PROJECTION_CANDIDATES = 6
+PROJECTION_CANDIDATES = 4
 #: A face counts as flat (no area) when twice its area is at most this times its
 #: squared longest edge; the projection never leaves a face flat that was not.
 MIN_RELATIVE_AREA = 1e-10
