@@ -58,10 +58,7 @@ import numpy as np
 from ..core.errors import MeshInputError
 from ..core.mesh import HalfedgeMesh
 from ._progress import progress_range
-from ..core.arrays import (
-    EdgeTable, compact, cross_rows, edge_table, expand, face_cross, merge_vertices, vertex_faces,
-    vertex_neighbours,
-)
+from ..core.arrays import EdgeTable, compact, cross_rows, edge_table, expand
 from .arguments import check_mesh, check_remesh, real_number, whole_number
 from .collapse_rounds import choose_round, collapse_topology_ok, no_turned_faces, round_tables
 from .features import DEFAULT_FEATURE_ANGLE, Features, feature_arrays
@@ -540,16 +537,19 @@ def _flip_to_regular_degrees(vertices, faces, rng, features: Features | None):
 # ----------------------------------------------------------------------------------------
 
 def tangential_smoothing(vertices: np.ndarray, faces: np.ndarray, features: Features | None = None,
-                         fraction: float = 1.0) -> np.ndarray:
+                         fraction: float = 1.0, *, table: EdgeTable | None = None) -> np.ndarray:
     """Move every interior vertex to its neighbours' centroid, in its tangent plane only.
 
     Without ``features`` the boundary vertices stay. With them, vertices on a feature
     line (the boundary is one) move only along it: towards the midpoint of their two
     neighbours on the line, along the direction from one to the other (smoothing in 1D);
     corners stay. ``fraction``: how much of each step is taken (1: all the way).
+    ``table``: the :func:`~halfedge_edu.core.arrays.edge_table` of ``faces``, if the
+    caller has it already.
     """
     n = len(vertices)
-    table = edge_table(faces, n)
+    if table is None:
+        table = edge_table(faces, n)
     edges = table.edges
     degree = np.bincount(edges.reshape(-1), minlength=n)
     # All centroids first, from the old positions (Jacobi): sums over both directions of each edge.
@@ -699,14 +699,15 @@ def _nearly_flat(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     ``MIN_RELATIVE_AREA`` times the squared longest edge (two corners on one point, or
     three on a line). Measured against the face's own size, so it does not depend on
     the mesh's scale."""
-    corners = vertices[faces]                                          # (m, 3, 3)
-    double_area = np.linalg.norm(face_cross(corners), axis=1)
-    sides = corners - np.roll(corners, 1, axis=1)                      # (m, 3, 3)
-    longest = np.einsum("fkd,fkd->fk", sides, sides).max(axis=1)       # (m,) squared
-    return double_area <= MIN_RELATIVE_AREA * longest
+    p0, p1, p2 = (np.take(vertices, faces[:, k], axis=0) for k in range(3))   # (m, 3) each
+    sides = (p1 - p0, p2 - p1, p0 - p2)
+    cross = cross_rows(sides[0], p2 - p0)                               # length: twice the area
+    longest = np.maximum.reduce([np.einsum("ij,ij->i", side, side) for side in sides])   # (m,) squared
+    # Compared squared: (twice the area)^2 <= (MIN_RELATIVE_AREA * longest^2)^2.
+    return np.einsum("ij,ij->i", cross, cross) <= (MIN_RELATIVE_AREA * longest) ** 2
 
 
-def _project(vertices, faces, surface: _Surface, features: Features | None = None) -> np.ndarray:
+def _project(vertices, faces, surface: _Surface, features: Features | None, on_boundary: np.ndarray) -> np.ndarray:
     """Put every vertex on the nearest point of the input surface (boundary vertices on
     its boundary), except where that would flatten a face.
 
@@ -717,9 +718,10 @@ def _project(vertices, faces, surface: _Surface, features: Features | None = Non
     the same nearest point, or three on one line, and the face would be left with no
     area. The corners of such a face keep their positions from before the projection;
     that may flatten a face next to them in turn, so this repeats until no face is
-    flattened (each pass puts back at least one more vertex, so it ends).
+    flattened (each pass puts back at least one more vertex, so it ends). ``on_boundary``
+    (n,): the boundary vertices (not changed).
     """
-    on_boundary = edge_table(faces, len(vertices)).boundary_vertices(len(vertices))
+    on_boundary = on_boundary.copy()
     result = vertices.copy()
     if features is None:
         inside = np.flatnonzero(~on_boundary)
@@ -781,10 +783,11 @@ def _phases(mesh: HalfedgeMesh, target_length, iterations, project, progress,
         yield iteration + 1, "collapse", vertices, faces, features
         faces = _flip_to_regular_degrees(vertices, faces, rng, features)
         yield iteration + 1, "flip", vertices, faces, features
-        vertices = tangential_smoothing(vertices, faces, features, smoothing_step)
+        table = edge_table(faces, len(vertices))                       # for both smoothing and projection
+        vertices = tangential_smoothing(vertices, faces, features, smoothing_step, table=table)
         yield iteration + 1, "smooth", vertices, faces, features
         if surface is not None:
-            vertices = _project(vertices, faces, surface, features)
+            vertices = _project(vertices, faces, surface, features, table.boundary_vertices(len(vertices)))
             yield iteration + 1, "project", vertices, faces, features
 
 
