@@ -311,12 +311,8 @@ def _collapse_round(vertices, faces, region: np.ndarray | None, target_length, m
         swap |= along & ((corner[b] & ~corner[a]) | ((corner[b] == corner[a]) & (turning[b] > turning[a])))
     first, second = np.where(swap, b, a), np.where(swap, a, b)
 
-    degree = np.diff(neighbours[0])                                    # (n,) each row lists every neighbour once
-    valid, opposite_owner, opposite_vertex = collapse_topology_ok(
-        n, edges[candidates], boundary_edge[candidates], boundary_vertex, degree, neighbours
-    )
-    # Across from one line to another (or to the same one further on), or between two corners.
-    valid &= ~(on_line[a] & on_line[b] & ~along) & ~(corner[a] & corner[b])
+    # Never across from one line to another (or to the same one further on), nor between two corners.
+    valid = ~(on_line[a] & on_line[b] & ~along) & ~(corner[a] & corner[b])
 
     # Try the places in turn; the first one that makes no edge longer than 4/3 L wins.
     keep, remove = first.copy(), second.copy()
@@ -338,6 +334,15 @@ def _collapse_round(vertices, faces, region: np.ndarray | None, target_length, m
         keep[fits] = kept[fits]
         remove[fits] = np.where(kept[fits] == first[fits], second[fits], first[fits])
     valid &= ~np.isnan(points[:, 0])
+    # The topology last: its sort costs more per edge than the places, and most short
+    # edges have no place that fits.
+    placed = np.flatnonzero(valid)
+    degree = np.diff(neighbours[0])                                    # (n,) each row lists every neighbour once
+    ok, opposite_owner, opposite_vertex = collapse_topology_ok(
+        n, edges[candidates[placed]], boundary_edge[candidates[placed]], boundary_vertex, degree, neighbours
+    )
+    valid[placed[~ok]] = False
+    opposite_owner = placed[opposite_owner]                            # into candidates
     turned = np.zeros(len(candidates), dtype=bool)
 
     def check_turned_faces(indices: np.ndarray) -> np.ndarray:
