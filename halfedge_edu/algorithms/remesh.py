@@ -461,9 +461,11 @@ def _flip_pass(vertices, faces, rng, max_crease_cos, features: Features | None =
     table = edge_table(faces, n)
     inner = np.flatnonzero(table.count == 2)
     h1, h2 = table.first[inner], table.second[inner]
-    f1, k1, f2, k2 = h1 // 3, h1 % 3, h2 // 3, h2 % 3
-    a, b, c = faces[f1, k1], faces[f1, (k1 + 1) % 3], faces[f1, (k1 + 2) % 3]
-    d = faces[f2, (k2 + 2) % 3]
+    # Corner h of the flat face array is corner h % 3 of face h // 3; the face's next
+    # corner is h + 1 and its previous h - 1, wrapping around within the face.
+    flat = faces.reshape(-1)
+    a, b = np.take(flat, h1), np.take(flat, h1 + np.where(h1 % 3 == 2, -2, 1))
+    c, d = np.take(flat, h1 + np.where(h1 % 3 == 0, 2, -1)), np.take(flat, h2 + np.where(h2 % 3 == 0, 2, -1))
 
     boundary_vertex = table.boundary_vertices(n)
     degree = np.bincount(table.edges.reshape(-1), minlength=n)
@@ -523,8 +525,8 @@ def _flip_pass(vertices, faces, rng, max_crease_cos, features: Features | None =
         used[quads[picked].reshape(-1)] = True
     take = candidates[chosen]
     faces = faces.copy()
-    faces[f1[take]] = np.stack([c[take], a[take], d[take]], axis=1)
-    faces[f2[take]] = np.stack([d[take], b[take], c[take]], axis=1)
+    faces[h1[take] // 3] = np.stack([c[take], a[take], d[take]], axis=1)
+    faces[h2[take] // 3] = np.stack([d[take], b[take], c[take]], axis=1)
     return faces, len(take)
 
 
