@@ -82,8 +82,6 @@ MIN_COLLAPSE_FRACTION = 0.0005
 MAX_COLLAPSE_NORMAL_ANGLE = 30.0
 #: An edge whose two faces meet at a sharper angle than this is a crease: never flipped.
 MAX_FLIP_DIHEDRAL = 20.0
-#: Candidate input triangles examined per vertex when projecting (the nearest centroids).
-PROJECTION_CANDIDATES = 4
 #: A face counts as flat (no area) when twice its area is at most this times its
 #: squared longest edge; the projection never leaves a face flat that was not.
 MIN_RELATIVE_AREA = 1e-10
@@ -633,8 +631,9 @@ def closest_points_on_segments(points: np.ndarray, a: np.ndarray, b: np.ndarray)
 
 
 class _Surface:
-    """The input surface, ready for "nearest point" queries (a k-d tree of centroids),
-    with its boundary polyline and, given ``features``, its crease polylines."""
+    """The input surface, ready for "nearest point" queries (a k-d tree of centroids and
+    the triangles across each triangle's edges), with its boundary polyline and, given
+    ``features``, its crease polylines."""
 
     def __init__(self, vertices: np.ndarray, faces: np.ndarray, features: Features | None = None):
         from scipy.spatial import cKDTree
@@ -648,6 +647,10 @@ class _Surface:
         ab, ac = self.sides[:, 0], self.sides[:, 1]
         self.gram = np.stack([np.einsum("ij,ij->i", ab, ab), np.einsum("ij,ij->i", ab, ac),
                               np.einsum("ij,ij->i", ac, ac)], axis=1)  # (F, 3)
+        # Each triangle and the (up to) three across its edges: the candidates of a query.
+        across = round_tables(faces, len(vertices)).face_across        # (F, 3), -1 on the boundary
+        self.around = np.concatenate([np.arange(len(faces))[:, None], across], axis=1)   # (F, 4)
+        self.around = np.where(self.around >= 0, self.around, np.arange(len(faces))[:, None])
         table = edge_table(faces, len(vertices))
         segments = table.edges[table.count == 1]
         self.segments = vertices[segments]                             # (S, 2, 3)
@@ -657,17 +660,17 @@ class _Surface:
         self.crease_tree = cKDTree(self.crease_segments.mean(axis=1)) if len(creases) else None
 
     def project(self, points: np.ndarray) -> np.ndarray:
-        """Nearest points on the input triangles (among the ``PROJECTION_CANDIDATES``
-        whose centroids are nearest).
+        """Nearest points on the input triangles: among the triangle whose centroid is
+        nearest and the three across its edges (the nearest point lies on one of them
+        almost always; the point found is on the input surface either way).
 
         Only two dot products per point and candidate: the squared distance to the
         nearest point ``a + s ab + t ac`` is ``|ap|^2 - 2 s d1 - 2 t d2 + s^2 ab.ab +
         2 s t ab.ac + t^2 ac.ac``, all numbers already at hand, so the point itself is
         built only for the winning candidate.
         """
-        k = min(PROJECTION_CANDIDATES, self.tree.n)
-        _, near = self.tree.query(points, k=k)
-        near = near.reshape(len(points), k)                            # (P, k)
+        _, nearest = self.tree.query(points)
+        near = self.around[nearest]                                    # (P, 4)
         ap = points[:, None, :] - self.origin[near]                    # (P, k, 3)
         sides = self.sides[near]                                       # (P, k, 2, 3)
         d1 = np.einsum("pkj,pkj->pk", sides[:, :, 0], ap)
@@ -816,9 +819,10 @@ def remesh(
         iterations: how many rounds of split / collapse / flip / smooth / project.
         project: put the vertices back on the input surface after each smoothing (the
             boundary ones on the input's boundary polyline, the ones on a crease on the
-            input's creases). Each vertex goes to the nearest point of the few input
-            triangles (or segments) whose centroids are nearest (a k-d tree), which is
-            the true nearest point almost always. Without it, midpoints of splits and
+            input's creases). Each vertex goes to the nearest point of the input
+            triangle whose centroid is nearest (a k-d tree) and the three beside it (of
+            the four segments nearest, on a line), which is the true nearest point
+            almost always. Without it, midpoints of splits and
             tangential moves drift slightly inside curved regions.
         progress: show a progress bar (tqdm) over the iterations.
         feature_angle: keep the creases: edges whose two faces' normals differ by more
