@@ -443,8 +443,55 @@ def _unit(vectors: np.ndarray) -> np.ndarray:
     return vectors / np.maximum(np.linalg.norm(vectors, axis=1), 1e-300)[:, None]
 
 
-def _flip_pass(vertices, faces, rng, max_crease_cos, features: Features | None = None, selection_passes: int = 4):
-    """Flip a vertex-disjoint set of degree-improving edges. Returns ``(faces, n_flipped)``.
+class _EdgeUses(NamedTuple):
+    """The edges of a face array in key order, each with the directed edges that use it:
+    what a flip pass asks, kept up to date from pass to pass instead of sorted again.
+
+    ``keys`` (E,) ``low * n + high``, ascending; ``first``/``second`` (E,) the directed
+    edges ``3 f + k`` using each edge (``second`` -1 on the boundary).
+    """
+
+    keys: np.ndarray
+    first: np.ndarray
+    second: np.ndarray
+
+    @classmethod
+    def of(cls, faces: np.ndarray, n: int) -> "_EdgeUses":
+        table = edge_table(faces, n)
+        return cls(table.keys, table.first, table.second)
+
+    def after_flips(self, n: int, a, b, c, d, h1, h2) -> "_EdgeUses":
+        """The uses after flipping edges ``a-b`` (directed edge ``h1`` in face ``[a, b, c]``,
+        ``h2`` in ``[b, a, d]``) into ``c-d``, the faces becoming ``[c, a, d]`` and
+        ``[d, b, c]`` (see :func:`_flip_pass`; the flips share no vertex).
+
+        The four edges around each flipped one keep their key but move to another
+        directed edge; ``a-b`` leaves the keys and ``c-d`` comes in at its sorted place.
+        """
+        f1, f2 = 3 * (h1 // 3), 3 * (h2 // 3)                          # each face's first directed edge
+        after = lambda h: h + np.where(h % 3 == 2, -2, 1)              # noqa: E731  next in the face
+        before = lambda h: h + np.where(h % 3 == 0, 2, -1)             # noqa: E731  previous in the face
+        first, second = self.first.copy(), self.second.copy()
+        for x, y, old, new in ((c, a, before(h1), f1), (a, d, after(h2), f1 + 1),
+                               (d, b, before(h2), f2), (b, c, after(h1), f2 + 1)):
+            at = np.searchsorted(self.keys, np.minimum(x, y) * n + np.maximum(x, y))
+            was_first = first[at] == old
+            first[at[was_first]] = new[was_first]
+            second[at[~was_first]] = new[~was_first]
+        gone = np.searchsorted(self.keys, np.minimum(a, b) * n + np.maximum(a, b))
+        keys, first, second = (np.delete(array, gone) for array in (self.keys, first, second))
+        new_keys = np.minimum(c, d) * n + np.maximum(c, d)
+        order = np.argsort(new_keys)
+        at = np.searchsorted(keys, new_keys[order])
+        return _EdgeUses(np.insert(keys, at, new_keys[order]), np.insert(first, at, (f1 + 2)[order]),
+                         np.insert(second, at, (f2 + 2)[order]))
+
+
+def _flip_pass(vertices, faces, rng, max_crease_cos, features: Features | None = None, selection_passes: int = 4,
+               uses: _EdgeUses | None = None):
+    """Flip a vertex-disjoint set of degree-improving edges. Returns ``(faces, n_flipped,
+    uses)``: ``uses`` the :class:`_EdgeUses` of the new faces (given ``uses`` of ``faces``,
+    the pass does not sort the edges again).
 
     Edge ``a-b`` with faces ``[a, b, c]`` and ``[b, a, d]`` becomes ``c-d`` with faces
     ``[c, a, d]`` and ``[d, b, c]``: a and b lose an edge, c and d gain one. With
@@ -456,17 +503,21 @@ def _flip_pass(vertices, faces, rng, max_crease_cos, features: Features | None =
     it (leaving fewer than 3), or both create the same new edge ``c-d``.
     """
     n = len(vertices)
-    table = edge_table(faces, n)
-    inner = np.flatnonzero(table.count == 2)
-    h1, h2 = table.first[inner], table.second[inner]
+    if uses is None:
+        uses = _EdgeUses.of(faces, n)
+    inner = np.flatnonzero(uses.second >= 0)
+    h1, h2 = uses.first[inner], uses.second[inner]
     # Corner h of the flat face array is corner h % 3 of face h // 3; the face's next
     # corner is h + 1 and its previous h - 1, wrapping around within the face.
     flat = faces.reshape(-1)
     a, b = np.take(flat, h1), np.take(flat, h1 + np.where(h1 % 3 == 2, -2, 1))
     c, d = np.take(flat, h1 + np.where(h1 % 3 == 0, 2, -1)), np.take(flat, h2 + np.where(h2 % 3 == 0, 2, -1))
 
-    boundary_vertex = table.boundary_vertices(n)
-    degree = np.bincount(table.edges.reshape(-1), minlength=n)
+    boundary_vertex = np.zeros(n, dtype=bool)
+    boundary_edge = uses.keys[uses.second < 0]
+    boundary_vertex[boundary_edge // n] = True
+    boundary_vertex[boundary_edge % n] = True
+    degree = np.bincount(uses.keys // n, minlength=n) + np.bincount(uses.keys % n, minlength=n)
     ideal = np.where(boundary_vertex, 4, 6)
     # What each vertex gains (in |degree - ideal|) by losing an edge, and by gaining one:
     # per vertex first, so each edge's gain is four look-ups.
@@ -479,12 +530,12 @@ def _flip_pass(vertices, faces, rng, max_crease_cos, features: Features | None =
         # Never flip a line's edge, and never make an edge across from one line to
         # another: both its ends would be held on lines, where smoothing cannot even it out.
         on_line = features.counts() > 0
-        ok &= ~features.mask(table)[inner] & ~(on_line[c] & on_line[d])
+        ok &= ~features.edge_mask(uses.keys)[inner] & ~(on_line[c] & on_line[d])
     # The new edge c-d must not exist already (looked up only for the flips still wanted).
     wanted = np.flatnonzero(ok)
     new_key = np.minimum(c[wanted], d[wanted]) * n + np.maximum(c[wanted], d[wanted])
-    at = np.minimum(np.searchsorted(table.keys, new_key), len(table.keys) - 1)
-    ok[wanted[table.keys[at] == new_key]] = False
+    at = np.minimum(np.searchsorted(uses.keys, new_key), len(uses.keys) - 1)
+    ok[wanted[uses.keys[at] == new_key]] = False
 
     # Geometry: no flip across a crease, and the new triangles may not fold over.
     which = np.flatnonzero(ok)
@@ -502,7 +553,7 @@ def _flip_pass(vertices, faces, rng, max_crease_cos, features: Features | None =
 
     candidates = np.flatnonzero(ok)
     if len(candidates) == 0:
-        return faces, 0
+        return faces, 0, uses
     # Biggest gain first, ties in a random (seeded) order.
     candidates = candidates[np.lexsort((rng.random(len(candidates)), -gain[candidates]))]
     quads = np.stack([a[candidates], b[candidates], c[candidates], d[candidates]], axis=1)   # (k, 4)
@@ -525,13 +576,14 @@ def _flip_pass(vertices, faces, rng, max_crease_cos, features: Features | None =
     faces = faces.copy()
     faces[h1[take] // 3] = np.stack([c[take], a[take], d[take]], axis=1)
     faces[h2[take] // 3] = np.stack([d[take], b[take], c[take]], axis=1)
-    return faces, len(take)
+    return faces, len(take), uses.after_flips(n, a[take], b[take], c[take], d[take], h1[take], h2[take])
 
 
 def _flip_to_regular_degrees(vertices, faces, rng, features: Features | None):
     max_crease_cos = math.cos(math.radians(MAX_FLIP_DIHEDRAL))
+    uses = _EdgeUses.of(faces, len(vertices))
     for _ in range(MAX_FLIP_PASSES):
-        faces, n_flipped = _flip_pass(vertices, faces, rng, max_crease_cos, features)
+        faces, n_flipped, uses = _flip_pass(vertices, faces, rng, max_crease_cos, features, uses=uses)
         if n_flipped <= MIN_FLIP_FRACTION * len(faces):
             break
     return faces

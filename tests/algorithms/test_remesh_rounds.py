@@ -114,3 +114,22 @@ def test_projection_finds_the_nearest_point_of_the_input_for_almost_every_point(
     # Each point found lies on the input surface: on one of its triangles.
     on_input = remesh_module._Surface(vertices, faces).project(found)
     assert np.allclose(on_input, found, atol=1e-9 * length)
+
+
+@pytest.mark.parametrize("name", ["spot", "bumpy"])
+def test_edge_uses_kept_up_to_date_through_flip_passes_equal_a_fresh_table(name):
+    mesh = bumpy_sheet() if name == "bumpy" else hx.sample(name)
+    vertices, faces = mesh.to_arrays()
+    vertices, faces, _ = remesh_module._split_long_edges(vertices, faces, 0.7 * mean_edge_length(mesh), None)
+    uses = remesh_module._EdgeUses.of(faces, len(vertices))
+    rng = np.random.default_rng(0)
+    flipped = 0
+    for _ in range(3):
+        faces, n_flipped, uses = remesh_module._flip_pass(vertices, faces, rng, np.cos(np.radians(20.0)), uses=uses)
+        flipped += n_flipped
+        fresh = edge_table(faces, len(vertices))
+        assert np.array_equal(uses.keys, fresh.keys)
+        # The same two directed edges per edge, in either order.
+        assert np.array_equal(np.sort(np.stack([uses.first, uses.second], axis=1), axis=1),
+                              np.sort(np.stack([fresh.first, fresh.second], axis=1), axis=1))
+    assert flipped > 0
