@@ -703,14 +703,18 @@ class _Surface:
         self.fan_offsets, self.fans = vertex_faces(faces, len(vertices))   # each vertex's triangles, CSR
         self.degree = np.diff(self.fan_offsets)
         # Each triangle and the (up to) three across its edges: the first candidates of a query.
-        across = round_tables(faces, len(vertices)).face_across        # (F, 3), -1 on the boundary
+        tables = round_tables(faces, len(vertices))
+        across = tables.face_across                                    # (F, 3), -1 on the boundary
         self.around = np.concatenate([np.arange(len(faces))[:, None], across], axis=1)   # (F, 4)
         self.around = np.where(self.around >= 0, self.around, np.arange(len(faces))[:, None])
-        table = edge_table(faces, len(vertices))
-        segments = table.edges[table.count == 1]
+        segments = tables.edges[tables.boundary]
         self.segments = vertices[segments]                             # (S, 2, 3)
         self.segment_tree = cKDTree(self.segments.mean(axis=1)) if len(segments) else None
-        creases = table.edges[features.mask(table) & (table.count == 2)] if features is not None else table.edges[:0]
+        if features is None:
+            creases = tables.edges[:0]
+        else:
+            keys = tables.edges[:, 0] * np.int64(len(vertices)) + tables.edges[:, 1]
+            creases = tables.edges[features.edge_mask(keys) & ~tables.boundary]
         self.crease_segments = vertices[creases]                       # (C, 2, 3)
         self.crease_tree = cKDTree(self.crease_segments.mean(axis=1)) if len(creases) else None
 
