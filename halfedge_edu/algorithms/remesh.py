@@ -364,10 +364,10 @@ def _collapse_round(vertices, faces, region: np.ndarray | None, target_length, m
     refused_keys = np.concatenate([keys[short[stale]], keys[candidates[~valid | turned]]])
     refused.update(refused_keys, None if region is None else keys, np.concatenate([keep[chosen], remove[chosen]]),
                    neighbours)
+    relabel = np.arange(n)
     if chosen.any():
         vertices[keep[chosen]] = points[chosen]
         refused.gone[remove[chosen]] = True
-        relabel = np.arange(n)
         relabel[remove[chosen]] = keep[chosen]
         faces = relabel[faces]                          # only faces of the region hold a removed vertex
         degenerate = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 2] == faces[:, 0])
@@ -377,31 +377,29 @@ def _collapse_round(vertices, faces, region: np.ndarray | None, target_length, m
             whole = whole.copy()
             whole[region] = faces
             whole = np.delete(whole, region[degenerate], axis=0)     # the other faces keep their order
-            faces = faces[~degenerate]
         if features is not None:
             features = features.merge(remove[chosen], keep[chosen])
-    live = _short_edge_ends(vertices, faces, target_length, refused)
+    live = _short_edge_ends(vertices, relabel[edges], target_length, refused)
     return whole, features, int(chosen.sum()), live
 
 
-def _short_edge_ends(vertices, faces, target_length, refused: _Refused) -> np.ndarray:
-    """(n,) True at the ends of the sides of ``faces`` (a round's region, after its
-    collapses) that are short and not refused: the next round's candidates.
+def _short_edge_ends(vertices, edges: np.ndarray, target_length, refused: _Refused) -> np.ndarray:
+    """(n,) True at the ends of the ``edges`` (E, 2) (a round's region, after its
+    collapses: collapsed edges have two equal ends, merged ones come twice) that are
+    short and not refused: the next round's candidates.
 
     None lie outside the region: a short edge elsewhere was either refused and kept
     its ends (still refused) or was a candidate, whose ends lie in the region.
     """
-    live = np.zeros(len(vertices), dtype=bool)
+    a, b = edges[:, 0], edges[:, 1]
+    side = np.take(vertices, a, axis=0) - np.take(vertices, b, axis=0)
     limit = COLLAPSE_BELOW * target_length
-    for k in range(3):
-        a, b = faces[:, k], faces[:, (k + 1) % 3]
-        side = np.take(vertices, a, axis=0) - np.take(vertices, b, axis=0)
-        short = np.flatnonzero(np.einsum("ij,ij->i", side, side) < limit * limit)
-        a, b = a[short], b[short]
-        key = np.minimum(a, b) * np.int64(len(vertices)) + np.maximum(a, b)
-        trying = ~refused.still_refused(key, a, b)
-        live[a[trying]] = True
-        live[b[trying]] = True
+    short = np.flatnonzero((np.einsum("ij,ij->i", side, side) < limit * limit) & (a != b))
+    a, b = a[short], b[short]
+    trying = ~refused.still_refused(np.minimum(a, b) * np.int64(len(vertices)) + np.maximum(a, b), a, b)
+    live = np.zeros(len(vertices), dtype=bool)
+    live[a[trying]] = True
+    live[b[trying]] = True
     return live
 
 
