@@ -37,9 +37,11 @@ on whole face arrays, with numpy:
 * the collapses run in *rounds*, as ``simplify``'s do (:mod:`.collapse_rounds`): each
   round checks every short edge (link condition, boundary rules, degrees, the 4/3 L
   rule, no face turned over) and collapses a set of them far enough apart to be done
-  together;
+  together. After the first round, a round looks only at the faces within two rings
+  of the short edges still worth trying: nothing farther away can change its choice;
 * the flips run in passes: every interior edge's degree gain is computed at once, and
-  a set of improving flips that share no vertex is flipped together.
+  a set of improving flips that share no vertex is flipped together. The edge list is
+  sorted once per phase and then updated by each pass (a flip changes five edges).
 
 :func:`remesh` returns the result; :func:`remesh_step_by_step` yields the mesh after each
 phase, for a stepper, and :func:`remesh_history` lists them all; :func:`quality_report` measures what remeshing is for (edge
