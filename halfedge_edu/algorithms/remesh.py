@@ -825,10 +825,10 @@ def _project(vertices, faces, surface: _Surface, features: Features | None, on_b
     result[inside] = surface.project(vertices[inside])
     if on_boundary.any() and surface.segment_tree is not None:
         result[on_boundary] = surface.project_to_boundary(vertices[on_boundary])
-    flat_before = _nearly_flat(vertices, faces)
     while True:
-        flattened = _nearly_flat(result, faces) & ~flat_before
-        if not flattened.any():
+        flat = np.flatnonzero(_nearly_flat(result, faces))
+        flattened = flat[~_nearly_flat(vertices, faces[flat])]        # flat now, and not before (few)
+        if len(flattened) == 0:
             return result
         put_back = faces[flattened].reshape(-1)
         result[put_back] = vertices[put_back]
