@@ -80,9 +80,17 @@ class Features(NamedTuple):
 
     def mask(self, table: EdgeTable) -> np.ndarray:
         """(E,) True for the edges of ``table`` (of the same vertices) that are feature edges."""
-        mask = np.zeros(len(table.keys), dtype=bool)
-        if len(self.edges):
-            mask[np.searchsorted(table.keys, _keys(self.edges, len(self.corners)))] = True
+        return self.edge_mask(table.keys)
+
+    def edge_mask(self, keys: np.ndarray) -> np.ndarray:
+        """(E,) True for the edges with sorted keys ``keys`` (``low * n + high``, n the
+        number of vertices) that are feature edges. ``keys`` may be the edges of part of
+        the mesh: feature edges not among them are left out."""
+        mask = np.zeros(len(keys), dtype=bool)
+        if len(self.edges) and len(keys):
+            feature_keys = _keys(self.edges, len(self.corners))
+            at = np.minimum(np.searchsorted(keys, feature_keys), len(keys) - 1)
+            mask[at[keys[at] == feature_keys]] = True
         return mask
 
     def line_neighbours(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -37,9 +37,11 @@ on whole face arrays, with numpy:
 * the collapses run in *rounds*, as ``simplify``'s do (:mod:`.collapse_rounds`): each
   round checks every short edge (link condition, boundary rules, degrees, the 4/3 L
   rule, no face turned over) and collapses a set of them far enough apart to be done
-  together;
+  together. After the first round, a round looks only at the faces within two rings
+  of the short edges still worth trying: nothing farther away can change its choice;
 * the flips run in passes: every interior edge's degree gain is computed at once, and
-  a set of improving flips that share no vertex is flipped together.
+  a set of improving flips that share no vertex is flipped together. The edge list is
+  sorted once per phase and then updated by each pass (a flip changes five edges).
 
 :func:`remesh` returns the result; :func:`remesh_step_by_step` yields the mesh after each
 phase, for a stepper, and :func:`remesh_history` lists them all; :func:`quality_report` measures what remeshing is for (edge
@@ -58,12 +60,9 @@ import numpy as np
 from ..core.errors import MeshInputError
 from ..core.mesh import HalfedgeMesh
 from ._progress import progress_range
-from ..core.arrays import (
-    EdgeTable, compact, cross_rows, edge_table, expand, face_cross, merge_vertices, vertex_faces,
-    vertex_neighbours,
-)
+from ..core.arrays import EdgeTable, compact, cross_rows, edge_table, expand, vertex_faces
 from .arguments import check_mesh, check_remesh, real_number, whole_number
-from .collapse_rounds import choose_round, collapse_topology_ok, no_turned_faces
+from .collapse_rounds import choose_round, collapse_topology_ok, no_turned_faces, round_tables
 from .features import DEFAULT_FEATURE_ANGLE, Features, feature_arrays
 from .normals import area_weighted_vertex_normals
 
@@ -74,6 +73,9 @@ COLLAPSE_BELOW = 4.0 / 5.0
 MAX_SPLIT_PASSES = 10
 MAX_COLLAPSE_ROUNDS = 30
 MAX_FLIP_PASSES = 10
+#: Flip passes stop once a pass flips at most this fraction of the faces' count: the
+#: last few flips (a handful of edges each pass) are left to the next iteration.
+MIN_FLIP_FRACTION = 0.001
 #: Collapse rounds stop early once a round collapses at most this fraction of the faces'
 #: count: the last few short edges are then left to the next iteration, where smoothing
 #: has given them room, instead of paying a whole round each.
@@ -82,8 +84,6 @@ MIN_COLLAPSE_FRACTION = 0.0005
 MAX_COLLAPSE_NORMAL_ANGLE = 30.0
 #: An edge whose two faces meet at a sharper angle than this is a crease: never flipped.
 MAX_FLIP_DIHEDRAL = 20.0
-#: Candidate input triangles examined per vertex when projecting (the nearest centroids).
-PROJECTION_CANDIDATES = 6
 #: A face counts as flat (no area) when twice its area is at most this times its
 #: squared longest edge; the projection never leaves a face flat that was not.
 MIN_RELATIVE_AREA = 1e-10
@@ -121,11 +121,11 @@ def _split_pass(vertices: np.ndarray, faces: np.ndarray, max_length: float, feat
     feature edge leaves two feature halves (``features`` None: none are tracked).
     """
     n = len(vertices)
+    if not _has_long_side(vertices, faces, max_length):            # the usual last pass: no edge table needed
+        return vertices, faces, features, 0
     table = edge_table(faces, n)
     long = _edge_lengths(vertices, table.edges) > max_length
     n_split = int(long.sum())
-    if n_split == 0:
-        return vertices, faces, features, 0
     midpoint_of = np.full(len(table.edges), -1, dtype=np.int64)
     midpoint_of[long] = n + np.arange(n_split)
     if features is not None:
@@ -163,6 +163,18 @@ def _split_pass(vertices: np.ndarray, faces: np.ndarray, max_length: float, feat
     return vertices, np.concatenate(pieces), features, n_split
 
 
+def _has_long_side(vertices: np.ndarray, faces: np.ndarray, max_length: float) -> bool:
+    """Whether any face has a side longer than ``max_length``: each interior edge is
+    measured twice, but no sort is needed to find the edges first."""
+    corners = [np.take(vertices, faces[:, k], axis=0) for k in range(3)]     # (m, 3) each
+    limit = max_length * max_length
+    for k in range(3):
+        side = corners[(k + 1) % 3] - corners[k]
+        if (np.einsum("ij,ij->i", side, side) > limit).any():
+            return True
+    return False
+
+
 def _split_long_edges(vertices, faces, target_length, features: Features | None):
     """Split passes until no edge is longer than 4/3 L (at most ``MAX_SPLIT_PASSES``)."""
     for _ in range(MAX_SPLIT_PASSES):
@@ -182,10 +194,26 @@ def _line_turning(vertices, line_edges: np.ndarray, n: int) -> np.ndarray:
     (0 where the line runs straight, up to 2)."""
     d = vertices[line_edges[:, 1]] - vertices[line_edges[:, 0]]
     d /= np.maximum(np.linalg.norm(d, axis=1), 1e-300)[:, None]
-    total = np.zeros((n, 3))
-    np.add.at(total, line_edges[:, 0], d)
-    np.add.at(total, line_edges[:, 1], -d)
+    total = np.empty((n, 3))
+    for axis in range(3):           # sums per vertex: bincount is many times faster than np.add.at
+        total[:, axis] = (np.bincount(line_edges[:, 0], weights=d[:, axis], minlength=n)
+                          - np.bincount(line_edges[:, 1], weights=d[:, axis], minlength=n))
     return np.linalg.norm(total, axis=1)
+
+
+def _farthest_neighbour(vertices: np.ndarray, neighbours: tuple[np.ndarray, np.ndarray], ends: np.ndarray,
+                        places: np.ndarray) -> np.ndarray:
+    """(k,) the largest distance from ``places[i]`` (k, 3) to a neighbour of vertex ``ends[i]``.
+
+    The neighbours of all ends are gathered at once (:func:`expand`, one row after the
+    other), so the largest per row is one ``np.maximum.reduceat`` at the rows' starts
+    (every vertex of an edge has at least one neighbour, so no row is empty).
+    """
+    offsets, _ = neighbours
+    counts = offsets[ends + 1] - offsets[ends]
+    owner, around = expand(*neighbours, ends)
+    gap = np.take(vertices, around, axis=0) - np.take(places, owner, axis=0)
+    return np.sqrt(np.maximum.reduceat(np.einsum("ij,ij->i", gap, gap), np.cumsum(counts) - counts))
 
 
 class _Refused:
@@ -200,6 +228,7 @@ class _Refused:
     def __init__(self, n: int):
         self.keys = np.empty(0, dtype=np.int64)
         self.dirty = np.zeros(n, dtype=bool)
+        self.gone = np.zeros(n, dtype=bool)            # merged into another vertex
 
     def still_refused(self, keys: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
         if len(self.keys) == 0:
@@ -207,17 +236,36 @@ class _Refused:
         at = np.minimum(np.searchsorted(self.keys, keys), len(self.keys) - 1)
         return (self.keys[at] == keys) & ~self.dirty[a] & ~self.dirty[b]
 
-    def update(self, keys: np.ndarray, merged: np.ndarray, faces: np.ndarray) -> None:
-        """Remember ``keys`` as refused; mark the ``merged`` vertices and their neighbours dirty."""
-        self.keys = np.unique(keys)
+    def update(self, keys: np.ndarray, region_keys: np.ndarray | None, merged: np.ndarray,
+               neighbours: tuple[np.ndarray, np.ndarray]) -> None:
+        """Remember ``keys`` (distinct) as refused; mark the ``merged`` vertices (both ends
+        of every collapse) and their neighbours before the merge (``neighbours``, CSR) dirty.
+
+        ``region_keys`` (sorted): the edges the round looked at (None: all of them). A
+        refused edge outside them was not looked at again, so it stays refused, unless
+        an earlier round's merge removed one of its ends (the edge is gone).
+        """
+        if region_keys is not None and len(self.keys) and len(region_keys):
+            at = np.minimum(np.searchsorted(region_keys, self.keys), len(region_keys) - 1)
+            n = len(self.dirty)
+            outside = (region_keys[at] != self.keys) & ~self.gone[self.keys // n] & ~self.gone[self.keys % n]
+            keys = np.concatenate([self.keys[outside], keys])
+        self.keys = np.sort(keys)
         self.dirty[:] = False
         self.dirty[merged] = True
-        around = self.dirty[faces].any(axis=1)
-        self.dirty[faces[around].reshape(-1)] = True
+        self.dirty[expand(*neighbours, merged)[1]] = True
 
 
-def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Refused, features: Features | None):
-    """One round of collapses of short edges. Returns ``(vertices, faces, features, n_collapsed)``.
+def _collapse_round(vertices, faces, region: np.ndarray | None, target_length, max_normal_cos, refused: _Refused,
+                    features: Features | None):
+    """One round of collapses of short edges among ``faces[region]`` (None: all faces).
+
+    Returns ``(faces, features, n_collapsed, live)``; ``vertices`` (n, 3) is moved in
+    place. ``live`` (n,) marks the ends of the short edges that the next round will try
+    (:func:`_short_edge_ends`). The region must hold every face within two rings of the
+    ends of the short edges that are not refused (:func:`_faces_near`): the checks of an
+    edge read its ends' faces and neighbours, and their neighbours' faces; a round on
+    that region chooses exactly what a round on the whole mesh would.
 
     The *lines* are the boundary, and with ``features`` the feature lines too (the
     boundary is one of them). Where a collapse may put the merged vertex, in order of
@@ -233,20 +281,24 @@ def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Re
     longer than 4/3 L is taken; an edge with none is not collapsed this time.
     """
     n = len(vertices)
-    table = edge_table(faces, n)
-    edges = table.edges
-    boundary_edge = table.count == 1
-    boundary_vertex = table.boundary_vertices(n)
+    whole = faces
+    if region is not None:
+        faces = faces[region]
+    tables = round_tables(faces, n)
+    edges, boundary_edge, neighbours = tables.edges, tables.boundary, tables.neighbours
+    keys = edges[:, 0] * np.int64(n) + edges[:, 1]                     # (E,) ascending
+    boundary_vertex = np.zeros(n, dtype=bool)
+    boundary_vertex[edges[boundary_edge].reshape(-1)] = True
     if features is None:
         line_edge, on_line, corner = boundary_edge, boundary_vertex, np.zeros(n, dtype=bool)
     else:
-        line_edge, on_line, corner = features.mask(table), features.counts() > 0, features.corners
+        line_edge, on_line, corner = features.edge_mask(keys), features.counts() > 0, features.corners
     length = _edge_lengths(vertices, edges)
     short = np.flatnonzero(length < COLLAPSE_BELOW * target_length)
-    stale = refused.still_refused(table.keys[short], edges[short, 0], edges[short, 1])
+    stale = refused.still_refused(keys[short], edges[short, 0], edges[short, 1])
     candidates = short[~stale]
     if len(candidates) == 0:
-        return vertices, faces, features, 0
+        return whole, features, 0, np.zeros(n, dtype=bool)
     candidates = candidates[np.argsort(length[candidates], kind="stable")]   # shortest first
     a, b = edges[candidates, 0], edges[candidates, 1]
     along = line_edge[candidates]
@@ -259,13 +311,8 @@ def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Re
         swap |= along & ((corner[b] & ~corner[a]) | ((corner[b] == corner[a]) & (turning[b] > turning[a])))
     first, second = np.where(swap, b, a), np.where(swap, a, b)
 
-    degree = np.bincount(edges.reshape(-1), minlength=n)
-    neighbours = vertex_neighbours(edges, n)
-    valid, opposite_owner, opposite_vertex = collapse_topology_ok(
-        n, edges[candidates], boundary_edge[candidates], boundary_vertex, degree, neighbours
-    )
-    # Across from one line to another (or to the same one further on), or between two corners.
-    valid &= ~(on_line[a] & on_line[b] & ~along) & ~(corner[a] & corner[b])
+    # Never across from one line to another (or to the same one further on), nor between two corners.
+    valid = ~(on_line[a] & on_line[b] & ~along) & ~(corner[a] & corner[b])
 
     # Try the places in turn; the first one that makes no edge longer than 4/3 L wins.
     keep, remove = first.copy(), second.copy()
@@ -280,21 +327,27 @@ def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Re
         todo = np.flatnonzero(valid & allowed & np.isnan(points[:, 0]))
         if len(todo) == 0:
             continue
-        longest = np.zeros(len(todo))
-        for end in (a, b):
-            owner, around = expand(*neighbours, end[todo])
-            np.maximum.at(longest, owner, np.linalg.norm(vertices[around] - place[todo][owner], axis=1))
+        longest = np.maximum(_farthest_neighbour(vertices, neighbours, a[todo], place[todo]),
+                             _farthest_neighbour(vertices, neighbours, b[todo], place[todo]))
         fits = todo[longest <= SPLIT_ABOVE * target_length]
         points[fits] = place[fits]
         keep[fits] = kept[fits]
         remove[fits] = np.where(kept[fits] == first[fits], second[fits], first[fits])
     valid &= ~np.isnan(points[:, 0])
+    # The topology last: its sort costs more per edge than the places, and most short
+    # edges have no place that fits.
+    placed = np.flatnonzero(valid)
+    degree = np.diff(neighbours[0])                                    # (n,) each row lists every neighbour once
+    ok, opposite_owner, opposite_vertex = collapse_topology_ok(
+        n, edges[candidates[placed]], boundary_edge[candidates[placed]], boundary_vertex, degree, neighbours
+    )
+    valid[placed[~ok]] = False
+    opposite_owner = placed[opposite_owner]                            # into candidates
     turned = np.zeros(len(candidates), dtype=bool)
-    faces_around = vertex_faces(faces, n)
 
     def check_turned_faces(indices: np.ndarray) -> np.ndarray:
-        ok = no_turned_faces(vertices, faces, faces_around, points[indices], keep[indices],
-                              remove[indices], max_normal_cos)
+        ok = no_turned_faces(vertices, faces, tables.faces_around, points[indices], keep[indices],
+                             remove[indices], max_normal_cos, face_across=tables.face_across)
         turned[indices[~ok]] = True
         return ok
 
@@ -307,18 +360,59 @@ def _collapse_round(vertices, faces, target_length, max_normal_cos, refused: _Re
 
     if valid.any():
         chosen = choose_round(edges, candidates, valid, n, check_topology, check_turned_faces,
-                               known_opposites=(opposite_owner, opposite_vertex))
+                              known_opposites=(opposite_owner, opposite_vertex), neighbours=neighbours)
     else:
         chosen = np.zeros(len(candidates), dtype=bool)
-    refused_keys = np.concatenate([table.keys[short[stale]], table.keys[candidates[~valid | turned]]])
+    refused_keys = np.concatenate([keys[short[stale]], keys[candidates[~valid | turned]]])
+    refused.update(refused_keys, None if region is None else keys, np.concatenate([keep[chosen], remove[chosen]]),
+                   neighbours)
+    relabel = np.arange(n)
     if chosen.any():
-        vertices = vertices.copy()
         vertices[keep[chosen]] = points[chosen]
-        faces = merge_vertices(faces, remove[chosen], keep[chosen], n)
+        refused.gone[remove[chosen]] = True
+        relabel[remove[chosen]] = keep[chosen]
+        faces = relabel[faces]                          # only faces of the region hold a removed vertex
+        degenerate = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 2] == faces[:, 0])
+        if region is None:
+            whole = faces[~degenerate]
+        else:
+            whole = whole.copy()
+            whole[region] = faces
+            whole = np.delete(whole, region[degenerate], axis=0)     # the other faces keep their order
         if features is not None:
             features = features.merge(remove[chosen], keep[chosen])
-    refused.update(refused_keys, keep[chosen], faces)
-    return vertices, faces, features, int(chosen.sum())
+    live = _short_edge_ends(vertices, relabel[edges], target_length, refused)
+    return whole, features, int(chosen.sum()), live
+
+
+def _short_edge_ends(vertices, edges: np.ndarray, target_length, refused: _Refused) -> np.ndarray:
+    """(n,) True at the ends of the ``edges`` (E, 2) (a round's region, after its
+    collapses: collapsed edges have two equal ends, merged ones come twice) that are
+    short and not refused: the next round's candidates.
+
+    None lie outside the region: a short edge elsewhere was either refused and kept
+    its ends (still refused) or was a candidate, whose ends lie in the region.
+    """
+    a, b = edges[:, 0], edges[:, 1]
+    side = np.take(vertices, a, axis=0) - np.take(vertices, b, axis=0)
+    limit = COLLAPSE_BELOW * target_length
+    short = np.flatnonzero((np.einsum("ij,ij->i", side, side) < limit * limit) & (a != b))
+    a, b = a[short], b[short]
+    trying = ~refused.still_refused(np.minimum(a, b) * np.int64(len(vertices)) + np.maximum(a, b), a, b)
+    live = np.zeros(len(vertices), dtype=bool)
+    live[a[trying]] = True
+    live[b[trying]] = True
+    return live
+
+
+def _faces_near(faces: np.ndarray, marked: np.ndarray) -> np.ndarray:
+    """Indices of the faces within two rings of the ``marked`` (n,) vertices: those
+    with a corner at a marked vertex or at a neighbour of one."""
+    columns = [faces[:, k] for k in range(3)]
+    at_marked = marked[columns[0]] | marked[columns[1]] | marked[columns[2]]
+    near = marked.copy()
+    near[faces[at_marked].reshape(-1)] = True                          # the marked vertices and their neighbours
+    return np.flatnonzero(near[columns[0]] | near[columns[1]] | near[columns[2]])
 
 
 def _collapse_short_edges(vertices, faces, target_length, features: Features | None = None):
@@ -327,11 +421,14 @@ def _collapse_short_edges(vertices, faces, target_length, features: Features | N
     Returns ``(vertices, faces, features)``, compacted (unused vertices dropped)."""
     max_normal_cos = math.cos(math.radians(MAX_COLLAPSE_NORMAL_ANGLE))
     refused = _Refused(len(vertices))
+    vertices = vertices.copy()                      # the rounds move vertices in place
+    region = None                                   # the first round looks at every face
     for _ in range(MAX_COLLAPSE_ROUNDS):
-        vertices, faces, features, n_collapsed = _collapse_round(
-            vertices, faces, target_length, max_normal_cos, refused, features)
-        if n_collapsed <= MIN_COLLAPSE_FRACTION * len(faces):
+        faces, features, n_collapsed, live = _collapse_round(
+            vertices, faces, region, target_length, max_normal_cos, refused, features)
+        if n_collapsed <= MIN_COLLAPSE_FRACTION * len(faces) or not live.any():
             break
+        region = _faces_near(faces, live)
     vertices, faces, kept = compact(vertices, faces)
     if features is not None:
         features = features.renumber(kept)
@@ -346,8 +443,55 @@ def _unit(vectors: np.ndarray) -> np.ndarray:
     return vectors / np.maximum(np.linalg.norm(vectors, axis=1), 1e-300)[:, None]
 
 
-def _flip_pass(vertices, faces, rng, max_crease_cos, features: Features | None = None, selection_passes: int = 4):
-    """Flip a vertex-disjoint set of degree-improving edges. Returns ``(faces, n_flipped)``.
+class _EdgeUses(NamedTuple):
+    """The edges of a face array in key order, each with the directed edges that use it:
+    what a flip pass asks, kept up to date from pass to pass instead of sorted again.
+
+    ``keys`` (E,) ``low * n + high``, ascending; ``first``/``second`` (E,) the directed
+    edges ``3 f + k`` using each edge (``second`` -1 on the boundary).
+    """
+
+    keys: np.ndarray
+    first: np.ndarray
+    second: np.ndarray
+
+    @classmethod
+    def of(cls, faces: np.ndarray, n: int) -> "_EdgeUses":
+        table = edge_table(faces, n)
+        return cls(table.keys, table.first, table.second)
+
+    def after_flips(self, n: int, a, b, c, d, h1, h2) -> "_EdgeUses":
+        """The uses after flipping edges ``a-b`` (directed edge ``h1`` in face ``[a, b, c]``,
+        ``h2`` in ``[b, a, d]``) into ``c-d``, the faces becoming ``[c, a, d]`` and
+        ``[d, b, c]`` (see :func:`_flip_pass`; the flips share no vertex).
+
+        The four edges around each flipped one keep their key but move to another
+        directed edge; ``a-b`` leaves the keys and ``c-d`` comes in at its sorted place.
+        """
+        f1, f2 = 3 * (h1 // 3), 3 * (h2 // 3)                          # each face's first directed edge
+        after = lambda h: h + np.where(h % 3 == 2, -2, 1)              # noqa: E731  next in the face
+        before = lambda h: h + np.where(h % 3 == 0, 2, -1)             # noqa: E731  previous in the face
+        first, second = self.first.copy(), self.second.copy()
+        for x, y, old, new in ((c, a, before(h1), f1), (a, d, after(h2), f1 + 1),
+                               (d, b, before(h2), f2), (b, c, after(h1), f2 + 1)):
+            at = np.searchsorted(self.keys, np.minimum(x, y) * n + np.maximum(x, y))
+            was_first = first[at] == old
+            first[at[was_first]] = new[was_first]
+            second[at[~was_first]] = new[~was_first]
+        gone = np.searchsorted(self.keys, np.minimum(a, b) * n + np.maximum(a, b))
+        keys, first, second = (np.delete(array, gone) for array in (self.keys, first, second))
+        new_keys = np.minimum(c, d) * n + np.maximum(c, d)
+        order = np.argsort(new_keys)
+        at = np.searchsorted(keys, new_keys[order])
+        return _EdgeUses(np.insert(keys, at, new_keys[order]), np.insert(first, at, (f1 + 2)[order]),
+                         np.insert(second, at, (f2 + 2)[order]))
+
+
+def _flip_pass(vertices, faces, rng, max_crease_cos, features: Features | None = None, selection_passes: int = 4,
+               uses: _EdgeUses | None = None):
+    """Flip a vertex-disjoint set of degree-improving edges. Returns ``(faces, n_flipped,
+    uses)``: ``uses`` the :class:`_EdgeUses` of the new faces (given ``uses`` of ``faces``,
+    the pass does not sort the edges again).
 
     Edge ``a-b`` with faces ``[a, b, c]`` and ``[b, a, d]`` becomes ``c-d`` with faces
     ``[c, a, d]`` and ``[d, b, c]``: a and b lose an edge, c and d gain one. With
@@ -359,15 +503,21 @@ def _flip_pass(vertices, faces, rng, max_crease_cos, features: Features | None =
     it (leaving fewer than 3), or both create the same new edge ``c-d``.
     """
     n = len(vertices)
-    table = edge_table(faces, n)
-    inner = np.flatnonzero(table.count == 2)
-    h1, h2 = table.first[inner], table.second[inner]
-    f1, k1, f2, k2 = h1 // 3, h1 % 3, h2 // 3, h2 % 3
-    a, b, c = faces[f1, k1], faces[f1, (k1 + 1) % 3], faces[f1, (k1 + 2) % 3]
-    d = faces[f2, (k2 + 2) % 3]
+    if uses is None:
+        uses = _EdgeUses.of(faces, n)
+    inner = np.flatnonzero(uses.second >= 0)
+    h1, h2 = uses.first[inner], uses.second[inner]
+    # Corner h of the flat face array is corner h % 3 of face h // 3; the face's next
+    # corner is h + 1 and its previous h - 1, wrapping around within the face.
+    flat = faces.reshape(-1)
+    a, b = np.take(flat, h1), np.take(flat, h1 + np.where(h1 % 3 == 2, -2, 1))
+    c, d = np.take(flat, h1 + np.where(h1 % 3 == 0, 2, -1)), np.take(flat, h2 + np.where(h2 % 3 == 0, 2, -1))
 
-    boundary_vertex = table.boundary_vertices(n)
-    degree = np.bincount(table.edges.reshape(-1), minlength=n)
+    boundary_vertex = np.zeros(n, dtype=bool)
+    boundary_edge = uses.keys[uses.second < 0]
+    boundary_vertex[boundary_edge // n] = True
+    boundary_vertex[boundary_edge % n] = True
+    degree = np.bincount(uses.keys // n, minlength=n) + np.bincount(uses.keys % n, minlength=n)
     ideal = np.where(boundary_vertex, 4, 6)
     # What each vertex gains (in |degree - ideal|) by losing an edge, and by gaining one:
     # per vertex first, so each edge's gain is four look-ups.
@@ -380,12 +530,12 @@ def _flip_pass(vertices, faces, rng, max_crease_cos, features: Features | None =
         # Never flip a line's edge, and never make an edge across from one line to
         # another: both its ends would be held on lines, where smoothing cannot even it out.
         on_line = features.counts() > 0
-        ok &= ~features.mask(table)[inner] & ~(on_line[c] & on_line[d])
+        ok &= ~features.edge_mask(uses.keys)[inner] & ~(on_line[c] & on_line[d])
     # The new edge c-d must not exist already (looked up only for the flips still wanted).
     wanted = np.flatnonzero(ok)
     new_key = np.minimum(c[wanted], d[wanted]) * n + np.maximum(c[wanted], d[wanted])
-    at = np.minimum(np.searchsorted(table.keys, new_key), len(table.keys) - 1)
-    ok[wanted[table.keys[at] == new_key]] = False
+    at = np.minimum(np.searchsorted(uses.keys, new_key), len(uses.keys) - 1)
+    ok[wanted[uses.keys[at] == new_key]] = False
 
     # Geometry: no flip across a crease, and the new triangles may not fold over.
     which = np.flatnonzero(ok)
@@ -403,7 +553,7 @@ def _flip_pass(vertices, faces, rng, max_crease_cos, features: Features | None =
 
     candidates = np.flatnonzero(ok)
     if len(candidates) == 0:
-        return faces, 0
+        return faces, 0, uses
     # Biggest gain first, ties in a random (seeded) order.
     candidates = candidates[np.lexsort((rng.random(len(candidates)), -gain[candidates]))]
     quads = np.stack([a[candidates], b[candidates], c[candidates], d[candidates]], axis=1)   # (k, 4)
@@ -424,16 +574,17 @@ def _flip_pass(vertices, faces, rng, max_crease_cos, features: Features | None =
         used[quads[picked].reshape(-1)] = True
     take = candidates[chosen]
     faces = faces.copy()
-    faces[f1[take]] = np.stack([c[take], a[take], d[take]], axis=1)
-    faces[f2[take]] = np.stack([d[take], b[take], c[take]], axis=1)
-    return faces, len(take)
+    faces[h1[take] // 3] = np.stack([c[take], a[take], d[take]], axis=1)
+    faces[h2[take] // 3] = np.stack([d[take], b[take], c[take]], axis=1)
+    return faces, len(take), uses.after_flips(n, a[take], b[take], c[take], d[take], h1[take], h2[take])
 
 
 def _flip_to_regular_degrees(vertices, faces, rng, features: Features | None):
     max_crease_cos = math.cos(math.radians(MAX_FLIP_DIHEDRAL))
+    uses = _EdgeUses.of(faces, len(vertices))
     for _ in range(MAX_FLIP_PASSES):
-        faces, n_flipped = _flip_pass(vertices, faces, rng, max_crease_cos, features)
-        if n_flipped == 0:
+        faces, n_flipped, uses = _flip_pass(vertices, faces, rng, max_crease_cos, features, uses=uses)
+        if n_flipped <= MIN_FLIP_FRACTION * len(faces):
             break
     return faces
 
@@ -443,16 +594,19 @@ def _flip_to_regular_degrees(vertices, faces, rng, features: Features | None):
 # ----------------------------------------------------------------------------------------
 
 def tangential_smoothing(vertices: np.ndarray, faces: np.ndarray, features: Features | None = None,
-                         fraction: float = 1.0) -> np.ndarray:
+                         fraction: float = 1.0, *, table: EdgeTable | None = None) -> np.ndarray:
     """Move every interior vertex to its neighbours' centroid, in its tangent plane only.
 
     Without ``features`` the boundary vertices stay. With them, vertices on a feature
     line (the boundary is one) move only along it: towards the midpoint of their two
     neighbours on the line, along the direction from one to the other (smoothing in 1D);
     corners stay. ``fraction``: how much of each step is taken (1: all the way).
+    ``table``: the :func:`~halfedge_edu.core.arrays.edge_table` of ``faces``, if the
+    caller has it already.
     """
     n = len(vertices)
-    table = edge_table(faces, n)
+    if table is None:
+        table = edge_table(faces, n)
     edges = table.edges
     degree = np.bincount(edges.reshape(-1), minlength=n)
     # All centroids first, from the old positions (Jacobi): sums over both directions of each edge.
@@ -481,44 +635,44 @@ def tangential_smoothing(vertices: np.ndarray, faces: np.ndarray, features: Feat
 # Phase 5: projection onto the input
 # ----------------------------------------------------------------------------------------
 
+def _triangle_coordinates(d1: np.ndarray, d2: np.ndarray, ab_ab: np.ndarray, ab_ac: np.ndarray,
+                          ac_ac: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(s, t)``, each like ``d1``: the point of triangle ``a, b, c`` nearest to a point
+    ``p`` is ``a + s (b - a) + t (c - a)``.
+
+    Ericson's method (Real-Time Collision Detection, 5.1.5): find which of the seven
+    regions (3 corners, 3 edges, the inside) ``p`` projects into, from six dot products.
+    All six follow from two, ``d1 = (b - a).(p - a)`` and ``d2 = (c - a).(p - a)``, and
+    the triangle's own three (``ab_ab = (b - a).(b - a)``, ``ab_ac``, ``ac_ac``), which a
+    caller asking about the same triangles again and again computes once.
+    """
+    d3, d4, d5, d6 = d1 - ab_ab, d2 - ab_ac, d1 - ab_ac, d2 - ac_ac    # (b-a).(p-b), (c-a).(p-b), ... (p-c)
+    va, vb, vc = d3 * d6 - d5 * d4, d5 * d2 - d1 * d6, d1 * d4 - d3 * d2
+    safe = lambda x: np.where(np.abs(x) > 1e-300, x, 1e-300)  # noqa: E731
+    with np.errstate(over="ignore", invalid="ignore"):      # formulas of the regions a row is not in
+        on_bc = (d4 - d3) / safe((d4 - d3) + (d5 - d6))
+        inside = safe(va + vb + vc)
+        # Where several region tests hold, the one Ericson makes first wins: np.select
+        # takes the first true condition, so they come in his order.
+        regions = [(d1 <= 0) & (d2 <= 0), (d3 >= 0) & (d4 <= d3), (vc <= 0) & (d1 >= 0) & (d3 <= 0),
+                   (d6 >= 0) & (d5 <= d6), (vb <= 0) & (d2 >= 0) & (d6 <= 0),
+                   (va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0)]
+        #            corner a, corner b, edge ab,              corner c, edge ac,            edge bc
+        s = np.select(regions, [0.0, 1.0, d1 / safe(d1 - d3), 0.0, 0.0, 1.0 - on_bc], vb / inside)
+        t = np.select(regions, [0.0, 0.0, 0.0, 1.0, d2 / safe(d2 - d6), on_bc], vc / inside)
+    return s, t
+
+
 def closest_points_on_triangles(points: np.ndarray, a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
     """(k, 3) the point of triangle ``(a[i], b[i], c[i])`` nearest to ``points[i]``.
 
-    Ericson's method (Real-Time Collision Detection, 5.1.5): find which of the seven
-    regions (3 corners, 3 edges, the inside) the point projects into, from six dot
-    products, all rows at once.
+    Ericson's method (Real-Time Collision Detection, 5.1.5), all rows at once: see
+    :func:`_triangle_coordinates`.
     """
     dot = lambda u, v: np.einsum("ij,ij->i", u, v)  # noqa: E731
-    ab, ac = b - a, c - a
-    ap, bp, cp = points - a, points - b, points - c
-    d1, d2, d3, d4, d5, d6 = dot(ab, ap), dot(ac, ap), dot(ab, bp), dot(ac, bp), dot(ab, cp), dot(ac, cp)
-    va, vb, vc = d3 * d6 - d5 * d4, d5 * d2 - d1 * d6, d1 * d4 - d3 * d2
-    safe = lambda x: np.where(np.abs(x) > 1e-300, x, 1e-300)  # noqa: E731
-    # Which region each point falls in; where several tests hold, the one Ericson makes
-    # first wins, so they are written here last. Each region's formula is then worked
-    # out only for its own rows.
-    region = np.zeros(len(points), dtype=np.int8)                     # 0: inside
-    region[(va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0)] = 1          # on edge bc
-    region[(vb <= 0) & (d2 >= 0) & (d6 <= 0)] = 2                     # on edge ac
-    region[(d6 >= 0) & (d5 <= d6)] = 3                                # at corner c
-    region[(vc <= 0) & (d1 >= 0) & (d3 <= 0)] = 4                     # on edge ab
-    region[(d3 >= 0) & (d4 <= d3)] = 5                                # at corner b
-    region[(d1 <= 0) & (d2 <= 0)] = 6                                 # at corner a
-    result = np.empty_like(points)
-    rows = np.flatnonzero(region == 0)
-    denominator = safe(va[rows] + vb[rows] + vc[rows])
-    result[rows] = a[rows] + ab[rows] * (vb[rows] / denominator)[:, None] + ac[rows] * (vc[rows] / denominator)[:, None]
-    rows = np.flatnonzero(region == 1)
-    t = (d4[rows] - d3[rows]) / safe((d4[rows] - d3[rows]) + (d5[rows] - d6[rows]))
-    result[rows] = b[rows] + (c[rows] - b[rows]) * t[:, None]
-    rows = np.flatnonzero(region == 2)
-    result[rows] = a[rows] + ac[rows] * (d2[rows] / safe(d2[rows] - d6[rows]))[:, None]
-    rows = np.flatnonzero(region == 4)
-    result[rows] = a[rows] + ab[rows] * (d1[rows] / safe(d1[rows] - d3[rows]))[:, None]
-    for code, corner in ((3, c), (5, b), (6, a)):
-        rows = np.flatnonzero(region == code)
-        result[rows] = corner[rows]
-    return result
+    ab, ac, ap = b - a, c - a, points - a
+    s, t = _triangle_coordinates(dot(ab, ap), dot(ac, ap), dot(ab, ab), dot(ab, ac), dot(ac, ac))
+    return a + ab * s[:, None] + ac * t[:, None]
 
 
 def closest_points_on_segments(points: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -529,37 +683,86 @@ def closest_points_on_segments(points: np.ndarray, a: np.ndarray, b: np.ndarray)
 
 
 class _Surface:
-    """The input surface, ready for "nearest point" queries (a k-d tree of centroids),
-    with its boundary polyline and, given ``features``, its crease polylines."""
+    """The input surface, ready for "nearest point" queries (a k-d tree of centroids, the
+    triangles across each triangle's edges and around each vertex), with its boundary
+    polyline and, given ``features``, its crease polylines."""
 
     def __init__(self, vertices: np.ndarray, faces: np.ndarray, features: Features | None = None):
         from scipy.spatial import cKDTree
 
-        self.corners = vertices[faces]                                 # (F, 3, 3)
-        self.tree = cKDTree(self.corners.mean(axis=1))
-        table = edge_table(faces, len(vertices))
-        segments = table.edges[table.count == 1]
+        corners = vertices[faces]                                      # (F, 3, 3)
+        self.tree = cKDTree(corners.mean(axis=1))
+        # Each triangle as a corner and two sides, with the sides' dot products: what
+        # every query of the triangle asks again (see _triangle_coordinates).
+        self.origin = corners[:, 0]                                    # (F, 3)
+        self.sides = corners[:, 1:] - corners[:, :1]                   # (F, 2, 3) b - a, c - a
+        ab, ac = self.sides[:, 0], self.sides[:, 1]
+        self.gram = np.stack([np.einsum("ij,ij->i", ab, ab), np.einsum("ij,ij->i", ab, ac),
+                              np.einsum("ij,ij->i", ac, ac)], axis=1)  # (F, 3)
+        self.face_corners = faces
+        self.fan_offsets, self.fans = vertex_faces(faces, len(vertices))   # each vertex's triangles, CSR
+        self.degree = np.diff(self.fan_offsets)
+        # Each triangle and the (up to) three across its edges: the first candidates of a query.
+        tables = round_tables(faces, len(vertices))
+        across = tables.face_across                                    # (F, 3), -1 on the boundary
+        self.around = np.concatenate([np.arange(len(faces))[:, None], across], axis=1)   # (F, 4)
+        self.around = np.where(self.around >= 0, self.around, np.arange(len(faces))[:, None])
+        segments = tables.edges[tables.boundary]
         self.segments = vertices[segments]                             # (S, 2, 3)
         self.segment_tree = cKDTree(self.segments.mean(axis=1)) if len(segments) else None
-        creases = table.edges[features.mask(table) & (table.count == 2)] if features is not None else table.edges[:0]
+        if features is None:
+            creases = tables.edges[:0]
+        else:
+            keys = tables.edges[:, 0] * np.int64(len(vertices)) + tables.edges[:, 1]
+            creases = tables.edges[features.edge_mask(keys) & ~tables.boundary]
         self.crease_segments = vertices[creases]                       # (C, 2, 3)
         self.crease_tree = cKDTree(self.crease_segments.mean(axis=1)) if len(creases) else None
 
-    @staticmethod
-    def _nearest(points, tree, k, closest):
-        k = min(k, tree.n)
-        _, near = tree.query(points, k=k)
-        near = near.reshape(len(points), k)
-        repeated = np.repeat(points, k, axis=0)
-        found = closest(repeated, near.reshape(-1)).reshape(len(points), k, 3)
-        gap = np.einsum("ikj,ikj->ik", found - points[:, None], found - points[:, None])
-        return found[np.arange(len(points)), np.argmin(gap, axis=1)]
-
     def project(self, points: np.ndarray) -> np.ndarray:
-        """Nearest points on the input triangles (among the nearest few by centroid)."""
-        corners = self.corners
-        return self._nearest(points, self.tree, PROJECTION_CANDIDATES,
-                             lambda p, f: closest_points_on_triangles(p, corners[f, 0], corners[f, 1], corners[f, 2]))
+        """Nearest points on the input triangles.
+
+        First among the triangle whose centroid is nearest and the three across its
+        edges. Where the point found lies on the rim of its triangle (an edge or a
+        corner: about one point in eight), the nearest point may be on a triangle that
+        only shares a corner with it, so those points look again among all triangles
+        around the corner nearest to the point found. Against a search of every
+        triangle, for 2,000 points 0.1 L off Spot and off the bunny: the same point for
+        99.4% and 99.7% of them (the first look alone: 91% and 92%), the others within
+        0.02 L of it. The point found is on the input surface either way.
+        """
+        _, nearest = self.tree.query(points)
+        found, face, s, t = self._nearest_of(points, self.around[nearest])
+        on_rim = (s <= 0.0) | (t <= 0.0) | (s + t >= 1.0)
+        rows = np.flatnonzero(on_rim)
+        if len(rows):
+            weights = np.stack([1.0 - s[rows] - t[rows], s[rows], t[rows]], axis=1)   # (r, 3) of the corners
+            corner = self.face_corners[face[rows], np.argmax(weights, axis=1)]
+            fan = self.degree[corner]                                  # (r,)
+            slot = self.fan_offsets[corner][:, None] + np.arange(int(fan.max())) % fan[:, None]
+            found[rows] = self._nearest_of(points[rows], self.fans[slot])[0]
+        return found
+
+    def _nearest_of(self, points: np.ndarray, near: np.ndarray) -> tuple[np.ndarray, ...]:
+        """The nearest point to each point on its candidate triangles ``near`` (P, k):
+        ``(points (P, 3), their triangles (P,), s (P,), t (P,))``, the point being
+        ``a + s ab + t ac`` on its triangle.
+
+        Only two dot products per point and candidate: the squared distance to the
+        nearest point is ``|ap|^2 - 2 s d1 - 2 t d2 + s^2 ab.ab + 2 s t ab.ac + t^2
+        ac.ac``, all numbers already at hand, so the point itself is built only for the
+        winning candidate.
+        """
+        ap = points[:, None, :] - self.origin[near]                    # (P, k, 3)
+        sides = self.sides[near]                                       # (P, k, 2, 3)
+        d1 = np.einsum("pkj,pkj->pk", sides[:, :, 0], ap)
+        d2 = np.einsum("pkj,pkj->pk", sides[:, :, 1], ap)
+        ab_ab, ab_ac, ac_ac = np.moveaxis(self.gram[near], 2, 0)       # (P, k) each
+        s, t = _triangle_coordinates(d1, d2, ab_ab, ab_ac, ac_ac)
+        gap = np.einsum("pkj,pkj->pk", ap, ap) - 2 * (s * d1 + t * d2) + s * s * ab_ab + 2 * s * t * ab_ac + t * t * ac_ac
+        best = np.argmin(gap, axis=1)                                  # (P,)
+        rows = np.arange(len(points))
+        face, s, t = near[rows, best], s[rows, best], t[rows, best]
+        return self.origin[face] + self.sides[face, 0] * s[:, None] + self.sides[face, 1] * t[:, None], face, s, t
 
     def project_to_boundary(self, points: np.ndarray) -> np.ndarray:
         """Nearest points on the input's boundary polyline."""
@@ -569,9 +772,16 @@ class _Surface:
         """Nearest points on the input's crease polylines (feature edges off the boundary)."""
         return self._nearest_on_segments(points, self.crease_segments, self.crease_tree)
 
-    def _nearest_on_segments(self, points, segments, tree):
-        return self._nearest(points, tree, 4,
-                             lambda p, s: closest_points_on_segments(p, segments[s, 0], segments[s, 1]))
+    @staticmethod
+    def _nearest_on_segments(points, segments, tree):
+        """The nearest point on the 4 segments whose midpoints are nearest."""
+        k = min(4, tree.n)
+        _, near = tree.query(points, k=k)
+        near = near.reshape(-1)                                        # (P k,)
+        repeated = np.repeat(points, k, axis=0)
+        found = closest_points_on_segments(repeated, segments[near, 0], segments[near, 1]).reshape(len(points), k, 3)
+        gap = np.einsum("ikj,ikj->ik", found - points[:, None], found - points[:, None])
+        return found[np.arange(len(points)), np.argmin(gap, axis=1)]
 
 
 def _nearly_flat(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
@@ -579,14 +789,15 @@ def _nearly_flat(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     ``MIN_RELATIVE_AREA`` times the squared longest edge (two corners on one point, or
     three on a line). Measured against the face's own size, so it does not depend on
     the mesh's scale."""
-    corners = vertices[faces]                                          # (m, 3, 3)
-    double_area = np.linalg.norm(face_cross(corners), axis=1)
-    sides = corners - np.roll(corners, 1, axis=1)                      # (m, 3, 3)
-    longest = np.einsum("fkd,fkd->fk", sides, sides).max(axis=1)       # (m,) squared
-    return double_area <= MIN_RELATIVE_AREA * longest
+    p0, p1, p2 = (np.take(vertices, faces[:, k], axis=0) for k in range(3))   # (m, 3) each
+    sides = (p1 - p0, p2 - p1, p0 - p2)
+    cross = cross_rows(sides[0], p2 - p0)                               # length: twice the area
+    longest = np.maximum.reduce([np.einsum("ij,ij->i", side, side) for side in sides])   # (m,) squared
+    # Compared squared: (twice the area)^2 <= (MIN_RELATIVE_AREA * longest^2)^2.
+    return np.einsum("ij,ij->i", cross, cross) <= (MIN_RELATIVE_AREA * longest) ** 2
 
 
-def _project(vertices, faces, surface: _Surface, features: Features | None = None) -> np.ndarray:
+def _project(vertices, faces, surface: _Surface, features: Features | None, on_boundary: np.ndarray) -> np.ndarray:
     """Put every vertex on the nearest point of the input surface (boundary vertices on
     its boundary), except where that would flatten a face.
 
@@ -597,9 +808,10 @@ def _project(vertices, faces, surface: _Surface, features: Features | None = Non
     the same nearest point, or three on one line, and the face would be left with no
     area. The corners of such a face keep their positions from before the projection;
     that may flatten a face next to them in turn, so this repeats until no face is
-    flattened (each pass puts back at least one more vertex, so it ends).
+    flattened (each pass puts back at least one more vertex, so it ends). ``on_boundary``
+    (n,): the boundary vertices (not changed).
     """
-    on_boundary = edge_table(faces, len(vertices)).boundary_vertices(len(vertices))
+    on_boundary = on_boundary.copy()
     result = vertices.copy()
     if features is None:
         inside = np.flatnonzero(~on_boundary)
@@ -613,10 +825,10 @@ def _project(vertices, faces, surface: _Surface, features: Features | None = Non
     result[inside] = surface.project(vertices[inside])
     if on_boundary.any() and surface.segment_tree is not None:
         result[on_boundary] = surface.project_to_boundary(vertices[on_boundary])
-    flat_before = _nearly_flat(vertices, faces)
     while True:
-        flattened = _nearly_flat(result, faces) & ~flat_before
-        if not flattened.any():
+        flat = np.flatnonzero(_nearly_flat(result, faces))
+        flattened = flat[~_nearly_flat(vertices, faces[flat])]        # flat now, and not before (few)
+        if len(flattened) == 0:
             return result
         put_back = faces[flattened].reshape(-1)
         result[put_back] = vertices[put_back]
@@ -661,10 +873,11 @@ def _phases(mesh: HalfedgeMesh, target_length, iterations, project, progress,
         yield iteration + 1, "collapse", vertices, faces, features
         faces = _flip_to_regular_degrees(vertices, faces, rng, features)
         yield iteration + 1, "flip", vertices, faces, features
-        vertices = tangential_smoothing(vertices, faces, features, smoothing_step)
+        table = edge_table(faces, len(vertices))                       # for both smoothing and projection
+        vertices = tangential_smoothing(vertices, faces, features, smoothing_step, table=table)
         yield iteration + 1, "smooth", vertices, faces, features
         if surface is not None:
-            vertices = _project(vertices, faces, surface, features)
+            vertices = _project(vertices, faces, surface, features, table.boundary_vertices(len(vertices)))
             yield iteration + 1, "project", vertices, faces, features
 
 
@@ -686,9 +899,10 @@ def remesh(
         iterations: how many rounds of split / collapse / flip / smooth / project.
         project: put the vertices back on the input surface after each smoothing (the
             boundary ones on the input's boundary polyline, the ones on a crease on the
-            input's creases). Each vertex goes to the nearest point of the few input
-            triangles (or segments) whose centroids are nearest (a k-d tree), which is
-            the true nearest point almost always. Without it, midpoints of splits and
+            input's creases). Each vertex goes to the nearest point of a few input
+            triangles near it (a k-d tree of centroids, then the triangles beside the
+            nearest; of the four segments nearest, on a line), which is the true
+            nearest point almost always. Without it, midpoints of splits and
             tangential moves drift slightly inside curved regions.
         progress: show a progress bar (tqdm) over the iterations.
         feature_angle: keep the creases: edges whose two faces' normals differ by more

@@ -288,7 +288,8 @@ def test_flip_pass_lowers_the_total_degree_deviation_and_keeps_counts():
         degree = np.bincount(edge_table(f, len(vertices)).edges.reshape(-1), minlength=len(vertices))
         return np.abs(degree - 6).sum()
 
-    flipped, n_flipped = remesh_module._flip_pass(vertices, faces, np.random.default_rng(0), np.cos(np.radians(20.0)))
+    flipped, n_flipped, _ = remesh_module._flip_pass(vertices, faces, np.random.default_rng(0),
+                                                     np.cos(np.radians(20.0)))
     assert n_flipped > 0
     assert deviation(flipped) < deviation(faces)
     result = hx.HalfedgeMesh.from_faces(vertices, flipped)

@@ -1,0 +1,135 @@
+"""The shortcuts of the fast remesher give what the plain versions give.
+
+* A collapse round after the first looks only at the faces near the short edges still
+  to try (``_faces_near``); it must choose exactly what a round on the whole mesh
+  chooses, on closed and open meshes, with and without feature lines.
+* ``Features.edge_mask`` takes the keys of part of a mesh and leaves out the feature
+  edges that are not among them.
+* The projection's candidates (the triangle with the nearest centroid and the three
+  beside it) find the true nearest point of the input for almost every point, and a
+  point on the input surface always.
+"""
+
+from __future__ import annotations
+
+import importlib
+
+import numpy as np
+import pytest
+
+import halfedge_edu as hx
+from halfedge_edu.algorithms.features import feature_arrays
+from halfedge_edu.core.arrays import edge_table
+from tests import strategies as shapes
+from tests.algorithms.test_remesh import mean_edge_length
+from tests.algorithms.test_remesh_features import folded_sheet
+
+remesh_module = importlib.import_module("halfedge_edu.algorithms.remesh")
+
+
+def split_then_collapse(mesh: hx.HalfedgeMesh, scale: float, feature_angle: float | None):
+    """One split phase and one collapse phase at ``scale`` times the mean edge length."""
+    vertices, faces = mesh.to_arrays()
+    length = scale * mean_edge_length(mesh)
+    features = feature_arrays(vertices, faces, feature_angle) if feature_angle is not None else None
+    vertices, faces, features = remesh_module._split_long_edges(vertices, faces, length, features)
+    return remesh_module._collapse_short_edges(vertices, faces, length, features)
+
+
+def bumpy_sheet(n: int = 24) -> hx.HalfedgeMesh:
+    """An open grid of n x n quads, its vertices shaken in the plane (edges of many
+    lengths) and lifted into bumps: a boundary, and creases where the bumps fold."""
+    vertices, faces = shapes.grid(n, n)
+    rng = np.random.default_rng(5)
+    vertices = vertices / n
+    vertices[:, :2] += rng.uniform(-0.3, 0.3, size=(len(vertices), 2)) / n
+    vertices[:, 2] = 0.1 * np.sin(6 * vertices[:, 0]) * np.cos(5 * vertices[:, 1])
+    return hx.HalfedgeMesh.from_faces(vertices, faces)
+
+
+CASES = [("spot", 1.6, 30.0), ("spot", 1.2, None), ("bumpy", 1.5, 30.0), ("bumpy", 1.5, None),
+         ("sheet", 1.4, 30.0)]
+
+
+@pytest.mark.parametrize("name, scale, feature_angle", CASES)
+def test_collapse_rounds_on_a_region_choose_what_rounds_on_the_whole_mesh_choose(monkeypatch, name, scale,
+                                                                                  feature_angle):
+    made = {"sheet": lambda: folded_sheet(slope=0.6), "bumpy": bumpy_sheet}
+    mesh = made[name]() if name in made else hx.sample(name)
+    regions = []
+    faces_near = remesh_module._faces_near
+
+    def recording(faces, marked):
+        region = faces_near(faces, marked)
+        regions.append((len(region), len(faces)))
+        return region
+
+    monkeypatch.setattr(remesh_module, "_faces_near", recording)
+    by_region = split_then_collapse(mesh, scale, feature_angle)
+    # At least two rounds ran on a region, and some region left faces out: the case tests something.
+    assert len(regions) >= 2 and any(size < total for size, total in regions)
+
+    monkeypatch.setattr(remesh_module, "_faces_near", lambda faces, marked: np.arange(len(faces)))
+    whole = split_then_collapse(mesh, scale, feature_angle)
+    assert np.array_equal(by_region[1], whole[1])
+    assert np.array_equal(by_region[0], whole[0])
+    if feature_angle is not None:
+        assert np.array_equal(by_region[2].edges, whole[2].edges)
+        assert np.array_equal(by_region[2].corners, whole[2].corners)
+
+
+def test_edge_mask_of_part_of_the_edges_leaves_out_the_feature_edges_elsewhere():
+    cube = hx.sample("cube")
+    vertices, faces = cube.to_arrays()
+    features = feature_arrays(vertices, faces, 30.0)
+    n = len(vertices)
+    part = edge_table(faces[: len(faces) // 3], n)                     # the edges of a third of the faces
+    feature_keys = set((features.edges[:, 0] * n + features.edges[:, 1]).tolist())
+    expected = np.array([key in feature_keys for key in part.keys.tolist()])
+    assert expected.any() and len(feature_keys) > expected.sum()     # some feature edges are outside the part
+    assert np.array_equal(features.edge_mask(part.keys), expected)
+    whole = edge_table(faces, n)
+    assert np.array_equal(features.mask(whole), features.edge_mask(whole.keys))
+    assert features.mask(whole).sum() == len(features.edges)
+
+
+def test_projection_finds_the_nearest_point_of_the_input_for_almost_every_point():
+    spot = hx.sample("spot")
+    vertices, faces = spot.to_arrays()
+    surface = remesh_module._Surface(vertices, faces)
+    rng = np.random.default_rng(3)
+    length = mean_edge_length(spot)
+    points = vertices[rng.choice(len(vertices), 300, replace=False)] + rng.normal(scale=0.1 * length, size=(300, 3))
+    found = surface.project(points)
+
+    corners = vertices[faces]                                          # brute force: every triangle
+    repeated = np.repeat(points, len(faces), axis=0)
+    tiled = np.tile(corners, (len(points), 1, 1))
+    nearest = remesh_module.closest_points_on_triangles(repeated, tiled[:, 0], tiled[:, 1], tiled[:, 2])
+    best = np.linalg.norm(nearest - repeated, axis=1).reshape(len(points), len(faces)).min(axis=1)
+    ours = np.linalg.norm(found - points, axis=1)
+    assert np.all(ours >= best - 1e-12)
+    assert np.mean(ours <= best + 1e-9 * length) >= 0.99
+    assert np.all(ours <= best + 0.5 * length)
+    # Each point found lies on the input surface: on one of its triangles.
+    on_input = remesh_module._Surface(vertices, faces).project(found)
+    assert np.allclose(on_input, found, atol=1e-9 * length)
+
+
+@pytest.mark.parametrize("name", ["spot", "bumpy"])
+def test_edge_uses_kept_up_to_date_through_flip_passes_equal_a_fresh_table(name):
+    mesh = bumpy_sheet() if name == "bumpy" else hx.sample(name)
+    vertices, faces = mesh.to_arrays()
+    vertices, faces, _ = remesh_module._split_long_edges(vertices, faces, 0.7 * mean_edge_length(mesh), None)
+    uses = remesh_module._EdgeUses.of(faces, len(vertices))
+    rng = np.random.default_rng(0)
+    flipped = 0
+    for _ in range(3):
+        faces, n_flipped, uses = remesh_module._flip_pass(vertices, faces, rng, np.cos(np.radians(20.0)), uses=uses)
+        flipped += n_flipped
+        fresh = edge_table(faces, len(vertices))
+        assert np.array_equal(uses.keys, fresh.keys)
+        # The same two directed edges per edge, in either order.
+        assert np.array_equal(np.sort(np.stack([uses.first, uses.second], axis=1), axis=1),
+                              np.sort(np.stack([fresh.first, fresh.second], axis=1), axis=1))
+    assert flipped > 0
