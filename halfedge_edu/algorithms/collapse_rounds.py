@@ -440,6 +440,35 @@ def independent_edges(edges: np.ndarray, priority: np.ndarray, all_edges: np.nda
     return (m2[edges[:, 0]] == priority) & (m2[edges[:, 1]] == priority)
 
 
+#: Cost classes :func:`spread_ties` cuts a round's candidates into (see there).
+COST_CLASSES = 16
+
+
+def spread_ties(candidates: np.ndarray, classes: int = COST_CLASSES) -> np.ndarray:
+    """(k,) priorities for :func:`choose_round`: cost order between classes, a shuffle within.
+
+    ``candidates`` (k,) edge indices, cheapest first. They are cut into ``classes``
+    equal runs of about equal cost; a candidate in a cheaper run always comes first,
+    and inside a run the order is a hash of the edge index (the same on every run, so
+    results stay deterministic). Returns each candidate's rank in that order.
+
+    Why: :func:`independent_edges` takes an edge only where it is the first of its
+    neighbourhood. In strict cost order, a smooth cost field (or a symmetric mesh, where
+    many costs are equal and ties fall to the edge numbering) has few such local
+    minima: on a 1M-face torus the first pass took 898 of 375,144 candidates, so the
+    rounds grew with the mesh (19 at 10k faces, 53 at 1M). Within a class of nearly
+    equal costs, a hashed order makes local minima as dense as random priorities do
+    (Luby's algorithm): 24,141 in that first pass, and 17 rounds at 1M faces.
+    """
+    rank = np.arange(len(candidates), dtype=np.int64)
+    cost_class = rank * classes // max(len(candidates), 1)             # (k,) 0 .. classes - 1
+    # Knuth's multiplicative hash: neighbouring edge numbers land far apart.
+    shuffle = (candidates.astype(np.uint64) * np.uint64(2654435761)) % np.uint64(2 ** 32)
+    priority = np.empty(len(candidates), dtype=np.int64)
+    priority[np.lexsort((shuffle, cost_class))] = rank
+    return priority
+
+
 def choose_round(
     edges: np.ndarray,
     candidates: np.ndarray,
@@ -451,6 +480,7 @@ def choose_round(
     passes: int = 5,
     *,
     neighbours: tuple[np.ndarray, np.ndarray] | None = None,
+    priority: np.ndarray | None = None,
 ) -> np.ndarray:
     """(k,) mask over candidates: a set of allowed collapses that can all be done at once.
 
@@ -477,6 +507,10 @@ def choose_round(
     :func:`halfedge_edu.core.arrays.vertex_neighbours`), if the caller has it: then
     the ring around the accepted edges is gathered from their ends' rows instead of
     found by a scan of every edge.
+
+    ``priority`` (k,) distinct, lowest first: the order in which a pass prefers
+    candidates (default: their order, cheapest first; :func:`spread_ties` gives one
+    that picks many more per pass on smooth or symmetric meshes).
     """
     chosen = np.zeros(len(candidates), dtype=bool)
     open_ = open_.copy()
@@ -484,7 +518,8 @@ def choose_round(
     opposite_used = np.zeros(n, dtype=bool)      # already lost an edge this round
     empty = np.zeros(0, dtype=np.int64)
     known_owner, known_vertex = known_opposites if known_opposites is not None else (empty, empty)
-    priority = np.arange(len(candidates), dtype=np.int64)   # candidates are cheapest first
+    if priority is None:
+        priority = np.arange(len(candidates), dtype=np.int64)   # candidates are cheapest first
     cand_edges = edges[candidates]
     for _ in range(passes):
         open_ &= ~blocked[cand_edges[:, 0]] & ~blocked[cand_edges[:, 1]]
