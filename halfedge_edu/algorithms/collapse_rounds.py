@@ -440,32 +440,32 @@ def independent_edges(edges: np.ndarray, priority: np.ndarray, all_edges: np.nda
     return (m2[edges[:, 0]] == priority) & (m2[edges[:, 1]] == priority)
 
 
-#: Cost classes :func:`spread_ties` cuts a round's candidates into (see there).
+#: How many classes of about equal cost ``simplify`` and ``remesh`` cut a round's
+#: candidates into before :func:`spread_ties` shuffles within each.
 COST_CLASSES = 16
 
 
-def spread_ties(candidates: np.ndarray, classes: int = COST_CLASSES) -> np.ndarray:
+def spread_ties(cost_class: np.ndarray, ids: np.ndarray) -> np.ndarray:
     """(k,) priorities for :func:`choose_round`: cost order between classes, a shuffle within.
 
-    ``candidates`` (k,) edge indices, cheapest first. They are cut into ``classes``
-    equal runs of about equal cost; a candidate in a cheaper run always comes first,
-    and inside a run the order is a hash of the edge index (the same on every run, so
-    results stay deterministic). Returns each candidate's rank in that order.
+    ``cost_class`` (k,) small integers, lower is cheaper; ``ids`` (k,) a number that
+    names each candidate for good (an edge key, an edge index). A candidate of a cheaper
+    class always comes first; inside a class the order is a hash of ``ids``, the same on
+    every run, so results stay deterministic. Returns each candidate's rank in that order.
 
     Why: :func:`independent_edges` takes an edge only where it is the first of its
     neighbourhood. In strict cost order, a smooth cost field (or a symmetric mesh, where
     many costs are equal and ties fall to the edge numbering) has few such local
-    minima: on a 1M-face torus the first pass took 898 of 375,144 candidates, so the
-    rounds grew with the mesh (19 at 10k faces, 53 at 1M). Within a class of nearly
-    equal costs, a hashed order makes local minima as dense as random priorities do
-    (Luby's algorithm): 24,141 in that first pass, and 17 rounds at 1M faces.
+    minima: on a 1M-face torus the first pass of ``simplify`` took 898 of 375,144
+    candidates, so the rounds grew with the mesh (19 at 10k faces, 53 at 1M). Within a
+    class of nearly equal costs, a hashed order makes local minima as dense as random
+    priorities do (Luby's algorithm): 24,141 in that first pass, and 17 rounds at 1M.
     """
-    rank = np.arange(len(candidates), dtype=np.int64)
-    cost_class = rank * classes // max(len(candidates), 1)             # (k,) 0 .. classes - 1
-    # Knuth's multiplicative hash: neighbouring edge numbers land far apart.
-    shuffle = (candidates.astype(np.uint64) * np.uint64(2654435761)) % np.uint64(2 ** 32)
-    priority = np.empty(len(candidates), dtype=np.int64)
-    priority[np.lexsort((shuffle, cost_class))] = rank
+    # A multiplicative hash (Knuth's, 64-bit; the product wraps around): neighbouring
+    # numbers land far apart.
+    shuffle = ids.astype(np.uint64) * np.uint64(0x9E3779B97F4A7C15)
+    priority = np.empty(len(ids), dtype=np.int64)
+    priority[np.lexsort((shuffle, cost_class))] = np.arange(len(ids))
     return priority
 
 

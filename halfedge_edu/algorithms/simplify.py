@@ -55,7 +55,8 @@ from ..core.errors import MeshWarning
 from ..core.mesh import HalfedgeMesh
 from .arguments import check_simplify
 from .collapse_rounds import (
-    choose_round, collapse_topology_ok, drop_folding_neighbours, no_turned_faces, round_tables, spread_ties,
+    COST_CLASSES, choose_round, collapse_topology_ok, drop_folding_neighbours, no_turned_faces, round_tables,
+    spread_ties,
 )
 
 
@@ -442,6 +443,8 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         else:
             candidates = np.arange(len(edges))
         candidates = candidates[np.argsort(cost[candidates], kind="stable")]
+        # Sixteen classes of equal size, cheapest first, for spread_ties.
+        rank_class = np.arange(len(candidates)) * COST_CLASSES // len(candidates)
 
         faces_around, neighbours = this_round.faces_around, this_round.neighbours
 
@@ -483,7 +486,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
 
         chosen_mask = choose_round(edges, candidates, np.ones(len(candidates), dtype=bool), n,
                                    check_topology, check_turned_faces, neighbours=neighbours,
-                                   priority=spread_ties(candidates))
+                                   priority=spread_ties(rank_class, candidates))
         chosen = candidates[chosen_mask]
         # Stop exactly at the target: take chosen edges in cost order until enough faces go.
         removes_faces = np.where(boundary_edge[chosen], 1, 2)
