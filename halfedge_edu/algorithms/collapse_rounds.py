@@ -440,8 +440,8 @@ def independent_edges(edges: np.ndarray, priority: np.ndarray, all_edges: np.nda
     return (m2[edges[:, 0]] == priority) & (m2[edges[:, 1]] == priority)
 
 
-#: How many classes of about equal cost ``simplify`` and ``remesh`` cut a round's
-#: candidates into before :func:`spread_ties` shuffles within each.
+#: How many classes of about equal cost ``simplify`` cuts a round's candidates into
+#: before :func:`spread_ties` shuffles within each (``remesh`` keeps strict length order).
 COST_CLASSES = 16
 
 
