@@ -70,6 +70,38 @@ def check_mesh(mesh, name: str = "mesh") -> None:
     """
     if not isinstance(mesh, HalfedgeMesh):
         raise _wrong_type(name, "a HalfedgeMesh (build one with HalfedgeMesh.from_faces or hx.load)", mesh)
+    deleted = mesh.vertex_deleted
+    live_positions = mesh.positions[~deleted] if deleted.any() else mesh.positions   # (V_live, 3)
+    if live_positions.size:
+        # Two reductions over all coordinates say "all finite and small enough": NaN
+        # carries through min and max, and an infinity is one of the two. Only if they
+        # say no is every vertex looked at, to name the first offending one.
+        coordinates = live_positions.reshape(-1)                      # (3 V_live,)
+        lowest, highest = coordinates.min(), coordinates.max()
+        if not (np.isfinite(lowest) and np.isfinite(highest) and max(-lowest, highest) <= MAX_COORDINATE):
+            _refuse_coordinates(mesh)
+    if mesh.n_faces:
+        # A few vertices' extent is at most all of them's, so when the first
+        # EXTENT_SAMPLE live vertices already span MIN_EXTENT the whole mesh does, and
+        # the whole-mesh measurement (a slow reduction across 3 columns) is only needed
+        # for the rare mesh whose sample is that small.
+        extent = float(np.ptp(live_positions[:EXTENT_SAMPLE], axis=0).max())
+        if extent < MIN_EXTENT:
+            extent = float(np.ptp(live_positions, axis=0).max())
+        if extent < MIN_EXTENT:
+            raise MeshInputError(
+                f"the mesh is {extent:.3g} across: too small for the computation (at least {MIN_EXTENT:.0e}, so that "
+                f"the products the algorithms take do not round to zero); scale the mesh up",
+                element=("argument", name),
+            )
+
+
+#: How many live vertices :func:`check_mesh` measures the extent of before it measures all.
+EXTENT_SAMPLE = 1024
+
+
+def _refuse_coordinates(mesh: HalfedgeMesh) -> None:
+    """Raise for the first live vertex with a coordinate that is not finite or too large."""
     live = np.flatnonzero(~mesh.vertex_deleted)                       # (V_live,)
     size = np.abs(mesh.positions[live]).max(axis=1, initial=0.0)      # (V_live,) largest |coordinate|
     finite = np.isfinite(size)
@@ -88,14 +120,6 @@ def check_mesh(mesh, name: str = "mesh") -> None:
             f"products the algorithms take stay finite); scale the mesh down",
             element=("vertex", vertex),
         )
-    if mesh.n_faces:
-        extent = float(np.ptp(mesh.positions[live], axis=0).max())
-        if extent < MIN_EXTENT:
-            raise MeshInputError(
-                f"the mesh is {extent:.3g} across: too small for the computation (at least {MIN_EXTENT:.0e}, so that "
-                f"the products the algorithms take do not round to zero); scale the mesh up",
-                element=("argument", name),
-            )
 
 
 def refuse_pillows(mesh: HalfedgeMesh, what: str) -> None:

@@ -115,11 +115,16 @@ def _positions(mesh: HalfedgeMesh, weights: str) -> tuple[np.ndarray, np.ndarray
     origin = mesh.halfedge_vertex                                   # (H,)
     face = mesh.halfedge_face                                       # (H,)
     a, b = origin[0::2], origin[1::2]                               # (E,) edge ends
-    c = origin[mesh.halfedge_prev[0::2]]                            # (E,) corner opposite 2e
-    d = origin[mesh.halfedge_prev[1::2]]                            # (E,) corner opposite 2e+1
 
-    # Edge points: 3/8 of each end plus 1/8 of each opposite corner; midpoints on the boundary.
-    edge_points = 0.375 * (positions[a] + positions[b]) + 0.125 * (positions[c] + positions[d])
+    # Edge points: 3/8 of each end plus 1/8 of each opposite corner (block by block of
+    # edges, for the reason given at _FACE_BLOCK); midpoints on the boundary.
+    n_edges = len(a)
+    edge_points = np.empty((n_edges, 3))                            # (E, 3)
+    for start in range(0, n_edges, _FACE_BLOCK):
+        block = slice(start, start + _FACE_BLOCK)
+        c = origin[mesh.halfedge_prev[0::2][block]]                 # (k,) corner opposite 2e
+        d = origin[mesh.halfedge_prev[1::2][block]]                 # (k,) corner opposite 2e+1
+        edge_points[block] = 0.375 * (positions[a[block]] + positions[b[block]]) + 0.125 * (positions[c] + positions[d])
     on_boundary_edge = (face[0::2] < 0) | (face[1::2] < 0)          # (E,)
     ends = positions[a[on_boundary_edge]] + positions[b[on_boundary_edge]]
     edge_points[on_boundary_edge] = 0.5 * ends
@@ -161,14 +166,22 @@ def _second_half(h: np.ndarray) -> np.ndarray:
     return np.where(h & 1, 2 * h - 1, 2 * h + 2)
 
 
+#: Old faces refined per block in :func:`_refined_arrays`. A block's temporaries (a dozen
+#: (k, 3) int64 arrays, 768 KiB each) stay in the cache and are small enough for the
+#: allocator to reuse the same memory block after block. Done for the whole mesh at once,
+#: each temporary of a 5M-face mesh is 360 MiB, which the allocator maps fresh from the
+#: system every time (anything over 32 MiB is), and the kernel then spends as long
+#: handing out and zeroing pages as the arithmetic takes.
+_FACE_BLOCK = 1 << 15
+
+
 def _refined_arrays(mesh: HalfedgeMesh, weights: str) -> HalfedgeArrays:
     """The halfedge arrays of one Loop level of a compact ``mesh`` (see the module docstring)."""
     n_vertices, n_edges, n_faces = mesh.n_vertex_slots, mesh.n_edge_slots, mesh.n_face_slots
-    n_halfedges = 2 * n_edges
     vertex_points, edge_points = _positions(mesh, weights)
 
-    old_origin = mesh.halfedge_vertex.astype(np.int64)              # (H,)
-    old_next = mesh.halfedge_next.astype(np.int64)
+    old_origin = mesh.halfedge_vertex
+    old_next = mesh.halfedge_next
     old_face = mesh.halfedge_face
     new_count = 4 * n_edges + 6 * n_faces                           # H' = 2 E'
     origin = np.empty(new_count, dtype=INDEX)
@@ -176,71 +189,85 @@ def _refined_arrays(mesh: HalfedgeMesh, weights: str) -> HalfedgeArrays:
     prev = np.empty(new_count, dtype=INDEX)
     face = np.empty(new_count, dtype=INDEX)
 
-    # The two halves of every old halfedge.
-    h = np.arange(n_halfedges, dtype=np.int64)
-    first, second = _first_half(h), _second_half(h)                 # (H,)
-    origin[first] = old_origin
-    origin[second] = n_vertices + (h >> 1)                          # the edge point
+    # The two halves of every old edge e (a -> b, edge point m): new halfedges 4e (a -> m),
+    # 4e+1 (m -> a), 4e+2 (m -> b) and 4e+3 (b -> m), so the origins are four columns.
+    halves_origin = origin[:4 * n_edges].reshape(-1, 4)             # (E, 4) a view
+    halves_origin[:, 0] = old_origin[0::2]
+    halves_origin[:, 3] = old_origin[1::2]
+    halves_origin[:, 1] = halves_origin[:, 2] = n_vertices + np.arange(n_edges, dtype=INDEX)
 
     # Boundary halves stay on the boundary loop: first -> second -> first half of the next.
     boundary = np.flatnonzero(old_face < 0)                         # (B,)
-    after = _first_half(old_next[boundary])
-    next_[first[boundary]] = second[boundary]
-    prev[second[boundary]] = first[boundary]
-    next_[second[boundary]] = after
-    prev[after] = second[boundary]
-    face[first[boundary]] = -1
-    face[second[boundary]] = -1
+    first, second = _first_half(boundary), _second_half(boundary)   # (B,)
+    after = _first_half(old_next[boundary].astype(np.int64))
+    next_[first] = second
+    prev[second] = first
+    next_[second] = after
+    prev[after] = second
+    face[first] = -1
+    face[second] = -1
 
-    # Per old face: its halfedges h_k (k = 0, 1, 2), their halves, and the three new
-    # inner edges 2E + 3f + k. Inner halfedge "centre_k" runs m_k -> m_(k+1) inside the
-    # centre triangle; its twin "corner_k" runs m_(k+1) -> m_k inside a corner triangle.
-    h0 = mesh.face_halfedge.astype(np.int64)                        # (F,)
-    h1 = old_next[h0]
-    h2 = old_next[h1]
-    corners = np.stack([h0, h1, h2], axis=1)                        # (F, 3) old halfedges
-    firsts, seconds = _first_half(corners), _second_half(corners)   # (F, 3)
-    edge_point = n_vertices + (corners >> 1)                        # (F, 3) m_k
-    inner_edge = 2 * n_edges + 3 * np.arange(n_faces)[:, None] + np.arange(3)   # (F, 3)
-    centre = 2 * inner_edge                                         # (F, 3) m_k -> m_(k+1)
-    corner = centre + 1                                             # (F, 3) m_(k+1) -> m_k
+    face_halfedge = np.empty((n_faces, 4), dtype=INDEX)             # (F, 4): new faces 4f .. 4f+3
+    for start in range(0, n_faces, _FACE_BLOCK):
+        faces = np.arange(start, min(start + _FACE_BLOCK, n_faces))
+        _refine_faces(faces, mesh, origin, next_, prev, face, face_halfedge)
+
+    # An old vertex keeps the first half of its halfedge (a boundary one stays boundary,
+    # and the smallest index stays the smallest). An edge point leaves along the second
+    # half of the edge's odd halfedge (4e+1), or of 2e (4e+2) if 2e is the boundary side.
+    vertex_halfedge = np.empty(n_vertices + n_edges, dtype=INDEX)
+    vertex_halfedge[:n_vertices] = _first_half(mesh.vertex_halfedge.astype(np.int64))
+    vertex_halfedge[n_vertices:] = 4 * np.arange(n_edges, dtype=INDEX) + np.where(old_face[0::2] < 0, 2, 1)
+    return HalfedgeArrays(
+        positions=np.concatenate([vertex_points, edge_points]),
+        vertex_halfedge=vertex_halfedge,
+        halfedge_next=next_,
+        halfedge_prev=prev,
+        halfedge_vertex=origin,
+        halfedge_face=face,
+        face_halfedge=face_halfedge.reshape(-1),
+    )
+
+
+def _refine_faces(faces: np.ndarray, mesh: HalfedgeMesh, origin: np.ndarray, next_: np.ndarray,
+                  prev: np.ndarray, face: np.ndarray, face_halfedge: np.ndarray) -> None:
+    """Write the new halfedges inside old ``faces`` (k,), and the new faces' halfedges, into the new arrays.
+
+    Per old face: its halfedges h_k (k = 0, 1, 2), their halves, and the three new inner
+    edges 2E + 3f + k. Inner halfedge "centre_k" runs m_k -> m_(k+1) inside the centre
+    triangle; its twin "corner_k" runs m_(k+1) -> m_k inside a corner triangle.
+    """
+    n_vertices, n_edges = mesh.n_vertex_slots, mesh.n_edge_slots
+    h0 = mesh.face_halfedge[faces].astype(np.int64)                 # (k,)
+    h1 = mesh.halfedge_next[h0].astype(np.int64)
+    h2 = mesh.halfedge_next[h1].astype(np.int64)
+    corners = np.stack([h0, h1, h2], axis=1)                        # (k, 3) old halfedges
+    firsts, seconds = _first_half(corners), _second_half(corners)   # (k, 3)
+    edge_point = n_vertices + (corners >> 1)                        # (k, 3) m_k
+    inner_edge = 2 * n_edges + 3 * faces[:, None] + np.arange(3)    # (k, 3)
+    centre = 2 * inner_edge                                         # (k, 3) m_k -> m_(k+1)
+    corner = centre + 1                                             # (k, 3) m_(k+1) -> m_k
     origin[centre] = edge_point
     origin[corner] = edge_point[:, [1, 2, 0]]
 
     # Corner triangle k sits at v_k: first half of h_k (v_k -> m_k), then the inner
     # halfedge m_k -> m_(k-1), then the second half of h_(k-1) (m_(k-1) -> v_k).
-    back_inner = corner[:, [2, 0, 1]]                               # (F, 3) m_k -> m_(k-1)
-    back_second = seconds[:, [2, 0, 1]]                             # (F, 3) m_(k-1) -> v_k
+    back_inner = corner[:, [2, 0, 1]]                               # (k, 3) m_k -> m_(k-1)
+    back_second = seconds[:, [2, 0, 1]]                             # (k, 3) m_(k-1) -> v_k
     next_[firsts] = back_inner
     next_[back_inner] = back_second
     next_[back_second] = firsts
     prev[back_inner] = firsts
     prev[back_second] = back_inner
     prev[firsts] = back_second
-    new_face = 4 * np.arange(n_faces)[:, None] + np.arange(4)       # (F, 4)
+    new_face = 4 * faces[:, None] + np.arange(4)                    # (k, 4)
     face[firsts] = face[back_inner] = face[back_second] = new_face[:, :3]
     # Centre triangle: m0 -> m1 -> m2.
     next_[centre] = centre[:, [1, 2, 0]]
     prev[centre] = centre[:, [2, 0, 1]]
     face[centre] = new_face[:, 3:]
-
-    face_halfedge = np.concatenate([firsts, centre[:, :1]], axis=1).ravel()      # (4F,)
-    # An old vertex keeps the first half of its halfedge (a boundary one stays boundary,
-    # and the smallest index stays the smallest). An edge point leaves along the second
-    # half of the edge's odd halfedge (4e+1), or of 2e (4e+2) if 2e is the boundary side.
-    vertex_halfedge = np.concatenate([
-        _first_half(mesh.vertex_halfedge.astype(np.int64)),
-        np.where(old_face[0::2] < 0, 4 * np.arange(n_edges) + 2, 4 * np.arange(n_edges) + 1),
-    ])
-    return HalfedgeArrays(
-        positions=np.concatenate([vertex_points, edge_points]),
-        vertex_halfedge=vertex_halfedge.astype(INDEX),
-        halfedge_next=next_,
-        halfedge_prev=prev,
-        halfedge_vertex=origin,
-        halfedge_face=face,
-        face_halfedge=face_halfedge.astype(INDEX),
-    )
+    face_halfedge[faces, :3] = firsts                               # corner triangle k: v_k -> m_k
+    face_halfedge[faces, 3] = centre[:, 0]                          # centre triangle: m_0 -> m_1
 
 
 # --------------------------------------------------------------------------------------

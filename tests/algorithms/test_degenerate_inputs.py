@@ -231,6 +231,41 @@ def test_a_coordinate_set_to_nan_after_construction_is_named():
     assert caught.value.element == ("vertex", 5)
 
 
+def _grid(side: int) -> hx.HalfedgeMesh:
+    """A flat ``side`` x ``side`` grid of vertices, two triangles per square, 1 across."""
+    i, j = np.meshgrid(np.arange(side), np.arange(side), indexing="ij")
+    vertices = np.stack([i.ravel(), j.ravel(), np.zeros(side * side)], axis=1) / (side - 1)
+    corner = (i[:-1, :-1] * side + j[:-1, :-1]).ravel()
+    faces = np.concatenate([np.stack([corner, corner + side, corner + 1], axis=1),
+                            np.stack([corner + 1, corner + side, corner + side + 1], axis=1)])
+    return hx.HalfedgeMesh.from_faces(vertices, faces)
+
+
+def test_the_extent_counts_every_vertex_not_only_the_first_ones():
+    # check_mesh measures the first EXTENT_SAMPLE vertices first; a mesh whose first
+    # vertices sit on one point but whose others spread out is not too small.
+    mesh = _grid(40)
+    assert mesh.n_vertices > arguments.EXTENT_SAMPLE
+    mesh.positions[:arguments.EXTENT_SAMPLE] = 0.5
+    arguments.check_mesh(mesh)
+    mesh.positions[:] = 0.5
+    mesh.positions[-1] += arguments.MIN_EXTENT / 2        # the last vertex alone sets the extent
+    with pytest.raises(hx.MeshInputError, match="too small for the computation"):
+        arguments.check_mesh(mesh)
+
+
+@pytest.mark.parametrize("value", [np.nan, np.inf, -np.inf, 2 * arguments.MAX_COORDINATE])
+def test_the_offending_vertex_is_named_wherever_it_is(value):
+    mesh = _grid(40)
+    for vertex in (0, 777, mesh.n_vertices - 1):
+        mesh.positions[vertex, 2] = value
+        with pytest.raises(hx.MeshInputError) as caught:
+            arguments.check_mesh(mesh)
+        assert caught.value.element == ("vertex", vertex)
+        mesh.positions[vertex, 2] = 0.0
+    arguments.check_mesh(mesh)
+
+
 def test_the_command_line_and_the_library_share_one_coordinate_limit():
     assert cli.MAX_COORDINATE == arguments.MAX_COORDINATE
     assert cli.MIN_EXTENT == arguments.MIN_EXTENT

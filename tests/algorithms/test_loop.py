@@ -281,3 +281,22 @@ def test_the_course_route_reports_its_steps_in_order(square):
 def test_bad_arguments_are_refused(square, arguments):
     with pytest.raises(ValueError):
         loop_subdivide(square, **arguments)
+
+
+@given(meshes(), st.integers(1, 4))
+def test_refining_block_by_block_gives_the_same_mesh(drawn, block):
+    """The faces and edges are refined in blocks (loop._FACE_BLOCK, for speed on big
+    meshes); blocks of a few faces, ending anywhere, must give what one block gives."""
+    from unittest import mock
+
+    from halfedge_edu.algorithms import loop as loop_module
+
+    mesh = build(drawn)
+    whole = loop_subdivide(mesh)
+    with mock.patch.object(loop_module, "_FACE_BLOCK", block):
+        in_blocks = loop_subdivide(mesh)
+    in_blocks.validate()
+    for name in ("halfedge_next", "halfedge_prev", "halfedge_vertex", "halfedge_face", "vertex_halfedge",
+                 "face_halfedge"):
+        assert np.array_equal(getattr(in_blocks, name), getattr(whole, name)), name
+    assert np.array_equal(in_blocks.positions, whole.positions)
