@@ -181,8 +181,10 @@ def _every_rule_holds(mesh: "HalfedgeMesh") -> bool:
     for values, size in ((nxt, n_h), (prv, n_h), (origin, n_v), (face_he, n_h), (vertex_he, n_h)):
         if not _all_below(values, size):
             return False
-    if len(face) and (face.min() < -1 or face.max() >= n_f):
+    lowest_face = int(face.min()) if len(face) else 0
+    if lowest_face < -1 or (len(face) and face.max() >= n_f):
         return False
+    closed = lowest_face >= 0                                 # no boundary halfedge at all
 
     # When next pointers jump far (faces in random order), each of the four values read
     # at next(h) is a cache miss of its own; copied side by side into rows of four, they
@@ -191,34 +193,46 @@ def _every_rule_holds(mesh: "HalfedgeMesh") -> bool:
     boundary = []                                             # boundary halfedges, block by block
 
     # ---- next-prev-inverse, twin-involution, next-origin, next-cycle, edge-halfedge -------
+    # Every index is in range by now, so the gathers use mode="clip" (which then never
+    # clips): numpy skips the bounds check it would otherwise make for each value.
     for start in range(0, n_h, _BLOCK):                       # start and block length are even
         block = slice(start, start + _BLOCK)
         h_next, h_prev, h_face, h_origin = nxt[block], prv[block], face[block], origin[block]
         h = np.arange(start, start + len(h_next), dtype=h_next.dtype)
-        h_tip = h_origin.reshape(-1, 2)[:, ::-1].reshape(-1)  # (k,) origin of the twin h ^ 1: where h ends
+        ends = h_origin.reshape(-1, 2)                        # (k/2, 2) origins of each edge's halfedges
+        if (ends[:, 0] == ends[:, 1]).any():                  # twin-involution
+            return False
         at_next = h_next.astype(np.intp)                      # numpy indexes with intp: convert once, not per gather
         if rows is None:
-            next_prev, next_origin, next_face, next_next = prv[at_next], origin[at_next], face[at_next], nxt[at_next]
+            next_prev, next_origin, next_face, next_next = (
+                np.take(values, at_next, mode="clip") for values in (prv, origin, face, nxt))
         else:
-            next_prev, next_origin, next_face, next_next = np.take(rows, at_next, axis=0).T
+            next_prev, next_origin, next_face, next_next = np.take(rows, at_next, axis=0, mode="clip").T
         ok = next_prev == h                                   # next-prev-inverse
-        ok &= h_origin != h_tip                               # twin-involution
-        ok &= next_origin == h_tip                            # next-origin
+        ok.reshape(-1, 2)[...] &= next_origin.reshape(-1, 2) == ends[:, ::-1]   # next-origin: starts where h ends
         ok &= next_face == h_face                             # next-cycle: same face (or both boundary)
-        on_boundary = h_face < 0
-        ok &= on_boundary | ((next_next == h_prev) & (h_next != h))   # next-cycle: a triangle
+        # next-cycle, a triangle: next(next(h)) == prev(h) makes the loop 3 long or 1, and
+        # it is not 1: next(h) == h would start where h ends, at h's own origin, which
+        # next-origin and twin-involution have ruled out.
+        if closed:
+            ok &= next_next == h_prev
+        else:
+            on_boundary = h_face < 0
+            ok &= on_boundary | (next_next == h_prev)
+            # edge-halfedge: an edge is faceless when both its faces are -1, that is when
+            # both sign bits are set, which is the sign bit of their bitwise and.
+            if ((h_face[0::2] & h_face[1::2]) < 0).any():
+                return False
+            if on_boundary.any():
+                boundary.append(np.flatnonzero(on_boundary) + start)
         if not ok.all():
             return False
-        # edge-halfedge: an edge is faceless when both its faces are -1, that is when
-        # both sign bits are set, which is the sign bit of their bitwise and.
-        if ((h_face[0::2] & h_face[1::2]) < 0).any():
-            return False
-        if on_boundary.any():
-            boundary.append(np.flatnonzero(on_boundary) + start)
 
     # ---- face-halfedge ------------------------------------------------------------------
-    if not np.array_equal(face[face_he], np.arange(n_f, dtype=face.dtype)):
-        return False
+    for start in range(0, n_f, _BLOCK):                       # in blocks: no temporaries as long as the mesh
+        f_he = face_he[start:start + _BLOCK]
+        if not np.array_equal(np.take(face, f_he, mode="clip"), np.arange(start, start + len(f_he))):
+            return False
 
     # ---- boundary-vertex-halfedge, and no boundary that turns back ------------------------
     if boundary:
@@ -287,27 +301,28 @@ def _fans_hold(mesh: "HalfedgeMesh", rows: np.ndarray | None) -> bool:
         """For halfedges ``h`` leaving some vertices: where each ends, and the next one round its vertex."""
         twin = h ^ 1
         if rows is None:
-            return origin[twin], nxt[twin]
-        row = np.take(rows, twin, axis=0)                     # (k, 4) prev, origin, face, next
+            return np.take(origin, twin, mode="clip"), np.take(nxt, twin, mode="clip")   # in range: see above
+        row = np.take(rows, twin, axis=0, mode="clip")        # (k, 4) prev, origin, face, next
         return row[:, 1], row[:, 3]
 
     met = 0                                                   # halfedges the walks have met so far
     for first in range(0, n_v, _VERTEX_BLOCK):
         start = vertex_he[first:first + _VERTEX_BLOCK].astype(np.intp)   # (k,)
         # vertex-halfedge-origin: each vertex's halfedge leaves it.
-        if not np.array_equal(origin[start], np.arange(first, first + len(start))):
+        if not np.array_equal(np.take(origin, start, mode="clip"), np.arange(first, first + len(start))):
             return False
-        current, walking = start, np.ones(len(start), dtype=bool)
+        current, walking, n_walking = start, np.ones(len(start), dtype=bool), len(start)
         neighbours = np.empty((_PAIRWISE_STEPS, len(start)), dtype=origin.dtype)   # row = step: the neighbour met
         for step in range(_PAIRWISE_STEPS):
-            met += int(np.count_nonzero(walking))
+            met += n_walking
             neighbours[step], following = neighbour_and_following(current)
             # Met before, not counting the step just before (see above)?
             if step >= 2 and ((neighbours[:step - 1] == neighbours[step]).any(axis=0) & walking).any():
                 return False
             current = following.astype(np.intp)
             walking &= current != start                       # back at the start: that walk is done
-            if not walking.any():
+            n_walking = int(np.count_nonzero(walking))
+            if n_walking == 0:
                 break
         else:
             still = np.flatnonzero(walking)

@@ -512,7 +512,7 @@ def test_the_fast_path_checks_every_block_of_halfedges(block):
 # edges even when they join the same vertices.
 
 def _arrays_from_named_edges(n_vertices: int, faces, edge_names) -> HalfedgeArrays:
-    """Halfedge arrays of triangles ``faces`` whose edge from corner k to k + 1 is ``edge_names[f][k]``.
+    """Halfedge arrays of polygons ``faces`` whose edge from corner k to k + 1 is ``edge_names[f][k]``.
 
     The numbering is the build's: edges in order of first use, the first use gets
     halfedge ``2e``, the second ``2e + 1``; an edge used once gets a boundary halfedge
@@ -532,8 +532,8 @@ def _arrays_from_named_edges(n_vertices: int, faces, edge_names) -> HalfedgeArra
     n_h = 2 * len(number)
     nxt, origin, face = np.full(n_h, -1), np.full(n_h, -1), np.full(n_h, -1)
     for f, (corners, row) in enumerate(zip(faces, halfedge_of_corner)):
-        for k in range(3):
-            origin[row[k]], face[row[k]], nxt[row[k]] = corners[k], f, row[(k + 1) % 3]
+        for k in range(len(corners)):
+            origin[row[k]], face[row[k]], nxt[row[k]] = corners[k], f, row[(k + 1) % len(corners)]
     boundary = [h for h in range(1, n_h, 2) if face[h] < 0]
     for h in boundary:
         origin[h] = origin[nxt[h ^ 1]]
@@ -708,3 +708,20 @@ def test_the_fan_walk_checks_every_block_of_vertices(block):
     with pytest.raises(hx.MeshInvariantError) as caught:
         mesh.validate()
     assert (caught.value.rule, caught.value.element) == ("vertex-halfedge-origin", ("vertex", v))
+
+
+@pytest.mark.parametrize("open_box", [False, True], ids=["closed cube", "open box"])
+def test_a_mesh_of_quads_fails_the_fast_path(open_box):
+    # A cube of six quads (or five: a box without its lid), written as halfedges: every
+    # rule holds but next-cycle's "a loop of three"; the fast path has a branch for
+    # closed meshes and one for meshes with boundary.
+    quads = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+    if open_box:
+        del quads[1]
+    names = [tuple(frozenset(pair) for pair in zip(quad, quad[1:] + quad[:1])) for quad in quads]
+    mesh = hx.HalfedgeMesh(_arrays_from_named_edges(8, quads, names))
+    assert mesh.euler_characteristic == (1 if open_box else 2)
+    assert not validate_module._every_rule_holds(mesh)
+    with pytest.raises(hx.MeshInvariantError) as caught:
+        mesh.validate()
+    assert (caught.value.rule, caught.value.element) == ("next-cycle", ("halfedge", 0))
