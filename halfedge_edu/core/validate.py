@@ -198,27 +198,33 @@ def _every_rule_holds(mesh: "HalfedgeMesh") -> bool:
     for start in range(0, n_h, _BLOCK):                       # start and block length are even
         block = slice(start, start + _BLOCK)
         h_next, h_prev, h_face, h_origin = nxt[block], prv[block], face[block], origin[block]
-        h = np.arange(start, start + len(h_next), dtype=h_next.dtype)
-        ends = h_origin.reshape(-1, 2)                        # (k/2, 2) origins of each edge's halfedges
-        if (ends[:, 0] == ends[:, 1]).any():                  # twin-involution
-            return False
         at_next = h_next.astype(np.intp)                      # numpy indexes with intp: convert once, not per gather
         if rows is None:
             next_prev, next_origin, next_face, next_next = (
                 np.take(values, at_next, mode="clip") for values in (prv, origin, face, nxt))
         else:
-            next_prev, next_origin, next_face, next_next = np.take(rows, at_next, axis=0, mode="clip").T
-        ok = next_prev == h                                   # next-prev-inverse
-        ok.reshape(-1, 2)[...] &= next_origin.reshape(-1, 2) == ends[:, ::-1]   # next-origin: starts where h ends
-        ok &= next_face == h_face                             # next-cycle: same face (or both boundary)
+            next_prev, next_origin, next_face, next_next = (
+                np.ascontiguousarray(column) for column in np.take(rows, at_next, axis=0, mode="clip").T)
+        # An edge's two halfedges 2e and 2e + 1 sit side by side, so their two int32
+        # values read as one 64-bit word (_edge_words): one comparison checks both, and
+        # swapping the word's halves swaps the two, giving each halfedge its twin's value.
+        h = np.arange(start, start + len(h_next), dtype=h_next.dtype)
+        own_origin = _edge_words(h_origin)                    # (k/2,)
+        tip = (own_origin << 32) | (own_origin >> 32)         # (k/2,) the twins' origins: where each halfedge ends
+        if (own_origin == tip).any():                         # twin-involution
+            return False
+        ok = _edge_words(next_prev) == _edge_words(h)         # next-prev-inverse
+        ok &= _edge_words(next_origin) == tip                 # next-origin: next starts where h ends
+        ok &= _edge_words(next_face) == _edge_words(h_face)   # next-cycle: same face (or both boundary)
         # next-cycle, a triangle: next(next(h)) == prev(h) makes the loop 3 long or 1, and
         # it is not 1: next(h) == h would start where h ends, at h's own origin, which
         # next-origin and twin-involution have ruled out.
         if closed:
-            ok &= next_next == h_prev
+            ok &= _edge_words(next_next) == _edge_words(h_prev)
         else:
             on_boundary = h_face < 0
-            ok &= on_boundary | (next_next == h_prev)
+            if not (on_boundary | (next_next == h_prev)).all():
+                return False
             # edge-halfedge: an edge is faceless when both its faces are -1, that is when
             # both sign bits are set, which is the sign bit of their bitwise and.
             if ((h_face[0::2] & h_face[1::2]) < 0).any():
@@ -260,6 +266,16 @@ def _all_below(values: np.ndarray, size: int) -> bool:
     if len(values) == 0:
         return True
     return int(values.view(np.dtype(f"u{values.itemsize}")).max()) < size
+
+
+def _edge_words(values: np.ndarray) -> np.ndarray:
+    """(k/2,) the int32 ``values`` (k,) of halfedges ``2i, 2i + 1, ...`` read in pairs as 64-bit words.
+
+    Word ``i`` holds the values of halfedges 2i and 2i + 1 (which half is which depends
+    on the machine's byte order, but equal words mean equal pairs either way). Reading
+    needs contiguous memory: an array the mesh was given as a strided view is copied.
+    """
+    return np.ascontiguousarray(values).view(np.uint64)
 
 
 def _jumps_far(nxt: np.ndarray) -> bool:

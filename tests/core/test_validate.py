@@ -725,3 +725,14 @@ def test_a_mesh_of_quads_fails_the_fast_path(open_box):
     with pytest.raises(hx.MeshInvariantError) as caught:
         mesh.validate()
     assert (caught.value.rule, caught.value.element) == ("next-cycle", ("halfedge", 0))
+
+
+def test_arrays_given_as_strided_views_validate():
+    # The fast path reads pairs of int32 as 64-bit words, which needs contiguous memory.
+    built = _mesh(shapes.torus(6, 4))
+    fields = ("vertex_halfedge", "halfedge_next", "halfedge_prev", "halfedge_vertex", "halfedge_face", "face_halfedge")
+    strided = {field: np.repeat(getattr(built, field), 2)[::2] for field in fields}
+    assert not strided["halfedge_next"].flags.c_contiguous
+    mesh = hx.HalfedgeMesh(HalfedgeArrays(positions=built.positions.copy(), **strided))
+    assert validate_module._every_rule_holds(mesh)
+    mesh.validate()
