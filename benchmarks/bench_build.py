@@ -17,7 +17,8 @@ machine is shared and noisy, so read the ratios, not the seconds.
 "as generated" is trimesh's icosphere in the order it makes it; "random order" shuffles
 the faces and renumbers the vertices at random, which is what a mesh from a scanner or an
 exporter looks like to the cache. "validate/build" is ``mesh.validate()`` over our build
-(median of 5), "validate/around" ``validate()`` over ``validate_around`` after one flip.
+(medians of 5, validate taking its turn in the same rounds as the two builds),
+"validate/around" ``validate()`` over ``validate_around`` after one flip.
 """
 
 from __future__ import annotations
@@ -133,12 +134,12 @@ def main(argv: list[str] | None = None) -> None:
             (f"icosphere({level}), random order", shuffled(*ordered)),
         ):
             big = len(faces) > 500_000
-            pair = interleaved_medians(5, ours=lambda: build_ours(vertices, faces),
-                                       openmesh=lambda: build_openmesh(vertices, faces))
-            ours, peer_openmesh = pair["ours"], pair["openmesh"]
-            peer_trimesh = median_time(lambda: build_trimesh_adjacency(vertices, faces), 1 if big else 5)
             mesh = build_ours(vertices, faces)
-            validate = median_time(mesh.validate, 5)
+            rounds = interleaved_medians(5, ours=lambda: build_ours(vertices, faces),
+                                         openmesh=lambda: build_openmesh(vertices, faces),
+                                         validate=mesh.validate)
+            ours, peer_openmesh, validate = rounds["ours"], rounds["openmesh"], rounds["validate"]
+            peer_trimesh = median_time(lambda: build_trimesh_adjacency(vertices, faces), 1 if big else 5)
             flipped = mesh.flip(len(faces) // 3)
             around = median_time(lambda: validate_around(mesh, edges=[flipped]), 50)
             print(

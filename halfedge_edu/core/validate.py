@@ -36,7 +36,6 @@ from typing import TYPE_CHECKING, Callable
 import numpy as np
 
 from .arrays import undirected_keys
-from .build import ring_steps_total
 from .errors import MeshInputError, MeshInvariantError
 from .rings import ring_lengths
 
@@ -143,19 +142,36 @@ def validate(mesh: "HalfedgeMesh") -> None:
 #: blocks lose it again to the Python overhead of each block (45 ms with 2**12).
 _BLOCK = 1 << 14
 
+#: Vertices walked together in :func:`_fans_hold` (its temporaries: a dozen arrays of
+#: this many, one per step, also kept in the L2 cache).
+_VERTEX_BLOCK = 1 << 13
+
+#: Up to this many steps round a vertex, :func:`_fans_hold` compares each neighbour met
+#: with the ones met before it; the rare vertices with more edges are checked by a sort.
+_PAIRWISE_STEPS = 8
+
+#: A ``next`` pointer "jumps far" when it leads this many halfedges away or more (a
+#: quarter of a MiB of int32): the value it reads is then rarely in any cache.
+_FAR = 1 << 16
+
 
 def _every_rule_holds(mesh: "HalfedgeMesh") -> bool:
     """True when every rule of the table holds, on a mesh whose slots are all live.
 
     The same conditions as the rule-by-rule checks, in fewer passes over memory:
 
-    * deleted-reference is a range check: two reductions per pointer array.
+    * deleted-reference is a range check: one reduction per pointer array (two for
+      ``face``, which may be -1).
     * The rules that look one step ahead (next-prev-inverse, next-origin, next-cycle)
       gather each value they need at ``next(h)`` once, and all of them read it while a
-      block of halfedges is still in the cache, with no index array per rule.
+      block of halfedges is still in the cache, with no index array per rule; an
+      edge's two halfedges are compared at once, as one 64-bit word. edge-halfedge
+      reads the same block. For meshes in random order the four values come from rows
+      of four (:func:`_jumps_far`): one cache miss instead of four.
     * twin-involution compares each halfedge's origin with its twin's, which sits next
       to it in memory (``h ^ 1``): no gather at all.
-    * vertex-manifold sums the walks' lengths (:func:`~.build.ring_steps_total`).
+    * vertex-halfedge-origin, vertex-manifold and duplicate-edge come from one walk
+      around every vertex (:func:`_fans_hold`), without the sort of all edges.
 
     False means some rule is broken; :func:`validate` then runs the rules one by one to
     say which. A mesh with deleted or isolated elements never comes here.
@@ -165,42 +181,205 @@ def _every_rule_holds(mesh: "HalfedgeMesh") -> bool:
     vertex_he, face_he = mesh.vertex_halfedge, mesh.face_halfedge
 
     # ---- deleted-reference: every pointer in range -----------------------------------
-    for values, lowest, size in ((nxt, 0, n_h), (prv, 0, n_h), (origin, 0, n_v), (face, -1, n_f),
-                                 (face_he, 0, n_h), (vertex_he, 0, n_h)):
-        if len(values) and (values.min() < lowest or values.max() >= size):
+    for values, size in ((nxt, n_h), (prv, n_h), (origin, n_v), (face_he, n_h), (vertex_he, n_h)):
+        if not _all_below(values, size):
             return False
+    lowest_face = int(face.min()) if len(face) else 0
+    if lowest_face < -1 or (len(face) and face.max() >= n_f):
+        return False
+    closed = lowest_face >= 0                                 # no boundary halfedge at all
 
-    # ---- next-prev-inverse, twin-involution, next-origin, next-cycle ---------------------
+    # When next pointers jump far (faces in random order), each of the four values read
+    # at next(h) is a cache miss of its own; copied side by side into rows of four, they
+    # cost one miss together, which pays for the copy. Ordered meshes skip the copy.
+    rows = np.stack([prv, origin, face, nxt], axis=1) if _jumps_far(nxt) else None   # (n_h, 4) or None
+    boundary = []                                             # boundary halfedges, block by block
+
+    # ---- next-prev-inverse, twin-involution, next-origin, next-cycle, edge-halfedge -------
+    # Every index is in range by now, so the gathers use mode="clip" (which then never
+    # clips): numpy skips the bounds check it would otherwise make for each value.
     for start in range(0, n_h, _BLOCK):                       # start and block length are even
         block = slice(start, start + _BLOCK)
         h_next, h_prev, h_face, h_origin = nxt[block], prv[block], face[block], origin[block]
-        h = np.arange(start, start + len(h_next), dtype=h_next.dtype)
-        h_tip = h_origin.reshape(-1, 2)[:, ::-1].reshape(-1)  # (k,) origin of the twin h ^ 1: where h ends
         at_next = h_next.astype(np.intp)                      # numpy indexes with intp: convert once, not per gather
-        ok = prv[at_next] == h                                # next-prev-inverse
-        ok &= h_origin != h_tip                               # twin-involution
-        ok &= origin[at_next] == h_tip                        # next-origin
-        ok &= face[at_next] == h_face                         # next-cycle: same face (or both boundary)
-        ok &= (h_face < 0) | ((nxt[at_next] == h_prev) & (h_next != h))  # next-cycle: a triangle
+        if rows is None:
+            next_prev, next_origin, next_face, next_next = (
+                np.take(values, at_next, mode="clip") for values in (prv, origin, face, nxt))
+        else:
+            next_prev, next_origin, next_face, next_next = (
+                np.ascontiguousarray(column) for column in np.take(rows, at_next, axis=0, mode="clip").T)
+        # An edge's two halfedges 2e and 2e + 1 sit side by side, so their two int32
+        # values read as one 64-bit word (_edge_words): one comparison checks both, and
+        # swapping the word's halves swaps the two, giving each halfedge its twin's value.
+        h = np.arange(start, start + len(h_next), dtype=h_next.dtype)
+        own_origin = _edge_words(h_origin)                    # (k/2,)
+        tip = (own_origin << 32) | (own_origin >> 32)         # (k/2,) the twins' origins: where each halfedge ends
+        if (own_origin == tip).any():                         # twin-involution
+            return False
+        ok = _edge_words(next_prev) == _edge_words(h)         # next-prev-inverse
+        ok &= _edge_words(next_origin) == tip                 # next-origin: next starts where h ends
+        ok &= _edge_words(next_face) == _edge_words(h_face)   # next-cycle: same face (or both boundary)
+        # next-cycle, a triangle: next(next(h)) == prev(h) makes the loop 3 long or 1, and
+        # it is not 1: next(h) == h would start where h ends, at h's own origin, which
+        # next-origin and twin-involution have ruled out.
+        if closed:
+            ok &= _edge_words(next_next) == _edge_words(h_prev)
+        else:
+            on_boundary = h_face < 0
+            if not (on_boundary | (next_next == h_prev)).all():
+                return False
+            # edge-halfedge: an edge is faceless when both its faces are -1, that is when
+            # both sign bits are set, which is the sign bit of their bitwise and.
+            if ((h_face[0::2] & h_face[1::2]) < 0).any():
+                return False
+            if on_boundary.any():
+                boundary.append(np.flatnonzero(on_boundary) + start)
         if not ok.all():
             return False
 
-    # ---- face-halfedge, edge-halfedge, vertex-halfedge-origin, boundary-vertex-halfedge --
-    if not np.array_equal(face[face_he], np.arange(n_f, dtype=face.dtype)):
-        return False
-    if (np.maximum(face[0::2], face[1::2]) < 0).any():
-        return False
-    if not np.array_equal(origin[vertex_he], np.arange(n_v, dtype=origin.dtype)):
-        return False
-    boundary_origins = origin[face < 0]
-    if (face[vertex_he[boundary_origins]] >= 0).any():
-        return False
+    # ---- face-halfedge ------------------------------------------------------------------
+    for start in range(0, n_f, _BLOCK):                       # in blocks: no temporaries as long as the mesh
+        f_he = face_he[start:start + _BLOCK]
+        if not np.array_equal(np.take(face, f_he, mode="clip"), np.arange(start, start + len(f_he))):
+            return False
 
-    # ---- vertex-manifold, then duplicate-edge (which raises itself) ----------------------
-    if ring_steps_total(vertex_he, prv) != n_h:
-        return False
-    _no_duplicate_edges(origin, None, n_v)
-    return True
+    # ---- boundary-vertex-halfedge, and no boundary that turns back ------------------------
+    if boundary:
+        boundary_he = np.concatenate(boundary)                # (b,) every boundary halfedge
+        boundary_origin = origin[boundary_he]
+        if (face[vertex_he[boundary_origin]] >= 0).any():
+            return False
+        # A boundary that runs u -> v -> u runs along two edges between u and v (the
+        # twin of a boundary halfedge has a face, so the way back is another edge): a
+        # duplicate edge that the fan walk below does not look for.
+        if (origin[nxt[boundary_he] ^ 1] == boundary_origin).any():
+            return False
+
+    # ---- vertex-halfedge-origin, vertex-manifold, duplicate-edge ----------------------------
+    return _fans_hold(mesh, rows)
+
+
+def _all_below(values: np.ndarray, size: int) -> bool:
+    """True when every one of ``values`` (a signed integer array) is in ``0 .. size - 1``.
+
+    One reduction instead of a min and a max: read as unsigned integers of the same
+    width, negative values become huge (-1 is 2**32 - 1 in 32 bits), so the largest
+    value is below ``size`` exactly when all of them are in range.
+    """
+    if len(values) == 0:
+        return True
+    return int(values.view(np.dtype(f"u{values.itemsize}")).max()) < size
+
+
+def _edge_words(values: np.ndarray) -> np.ndarray:
+    """(k/2,) the int32 ``values`` (k,) of halfedges ``2i, 2i + 1, ...`` read in pairs as 64-bit words.
+
+    Word ``i`` holds the values of halfedges 2i and 2i + 1 (which half is which depends
+    on the machine's byte order, but equal words mean equal pairs either way). Reading
+    needs contiguous memory: an array the mesh was given as a strided view is copied.
+    """
+    return np.ascontiguousarray(values).view(np.uint64)
+
+
+def _jumps_far(nxt: np.ndarray) -> bool:
+    """True when over a quarter of the ``next`` pointers (one in 64, sampled) jump :data:`_FAR` or more."""
+    sample = nxt[::64].astype(np.int64)                       # (n_h / 64,)
+    sample -= np.arange(0, len(nxt), 64)
+    return bool(np.count_nonzero(np.abs(sample) >= _FAR) * 4 > len(sample))
+
+
+def _fans_hold(mesh: "HalfedgeMesh", rows: np.ndarray | None) -> bool:
+    """vertex-halfedge-origin, vertex-manifold and duplicate-edge, in one walk round every vertex.
+
+    Call it only once the pointer rules hold (in range, next-prev-inverse, next-origin,
+    next-cycle, twin-involution, edge-halfedge, and no boundary turning back).
+    ``rows`` (n_h, 4), if given, holds prev, origin, face and next of each halfedge side
+    by side (one cache line per halfedge read, see :func:`_every_rule_holds`).
+
+    The walk goes round each vertex by h -> next(twin(h)): ``twin(h)`` comes into the
+    vertex, its next leaves it again. That is the inverse of validate's h -> twin(prev(h))
+    (next(twin(twin(prev(h)))) = h), so it goes round the same fans the other way, and
+    it reads ``origin`` and ``next`` at one place, ``twin(h)``: the neighbour ``h`` leads
+    to and the next halfedge round the vertex. All vertices of a block walk in lockstep.
+
+    * vertex-manifold: the walks together must meet every halfedge (the rotation keeps
+      each halfedge's origin, so a walk never leaves its vertex).
+    * duplicate-edge: two edges between ``v`` and ``u`` are two halfedges leaving ``v``
+      towards the same neighbour ``u``, so each neighbour met is compared with the ones
+      met before. Not with the one just before it: two halfedges one step apart round
+      ``v`` have a face between them, and a triangle's corners are distinct (next-origin
+      and twin-involution), or the boundary between them, which does not turn back
+      (checked before the walk). The same holds for the last and the first, which are
+      compared all the same (simpler than leaving that one pair out). Vertices with
+      more than :data:`_PAIRWISE_STEPS` edges finish their walks apart and sort their
+      neighbours instead.
+    """
+    nxt, origin, vertex_he = mesh.halfedge_next, mesh.halfedge_vertex, mesh.vertex_halfedge
+    n_v, n_h = mesh.n_vertex_slots, mesh.n_halfedge_slots
+
+    def neighbour_and_following(h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """For halfedges ``h`` leaving some vertices: where each ends, and the next one round its vertex."""
+        twin = h ^ 1
+        if rows is None:
+            return np.take(origin, twin, mode="clip"), np.take(nxt, twin, mode="clip")   # in range: see above
+        row = np.take(rows, twin, axis=0, mode="clip")        # (k, 4) prev, origin, face, next
+        return row[:, 1], row[:, 3]
+
+    met = 0                                                   # halfedges the walks have met so far
+    for first in range(0, n_v, _VERTEX_BLOCK):
+        start = vertex_he[first:first + _VERTEX_BLOCK].astype(np.intp)   # (k,)
+        # vertex-halfedge-origin: each vertex's halfedge leaves it.
+        if not np.array_equal(np.take(origin, start, mode="clip"), np.arange(first, first + len(start))):
+            return False
+        current, walking, n_walking = start, np.ones(len(start), dtype=bool), len(start)
+        neighbours = np.empty((_PAIRWISE_STEPS, len(start)), dtype=origin.dtype)   # row = step: the neighbour met
+        for step in range(_PAIRWISE_STEPS):
+            met += n_walking
+            neighbours[step], following = neighbour_and_following(current)
+            if step >= 2:                                     # met before, not counting the step just before?
+                met_before = neighbours[:step - 1] == neighbours[step]   # (step - 1, k)
+                met_before &= walking                         # a finished walk goes round again: ignore it
+                if met_before.any():
+                    return False
+            current = following.astype(np.intp)
+            walking &= current != start                       # back at the start: that walk is done
+            n_walking = int(np.count_nonzero(walking))
+            if n_walking == 0:
+                break
+        else:
+            still = np.flatnonzero(walking)
+            steps = _finish_walks_by_sorting(still, start[still], current[still],
+                                             list(neighbours[:, still]), neighbour_and_following, n_v)
+            if steps is None:
+                return False
+            met += steps
+    return met == n_h
+
+
+def _finish_walks_by_sorting(owner: np.ndarray, start: np.ndarray, current: np.ndarray,
+                             neighbours: list[np.ndarray], neighbour_and_following, n_v: int) -> int | None:
+    """Finish the walks of the vertices with many edges; None if one meets a neighbour twice.
+
+    ``owner``, ``start``, ``current`` (k,): which walk, where it began, where it is now;
+    ``neighbours``: the neighbours each has met so far, one (k,) array per step. Returns
+    how many more halfedges the walks met. Every neighbour of a vertex gets the key
+    ``owner * n_v + neighbour``; after a sort, a repeated key is a repeated neighbour.
+    """
+    owners = [owner] * len(neighbours)
+    steps = 0
+    while len(current):
+        steps += len(current)
+        neighbour, following = neighbour_and_following(current)
+        owners.append(owner)
+        neighbours.append(neighbour)
+        current = following.astype(np.intp)
+        walking = current != start
+        owner, start, current = owner[walking], start[walking], current[walking]
+    key = np.concatenate(owners).astype(np.int64) * n_v + np.concatenate(neighbours)
+    key.sort()
+    if (key[1:] == key[:-1]).any():
+        return None
+    return steps
 
 
 def _no_duplicate_edges(origin: np.ndarray, edges: np.ndarray | None, n_v: int) -> None:

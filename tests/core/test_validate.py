@@ -504,3 +504,235 @@ def test_the_fast_path_checks_every_block_of_halfedges(block):
     with pytest.raises(hx.MeshInvariantError) as caught:
         mesh.validate()
     assert caught.value.rule == "next-cycle"
+
+
+# ---- the fast path's fan walk and packed rows --------------------------------------------
+# Faces cannot describe two edges between the same two vertices, so these meshes are
+# written as faces whose edges carry names: two edges with different names are different
+# edges even when they join the same vertices.
+
+def _arrays_from_named_edges(n_vertices: int, faces, edge_names) -> HalfedgeArrays:
+    """Halfedge arrays of polygons ``faces`` whose edge from corner k to k + 1 is ``edge_names[f][k]``.
+
+    The numbering is the build's: edges in order of first use, the first use gets
+    halfedge ``2e``, the second ``2e + 1``; an edge used once gets a boundary halfedge
+    ``2e + 1``, linked to the boundary halfedge that leaves its end.
+    """
+    number: dict = {}
+    halfedge_of_corner = []
+    for names in edge_names:
+        row = []
+        for name in names:
+            if name in number:
+                row.append(2 * number[name] + 1)
+            else:
+                number[name] = len(number)
+                row.append(2 * number[name])
+        halfedge_of_corner.append(row)
+    n_h = 2 * len(number)
+    nxt, origin, face = np.full(n_h, -1), np.full(n_h, -1), np.full(n_h, -1)
+    for f, (corners, row) in enumerate(zip(faces, halfedge_of_corner)):
+        for k in range(len(corners)):
+            origin[row[k]], face[row[k]], nxt[row[k]] = corners[k], f, row[(k + 1) % len(corners)]
+    boundary = [h for h in range(1, n_h, 2) if face[h] < 0]
+    for h in boundary:
+        origin[h] = origin[nxt[h ^ 1]]
+    leaving = {int(origin[h]): h for h in boundary}
+    for h in boundary:
+        nxt[h] = leaving[int(origin[h ^ 1])]                  # it ends where its twin starts
+    vertex_he = np.array([min(np.flatnonzero(origin == v)) for v in range(n_vertices)])
+    for v, h in leaving.items():
+        vertex_he[v] = h
+    return HalfedgeArrays(
+        positions=np.zeros((n_vertices, 3)), vertex_halfedge=vertex_he, halfedge_next=nxt,
+        halfedge_prev=np.argsort(nxt), halfedge_vertex=origin, halfedge_face=face,
+        face_halfedge=np.array([row[0] for row in halfedge_of_corner]))
+
+
+def _lune_sphere(k: int, path: int = 1, fan_from_pole: bool = True, open_face: bool = False) -> hx.HalfedgeMesh:
+    """A sphere cut into ``k`` lunes by ``k`` edges between its poles 0 and 1 (k - 1 duplicates).
+
+    Lune i lies between meridians i and i + 1 and holds a path of ``path`` vertices
+    ``c_1 .. c_path``, all joined to pole 0: faces (0, 1, c_1) along meridian i,
+    (0, c_j, c_j+1), and (1, 0, c_path) along meridian i + 1. The polygon left between
+    pole 1 and the path is filled by a fan from pole 1 (which then meets every c_j too)
+    or from c_1 (pole 1 keeps three edges per lune). Pole 0 has k * (path + 1) edges,
+    and the meridians are path + 1 steps apart round it. ``open_face`` leaves out lune
+    0's last face.
+    """
+    faces, names = [], []
+
+    def add(face, meridian=None):
+        faces.append(face)
+        names.append(tuple(("meridian", meridian) if {a, b} == {0, 1} else frozenset((a, b))
+                           for a, b in zip(face, face[1:] + face[:1])))
+
+    for i in range(k):
+        c = [2 + i * path + j for j in range(path)]            # c[0] .. c[path - 1]: the lune's path
+        add((0, 1, c[0]), meridian=i)
+        for j in range(path - 1):
+            add((0, c[j], c[j + 1]))
+        if not (open_face and i == 0):
+            add((1, 0, c[-1]), meridian=(i + 1) % k)
+        for j in range(path - 1):
+            add((1, c[j + 1], c[j]) if fan_from_pole else (c[0], c[j + 1], c[j]) if j else (c[0], 1, c[-1]))
+    return hx.HalfedgeMesh(_arrays_from_named_edges(2 + k * path, faces, names))
+
+
+def test_named_edges_build_what_the_build_builds():
+    # The helper above agrees with HalfedgeMesh.from_faces when every name is a vertex pair.
+    for drawn in (shapes.octahedron(), shapes.grid(3, 2), shapes.torus(5, 4)):
+        faces = np.asarray(drawn[1])
+        names = [tuple(frozenset((int(a), int(b))) for a, b in zip(face, np.roll(face, -1))) for face in faces]
+        by_hand = _arrays_from_named_edges(len(drawn[0]), faces, names)
+        built = _mesh(drawn)
+        for field in ("vertex_halfedge", "halfedge_next", "halfedge_prev", "halfedge_vertex", "halfedge_face", "face_halfedge"):
+            assert np.array_equal(getattr(by_hand, field), getattr(built, field)), field
+
+
+LUNE_SPHERES = {
+    # Both poles of low degree: the walk compares their neighbours pairwise.
+    "poles of degree 4": dict(k=2), "poles of degree 6": dict(k=3), "poles of degree 8": dict(k=4),
+    # Both poles of degree 20, the meridians 10 steps apart: only the sort sees them.
+    "poles of degree 20": dict(k=2, path=9),
+    # Pole 0 of degree 20 (sorted), pole 1 of degree 6 (compared pairwise).
+    "poles of degree 20 and 6": dict(k=2, path=9, fan_from_pole=False),
+}
+
+
+@pytest.mark.parametrize("open_face", [False, True], ids=["closed", "open"])
+@pytest.mark.parametrize("shape", sorted(LUNE_SPHERES))
+def test_parallel_edges_between_vertices_of_any_degree_are_found(shape, open_face):
+    mesh = _lune_sphere(**LUNE_SPHERES[shape], open_face=open_face)
+    assert mesh.euler_characteristic == (1 if open_face else 2)
+    assert (mesh.halfedge_face < 0).sum() == (3 if open_face else 0)
+    with mock.patch.object(validate_module, "_no_duplicate_edges", lambda *args: None):
+        mesh.validate()                                       # every other rule holds
+    assert not validate_module._every_rule_holds(mesh)
+    with pytest.raises(hx.MeshInvariantError) as caught:
+        mesh.validate()
+    assert (caught.value.rule, caught.value.element) == ("duplicate-edge", ("edge", (0, 1)))
+
+
+def _two_triangles_pinched_at_both_ends_of_an_edge() -> hx.HalfedgeMesh:
+    """Triangles (1, 0, 2) and (0, 1, 3), each with its own edge between 0 and 1, touching only there.
+
+    Halfedges 0 2 4 and 6 8 10 are the faces, their odd twins the boundary. At vertices
+    0 and 1 the boundary goes from one triangle to the other (so each walk round them
+    meets both triangles), and one boundary loop runs 0 -> 1 -> 0 along the two edges.
+    The vertices' halfedges are chosen so that, round both, the two edges to the other
+    one are met one step apart and not first: only the boundary check sees them.
+    """
+    nxt = np.array([2, 7, 4, 11, 0, 3, 8, 1, 10, 5, 6, 9])
+    arrays = HalfedgeArrays(
+        positions=np.zeros((4, 3)),
+        vertex_halfedge=np.array([11, 5, 3, 9]),
+        halfedge_next=nxt,
+        halfedge_prev=np.argsort(nxt),
+        halfedge_vertex=np.array([1, 0, 0, 2, 2, 1, 0, 1, 1, 3, 3, 0]),
+        halfedge_face=np.array([0, -1, 0, -1, 0, -1, 1, -1, 1, -1, 1, -1]),
+        face_halfedge=np.array([0, 6]),
+    )
+    return hx.HalfedgeMesh(arrays)
+
+
+def test_a_boundary_that_turns_back_along_a_second_edge_is_found():
+    mesh = _two_triangles_pinched_at_both_ends_of_an_edge()
+    with mock.patch.object(validate_module, "_no_duplicate_edges", lambda *args: None):
+        mesh.validate()                                       # every other rule holds
+    assert not validate_module._every_rule_holds(mesh)
+    with pytest.raises(hx.MeshInvariantError) as caught:
+        mesh.validate()
+    assert (caught.value.rule, caught.value.element) == ("duplicate-edge", ("edge", (0, 1)))
+
+
+def test_an_edge_between_two_boundaries_with_no_face_is_found_by_the_fast_path():
+    # Triangles (0, 1, 2) and (3, 4, 5) and a bare edge 6 between vertices 2 and 3 that
+    # the boundary runs along both ways: only edge-halfedge is broken.
+    nxt = np.array([2, 5, 4, 1, 0, 12, 8, 13, 10, 7, 6, 9, 11, 3])
+    arrays = HalfedgeArrays(
+        positions=np.zeros((6, 3)),
+        vertex_halfedge=np.array([5, 1, 3, 11, 7, 9]),
+        halfedge_next=nxt,
+        halfedge_prev=np.argsort(nxt),
+        halfedge_vertex=np.array([0, 1, 1, 2, 2, 0, 3, 4, 4, 5, 5, 3, 2, 3]),
+        halfedge_face=np.array([0, -1, 0, -1, 0, -1, 1, -1, 1, -1, 1, -1, -1, -1]),
+        face_halfedge=np.array([0, 6]),
+    )
+    mesh = hx.HalfedgeMesh(arrays)
+    assert not validate_module._every_rule_holds(mesh)
+    with pytest.raises(hx.MeshInvariantError) as caught:
+        mesh.validate()
+    assert (caught.value.rule, caught.value.element) == ("edge-halfedge", ("edge", 6))
+
+
+@pytest.mark.parametrize("packed", [False, True], ids=["gathers", "packed rows"])
+@given(
+    drawn=meshes(),
+    field=st.sampled_from(sorted(ALL_POINTERS)),
+    where=st.integers(0, 10**6),
+    value=st.integers(0, 10**6),
+)
+def test_the_fast_path_agrees_with_the_rules_with_and_without_packed_rows(packed, drawn, field, where, value):
+    # As above, with the fast path forced to read next(h) from separate arrays or from
+    # rows of four (the layout it takes for meshes in random order).
+    mesh = build(drawn)
+    array = ALL_POINTERS[field](mesh)
+    array[where % len(array)] = array[value % len(array)]
+    with mock.patch.object(validate_module, "_jumps_far", lambda nxt: packed):
+        fast_broken = not validate_module._every_rule_holds(mesh)
+    with mock.patch.object(validate_module, "_every_rule_holds", lambda mesh: False):
+        rules_broken = _raises(mesh.validate)
+    assert fast_broken == rules_broken
+
+
+def test_meshes_in_random_order_take_the_packed_rows():
+    # Large enough that a pointer to a random halfedge usually jumps _FAR or more.
+    vertices, faces = shapes.torus(400, 250)                 # 600,000 halfedges
+    assert not validate_module._jumps_far(_mesh((vertices, faces)).halfedge_next)
+    shuffled = _mesh((vertices, faces[np.random.default_rng(0).permutation(len(faces))]))
+    assert validate_module._jumps_far(shuffled.halfedge_next)
+    assert validate_module._every_rule_holds(shuffled)
+
+
+@pytest.mark.parametrize("block", ["first", "middle", "last"])
+def test_the_fan_walk_checks_every_block_of_vertices(block):
+    mesh = _mesh(shapes.torus(200, 120))                     # 24,000 vertices: several blocks
+    size = validate_module._VERTEX_BLOCK
+    n_blocks = -(-mesh.n_vertex_slots // size)
+    assert n_blocks >= 3, "the mesh must span several blocks for this test to mean anything"
+    v = {"first": 0, "middle": (n_blocks // 2) * size + 7, "last": mesh.n_vertex_slots - 1}[block]
+    neighbour = int(mesh.halfedge_vertex[int(mesh.vertex_halfedge[v]) ^ 1])
+    mesh.vertex_halfedge[v] = mesh.vertex_halfedge[neighbour]
+    assert not validate_module._every_rule_holds(mesh)
+    with pytest.raises(hx.MeshInvariantError) as caught:
+        mesh.validate()
+    assert (caught.value.rule, caught.value.element) == ("vertex-halfedge-origin", ("vertex", v))
+
+
+@pytest.mark.parametrize("open_box", [False, True], ids=["closed cube", "open box"])
+def test_a_mesh_of_quads_fails_the_fast_path(open_box):
+    # A cube of six quads (or five: a box without its lid), written as halfedges: every
+    # rule holds but next-cycle's "a loop of three"; the fast path has a branch for
+    # closed meshes and one for meshes with boundary.
+    quads = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+    if open_box:
+        del quads[1]
+    names = [tuple(frozenset(pair) for pair in zip(quad, quad[1:] + quad[:1])) for quad in quads]
+    mesh = hx.HalfedgeMesh(_arrays_from_named_edges(8, quads, names))
+    assert mesh.euler_characteristic == (1 if open_box else 2)
+    assert not validate_module._every_rule_holds(mesh)
+    with pytest.raises(hx.MeshInvariantError) as caught:
+        mesh.validate()
+    assert (caught.value.rule, caught.value.element) == ("next-cycle", ("halfedge", 0))
+
+
+def test_arrays_given_as_strided_views_validate():
+    # The fast path reads pairs of int32 as 64-bit words, which needs contiguous memory.
+    built = _mesh(shapes.torus(6, 4))
+    fields = ("vertex_halfedge", "halfedge_next", "halfedge_prev", "halfedge_vertex", "halfedge_face", "face_halfedge")
+    strided = {field: np.repeat(getattr(built, field), 2)[::2] for field in fields}
+    assert not strided["halfedge_next"].flags.c_contiguous
+    mesh = hx.HalfedgeMesh(HalfedgeArrays(positions=built.positions.copy(), **strided))
+    assert validate_module._every_rule_holds(mesh)
+    mesh.validate()
