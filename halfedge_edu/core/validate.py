@@ -17,7 +17,7 @@ anything follows them.
 | edge-halfedge             | every edge has a face on at least one side                  |
 | vertex-halfedge-origin    | origin(halfedge(v)) == v; only an isolated vertex has none  |
 | boundary-vertex-halfedge  | a boundary vertex's halfedge is its outgoing boundary halfedge |
-| vertex-manifold           | walking around a vertex meets all its edges (one fan, no hourglass) |
+| vertex-manifold           | walking around a vertex meets all its edges, and at most one boundary halfedge leaves it (one fan, no hourglass) |
 | duplicate-edge            | no two edges join the same pair of vertices                 |
 
 Two sizes of check. :func:`validate` checks every element, in time proportional to the
@@ -130,9 +130,33 @@ def validate(mesh: "HalfedgeMesh") -> None:
             f"{int(degree[np.argmax(ring_length != degree)])} edges before coming back; "
             f"its faces form more than one fan (an hourglass)",
         )
+    _one_piece_of_boundary(mesh, np.flatnonzero(mesh.halfedge_face < 0) if hs is None
+                           else hs[mesh.halfedge_face[hs] < 0])
 
     # ---- duplicate-edge ---------------------------------------------------------------
     _no_duplicate_edges(origin, None if hs is None else np.flatnonzero(~edge_deleted), n_v)
+
+
+def _one_piece_of_boundary(mesh: "HalfedgeMesh", boundary: np.ndarray) -> None:
+    """vertex-manifold: each of ``boundary`` (boundary halfedges) is its origin's halfedge.
+
+    A vertex on two pieces of boundary has two fans, even when the walk around it meets
+    all its edges: the boundary's next pointers can link its fans crosswise, and the
+    walk then runs through both. With boundary-vertex-halfedge holding (a boundary
+    vertex's halfedge is one of its outgoing boundary halfedges), a boundary halfedge
+    that is not its origin's halfedge is exactly a second one leaving that vertex.
+    """
+    origin, vertex_he = mesh.halfedge_vertex, mesh.vertex_halfedge
+    second = boundary[vertex_he[origin[boundary]] != boundary]
+    if len(second):
+        h = int(second[0])
+        v = int(origin[h])
+        raise MeshInvariantError(
+            "vertex-manifold",
+            ("vertex", v),
+            f"vertex {v} lies on two pieces of boundary: boundary halfedges {int(vertex_he[v])} "
+            f"and {h} both leave it, so its faces form more than one fan",
+        )
 
 
 #: Halfedges checked per block in :func:`_every_rule_holds`: a block's temporaries (a
@@ -247,7 +271,10 @@ def _every_rule_holds(mesh: "HalfedgeMesh") -> bool:
     if boundary:
         boundary_he = np.concatenate(boundary)                # (b,) every boundary halfedge
         boundary_origin = origin[boundary_he]
-        if (face[vertex_he[boundary_origin]] >= 0).any():
+        # Each boundary halfedge is its origin's halfedge: boundary-vertex-halfedge, and
+        # (a vertex has one halfedge) at most one boundary halfedge leaves a vertex,
+        # the part of vertex-manifold that the walk cannot see (_one_piece_of_boundary).
+        if not np.array_equal(vertex_he[boundary_origin], boundary_he):
             return False
         # A boundary that runs u -> v -> u runs along two edges between u and v (the
         # twin of a boundary halfedge has a face, so the way back is another edge): a
@@ -469,6 +496,7 @@ def validate_around(mesh: "HalfedgeMesh", vertices=(), halfedges=(), edges=(), f
             f"without meeting halfedge {h}, which also leaves it; its faces form more than "
             f"one fan (an hourglass)",
         )
+    _one_piece_of_boundary(mesh, hs[mesh.halfedge_face[hs] < 0])
 
     # ---- duplicate-edge, among the checked edges ----------------------------------------
     _no_duplicate_edges(origin, np.unique(hs >> 1), mesh.n_vertex_slots)

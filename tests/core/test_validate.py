@@ -636,14 +636,79 @@ def _two_triangles_pinched_at_both_ends_of_an_edge() -> hx.HalfedgeMesh:
     return hx.HalfedgeMesh(arrays)
 
 
+def _digon_disk() -> hx.HalfedgeMesh:
+    """Triangles (0, 1, 2) and (1, 0, 2), each with its own edge between 0 and 1: a disk
+    whose boundary runs 0 -> 1 -> 0 along those two edges.
+
+    Edges 0 and 3 join vertices 0 and 1 (halfedges 0 and 6 in the faces, 1 and 7 the
+    boundary); edges 1 and 2 join both faces to vertex 2. Every vertex has one fan and
+    at most one boundary halfedge, so only the two edges between 0 and 1 are wrong, and
+    round vertices 0 and 1 the walk meets them one step apart, across the boundary.
+    """
+    nxt = np.array([2, 7, 4, 6, 0, 3, 5, 1])
+    arrays = HalfedgeArrays(
+        positions=np.zeros((3, 3)),
+        vertex_halfedge=np.array([7, 1, 4]),
+        halfedge_next=nxt,
+        halfedge_prev=np.argsort(nxt),
+        halfedge_vertex=np.array([0, 1, 1, 2, 2, 0, 1, 0]),
+        halfedge_face=np.array([0, -1, 0, 1, 0, 1, 1, -1]),
+        face_halfedge=np.array([0, 6]),
+    )
+    return hx.HalfedgeMesh(arrays)
+
+
 def test_a_boundary_that_turns_back_along_a_second_edge_is_found():
-    mesh = _two_triangles_pinched_at_both_ends_of_an_edge()
+    mesh = _digon_disk()
     with mock.patch.object(validate_module, "_no_duplicate_edges", lambda *args: None):
         mesh.validate()                                       # every other rule holds
     assert not validate_module._every_rule_holds(mesh)
     with pytest.raises(hx.MeshInvariantError) as caught:
         mesh.validate()
     assert (caught.value.rule, caught.value.element) == ("duplicate-edge", ("edge", (0, 1)))
+
+
+def _bowtie_linked_crosswise() -> hx.HalfedgeMesh:
+    """Triangles (0, 1, 2) and (0, 3, 4), touching only at vertex 0, built by hand.
+
+    Halfedges 0 2 4 and 6 8 10 are the faces, their odd twins the boundary. At vertex 0
+    the boundary goes from one triangle to the other (1 -> 0 -> 4 and 3 -> 0 -> 2), so
+    there is one boundary loop and the walk round vertex 0 meets all four of its edges;
+    but two boundary halfedges (5 and 11) leave it: two fans. Every other rule holds.
+    """
+    nxt = np.array([2, 11, 4, 1, 0, 3, 8, 5, 10, 7, 6, 9])
+    arrays = HalfedgeArrays(
+        positions=np.zeros((5, 3)),
+        vertex_halfedge=np.array([5, 1, 3, 7, 9]),
+        halfedge_next=nxt,
+        halfedge_prev=np.argsort(nxt),
+        halfedge_vertex=np.array([0, 1, 1, 2, 2, 0, 0, 3, 3, 4, 4, 0]),
+        halfedge_face=np.array([0, -1, 0, -1, 0, -1, 1, -1, 1, -1, 1, -1]),
+        face_halfedge=np.array([0, 6]),
+    )
+    return hx.HalfedgeMesh(arrays)
+
+
+def test_a_vertex_on_two_pieces_of_boundary_is_not_manifold():
+    mesh = _bowtie_linked_crosswise()
+    assert validate_module.ring_lengths(mesh.vertex_halfedge, mesh.halfedge_prev).sum() == mesh.n_halfedge_slots
+    with mock.patch.object(validate_module, "_one_piece_of_boundary", lambda *args: None):
+        mesh.validate()                                       # every other rule holds
+    assert not validate_module._every_rule_holds(mesh)
+    with pytest.raises(hx.MeshInvariantError, match="vertex 0 lies on two pieces of boundary") as caught:
+        mesh.validate()
+    assert (caught.value.rule, caught.value.element) == ("vertex-manifold", ("vertex", 0))
+    for seed in (0, 2, 4):                                    # vertex 0 itself, or in the ring
+        with pytest.raises(hx.MeshInvariantError, match="vertex 0 lies on two pieces of boundary"):
+            mesh.validate_around(vertices=[seed])
+
+
+def test_from_faces_refuses_what_validate_calls_two_pieces_of_boundary():
+    # The same promise at both ends: a bowtie is refused when built, and refused by
+    # validate() when made by hand.
+    vertices = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [-1, 0, 0], [-1, -1, 0]], dtype=float)
+    with pytest.raises(hx.MeshInputError, match="2 separate pieces of boundary"):
+        hx.HalfedgeMesh.from_faces(vertices, [[0, 1, 2], [0, 3, 4]])
 
 
 def test_an_edge_between_two_boundaries_with_no_face_is_found_by_the_fast_path():
