@@ -55,8 +55,8 @@ from ..core.errors import MeshWarning
 from ..core.mesh import HalfedgeMesh
 from .arguments import check_simplify
 from .collapse_rounds import (
-    COST_CLASSES, choose_round, collapse_topology_ok, drop_folding_neighbours, no_turned_faces, round_tables,
-    spread_ties,
+    COST_CLASSES, SPREAD_KEY_IDS, choose_round, collapse_topology_ok, drop_folding_neighbours, no_turned_faces,
+    round_tables, spread_ties, spread_ties_keys,
 )
 
 
@@ -273,8 +273,30 @@ def _packed_cost(packed: np.ndarray, points: np.ndarray) -> np.ndarray:
             + z * (q22 * z + 2.0 * q23) + q33)
 
 
+#: How many edges :func:`_packed_optimal_points` prices at a time (see there).
+PRICING_BLOCK = 8192
+
+
 def _packed_optimal_points(packed: np.ndarray, midpoint: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`optimal_points` for packed quadrics (10, k) and edge midpoints (3, k): points (3, k), costs (k,)."""
+    """:func:`optimal_points` for packed quadrics (10, k) and edge midpoints (3, k): points (3, k), costs (k,).
+
+    The work is some eighty whole-array products and sums, each making a temporary
+    array. In blocks of :data:`PRICING_BLOCK` edges those temporaries stay in the
+    processor's cache instead of going out to memory and back, which makes pricing
+    about a third faster; every edge gets the same numbers either way.
+    """
+    k = packed.shape[1]
+    if k <= PRICING_BLOCK:
+        return _packed_optimal_points_block(packed, midpoint)
+    points, cost = np.empty((3, k)), np.empty(k)
+    for start in range(0, k, PRICING_BLOCK):
+        block = slice(start, start + PRICING_BLOCK)
+        points[:, block], cost[block] = _packed_optimal_points_block(packed[:, block], midpoint[:, block])
+    return points, cost
+
+
+def _packed_optimal_points_block(packed: np.ndarray, midpoint: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_packed_optimal_points` for one block of edges."""
     q00, q01, q02, q03, q11, q12, q13, q22, q23, _ = packed        # ten (k,) rows
     trace = q00 + q11 + q22
     # A quadric with no planes at all (zero-area faces) has A = 0 and q = 0: with
@@ -431,7 +453,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         edges, boundary_edge, face_across = this_round.edges, this_round.boundary, this_round.face_across
         boundary_vertex = np.zeros(n, dtype=bool)
         boundary_vertex[edges[boundary_edge].reshape(-1)] = True
-        degree = np.bincount(edges.reshape(-1), minlength=n)
+        degree = np.diff(this_round.neighbours[0])                     # (n,) a row lists each neighbour once
         points, cost, keep, remove = priced.update(edges, boundary_edge, boundary_vertex, vertices, quadrics, changed)
 
         # Consider the cheapest edges only, and not many more than the faces still to go.
@@ -443,8 +465,10 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         else:
             candidates = np.arange(len(edges))
         candidates = candidates[np.argsort(cost[candidates], kind="stable")]
-        # Sixteen classes of equal size, cheapest first, for spread_ties.
+        # Sixteen classes of equal size, cheapest first, for spread_ties (the same order
+        # as keys, without its sort, up to a billion edges).
         rank_class = np.arange(len(candidates)) * COST_CLASSES // len(candidates)
+        spread = spread_ties_keys if len(edges) <= SPREAD_KEY_IDS else spread_ties
 
         faces_around, neighbours = this_round.faces_around, this_round.neighbours
 
@@ -486,7 +510,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
 
         chosen_mask = choose_round(edges, candidates, np.ones(len(candidates), dtype=bool), n,
                                    check_topology, check_turned_faces, neighbours=neighbours,
-                                   priority=spread_ties(rank_class, candidates))
+                                   priority=spread(rank_class, candidates))
         chosen = candidates[chosen_mask]
         # Stop exactly at the target: take chosen edges in cost order until enough faces go.
         removes_faces = np.where(boundary_edge[chosen], 1, 2)
