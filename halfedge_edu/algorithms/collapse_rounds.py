@@ -142,8 +142,13 @@ def _cross(u: np.ndarray, v: np.ndarray) -> np.ndarray:
 
 
 def _dot(u: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """(j,) dot products of (3, j) vectors."""
-    return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
+    """(j,) dot products of (3, j) vectors.
+
+    Summed in the order ``np.einsum("ij,ij->i", ...)`` sums three products on this
+    machine's numpy (first plus last, then the middle), which these checks used on (j, 3)
+    rows before: rounding is then the same to the last bit, and so is every verdict.
+    """
+    return (u[0] * v[0] + u[2] * v[2]) + u[1] * v[1]
 
 
 def _unit(vectors: np.ndarray) -> np.ndarray:
@@ -217,6 +222,7 @@ def no_turned_faces(
     max_normal_cos: float,
     *,
     face_across: np.ndarray | None = None,
+    positions: np.ndarray | None = None,
 ) -> np.ndarray:
     """(k,) True where moving both ends of edge ``keep[i] - remove[i]`` to ``points[i]``
     turns no face over and folds no pair of neighbouring faces.
@@ -240,8 +246,12 @@ def no_turned_faces(
     across each face's edge ``faces[f, k] -> faces[f, k + 1]``, -1 on the boundary. It
     names the unmoved neighbour of each moved face directly; without it the neighbour
     is searched for among the faces around the far edge's end, several times the work.
+
+    ``positions`` (3, n), if the caller has them: ``vertices`` by coordinate
+    (:func:`_columns`), so that several checks of one round share one copy.
     """
-    positions = _columns(vertices)                                      # (3, n)
+    if positions is None:
+        positions = _columns(vertices)                                  # (3, n)
     moved = _moved_faces(positions, faces, faces_around, points, keep, remove)
     owner, position, u, w = moved.owner, moved.position, moved.u, moved.w
     n_before, n_after = moved.normal_before, moved.normal_after         # (3, j) each
@@ -585,13 +595,17 @@ def choose_round(
     open_end = np.zeros(n, dtype=bool)
     open_end[cand_edges[open_].reshape(-1)] = True
     ring_edges = np.take(edges, np.flatnonzero(open_end[edges[:, 0]] & open_end[edges[:, 1]]), axis=0)
+    # The open candidates' indices, kept from pass to pass: each pass only shortens the
+    # list, instead of sweeping every candidate's flags again.
+    still_open = np.flatnonzero(open_)
     for _ in range(passes):
-        open_ &= ~blocked[cand_edges[:, 0]] & ~blocked[cand_edges[:, 1]]
         open_[known_owner[opposite_used[known_vertex]]] = False
-        if not open_.any():
+        ends = np.take(cand_edges, still_open, axis=0)                  # (s, 2)
+        still_open = still_open[open_[still_open] & ~blocked[ends[:, 0]] & ~blocked[ends[:, 1]]]
+        if len(still_open) == 0:
             break
-        still_open = np.flatnonzero(open_)
-        picked = still_open[independent_edges(cand_edges[still_open], priority[still_open], ring_edges, n)]
+        picked = still_open[independent_edges(np.take(cand_edges, still_open, axis=0), priority[still_open],
+                                              ring_edges, n)]
         ok, opposite_owner, opposite_vertex = check_topology(picked)
         known_owner = np.concatenate([known_owner, opposite_owner])     # repeats do no harm
         known_vertex = np.concatenate([known_vertex, opposite_vertex])
@@ -599,9 +613,9 @@ def choose_round(
         passed = np.zeros(len(candidates), dtype=bool)
         passed[picked[ok]] = True
         passed = one_collapse_per_opposite_vertex(passed, opposite_owner, opposite_vertex)
-        open_ &= ~passed
-        # The geometric check last, for the fewest; a refused one just drops out.
         which = np.flatnonzero(passed)
+        open_[which] = False
+        # The geometric check last, for the fewest; a refused one just drops out.
         passed[which[~check_turned_faces(which)]] = False
         chosen |= passed
         ends = cand_edges[passed].reshape(-1)

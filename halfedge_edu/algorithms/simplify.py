@@ -104,14 +104,22 @@ def face_quadrics(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
 
 
 def _face_planes(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Each face's area (m,) and plane ``p = [n, d]`` (m, 4): :func:`face_quadrics` is ``area * p p^T``."""
-    corners = vertices[faces]                                        # (m, 3, 3)
-    cross = face_cross(corners)                                      # (m, 3), length 2 * area
-    a = corners[:, 0]
-    double_area = np.linalg.norm(cross, axis=1)
-    normal = cross / np.maximum(double_area, 1e-300)[:, None]
-    plane = np.concatenate([normal, -np.einsum("ij,ij->i", normal, a)[:, None]], axis=1)  # (m, 4)
-    return 0.5 * double_area, plane
+    """Each face's area (m,) and plane ``p = [n, d]`` (m, 4): :func:`face_quadrics` is ``area * p p^T``.
+
+    The same numbers as ``face_cross(vertices[faces])`` and its length, computed one
+    coordinate at a time: each corner's x, y and z gathered from a contiguous column
+    (``np.take``), then products of contiguous rows, about twice as fast as on the
+    (m, 3, 3) corner array.
+    """
+    columns = np.ascontiguousarray(vertices.T)                       # (3, n)
+    a, b, c = (np.take(columns, faces[:, corner], axis=1) for corner in range(3))   # (3, m) each
+    ab, ac = b - a, c - a
+    cross = (ab[1] * ac[2] - ab[2] * ac[1], ab[2] * ac[0] - ab[0] * ac[2], ab[0] * ac[1] - ab[1] * ac[0])
+    double_area = np.sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2])
+    scale = np.maximum(double_area, 1e-300)
+    normal = [coordinate / scale for coordinate in cross]
+    offset = -((normal[0] * a[0] + normal[2] * a[2]) + normal[1] * a[1])     # in np.einsum's order: see _dot
+    return 0.5 * double_area, np.stack([*normal, offset], axis=1)     # (m,), (m, 4)
 
 
 def boundary_quadrics(vertices: np.ndarray, faces: np.ndarray, boundary_edges: np.ndarray,
@@ -471,6 +479,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         spread = spread_ties_keys if len(edges) <= SPREAD_KEY_IDS else spread_ties
 
         faces_around, neighbours = this_round.faces_around, this_round.neighbours
+        positions = np.ascontiguousarray(vertices.T)          # (3, n): one copy for every check of the round
 
         def check_topology(indices: np.ndarray):
             chosen_edges = candidates[indices]
@@ -483,7 +492,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
             chosen_edges = candidates[indices]
             ok = no_turned_faces(vertices, faces, faces_around, points[chosen_edges],
                                  keep[chosen_edges], remove[chosen_edges], max_normal_cos,
-                                 face_across=face_across)
+                                 face_across=face_across, positions=positions)
             # Where the best point turns a face over, an endpoint may not: in a flat
             # region all three cost nothing, and moving onto a neighbour folds less
             # often than moving to the middle of a long edge. Accept an endpoint only
@@ -498,8 +507,11 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
             option_cost = _packed_cost(quadric, option.T)
             passes = option_cost <= 2.0 * cost[twice] + cost_floor
             cheap = np.flatnonzero(passes)
+            if len(cheap) == 0:
+                return ok
             passes[cheap] = no_turned_faces(vertices, faces, faces_around, option[cheap], keep[twice[cheap]],
-                                            remove[twice[cheap]], max_normal_cos, face_across=face_across)
+                                            remove[twice[cheap]], max_normal_cos, face_across=face_across,
+                                            positions=positions)
             r = len(retry)
             pick = np.where(passes[:r], np.arange(r), np.arange(r) + r)    # (r,) the kept end if it passes
             good = passes[pick]
