@@ -336,23 +336,42 @@ def round_tables(faces: np.ndarray, n: int) -> RoundTables:
     next_vertex.reshape(-1, 3)[:, 2] = faces[:, 0]
     n_halfedges = len(corner_vertex)
     order, sorted_key = sort_undirected(corner_vertex, next_vertex, n)
-    new_run = np.ones(n_halfedges, dtype=bool)
-    new_run[1:] = sorted_key[1:] != sorted_key[:-1]
-    starts = np.flatnonzero(new_run)                                  # (E,) first use of each edge
-    count = np.diff(np.append(starts, n_halfedges))
-    keys = sorted_key[starts]
-    first = order[starts]
-    inner = count == 2
-    second = order[starts[inner] + 1]
-    across = np.full(n_halfedges, -1, dtype=np.int64)
-    across[first[inner]] = second // 3
-    across[second] = first[inner] // 3
-    boundary_halfedge = first[count == 1]
+    if _used_twice_each(sorted_key):
+        # A closed mesh: the sorted uses pair up, (0, 1), (2, 3), ..., so the runs need no search.
+        keys, first, second = sorted_key[0::2], order[0::2], order[1::2]
+        boundary = np.zeros(len(keys), dtype=bool)
+        boundary_halfedge = first[:0]
+        across = np.empty(n_halfedges, dtype=np.int64)
+        across[first] = second // 3
+        across[second] = first // 3
+    else:
+        new_run = np.ones(n_halfedges, dtype=bool)
+        new_run[1:] = sorted_key[1:] != sorted_key[:-1]
+        starts = np.flatnonzero(new_run)                              # (E,) first use of each edge
+        count = np.diff(np.append(starts, n_halfedges))
+        keys = sorted_key[starts]
+        first = order[starts]
+        inner = count == 2
+        second = order[starts[inner] + 1]
+        across = np.full(n_halfedges, -1, dtype=np.int64)
+        across[first[inner]] = second // 3
+        across[second] = first[inner] // 3
+        boundary = count == 1
+        boundary_halfedge = first[boundary]
     faces_around, neighbours = _vertex_rings(corner_vertex, next_vertex, boundary_halfedge, n)
     low = keys // n
     high = keys - low * n                                             # keys % n, without a second division
-    return RoundTables(np.stack([low, high], axis=1), count == 1, boundary_halfedge,
+    return RoundTables(np.stack([low, high], axis=1), boundary, boundary_halfedge,
                        across.reshape(-1, 3), faces_around, neighbours)
+
+
+def _used_twice_each(sorted_key: np.ndarray) -> bool:
+    """True if every key in ``sorted_key`` (ascending) occurs exactly twice: each pair (2i, 2i + 1) equal, and
+    each pair different from the next."""
+    if len(sorted_key) % 2:
+        return False
+    return bool(np.array_equal(sorted_key[0::2], sorted_key[1::2])
+                and not (sorted_key[1:-1:2] == sorted_key[2::2]).any())
 
 
 def _grouping_order(rows: np.ndarray, n: int) -> np.ndarray:
@@ -384,8 +403,10 @@ def _vertex_rings(corner_vertex: np.ndarray, next_vertex: np.ndarray, boundary_h
     vertex with two fans), and the neighbour at its clockwise end is missing; it is the
     tail of the boundary edge whose head is v, so each boundary edge adds one row.
     """
-    rows = np.concatenate([corner_vertex, next_vertex[boundary_halfedge]])     # (3m + b,) the head for the extra rows
-    values = np.concatenate([next_vertex, corner_vertex[boundary_halfedge]])   # ... and the tail as its neighbour
+    rows, values = corner_vertex, next_vertex
+    if len(boundary_halfedge):
+        rows = np.concatenate([rows, next_vertex[boundary_halfedge]])      # (3m + b,) the head for the extra rows
+        values = np.concatenate([values, corner_vertex[boundary_halfedge]])   # ... and the tail as its neighbour
     order = _grouping_order(rows, n)
     face_offsets = np.zeros(n + 1, dtype=np.int64)
     np.cumsum(np.bincount(corner_vertex, minlength=n), out=face_offsets[1:])
