@@ -320,6 +320,16 @@ def _packed_optimal_points_block(packed: np.ndarray, midpoint: np.ndarray) -> tu
     return x, np.maximum(_packed_cost(packed, x), 0.0)
 
 
+def _as_items(points: np.ndarray) -> np.ndarray:
+    """(k,) one opaque 24-byte item per row of the C-contiguous (k, 3) float array ``points``, sharing its memory.
+
+    Copying whole rows by index (``points[rows] = other``) runs numpy's general
+    fancy-index machinery row by row; on this 1-D view the same copy moves one
+    24-byte item per index, about twice as fast. The numbers are not touched.
+    """
+    return points.view(np.dtype((np.void, 3 * points.itemsize))).reshape(-1)
+
+
 class _EdgePrices:
     """Collapse point and cost of every edge, kept from round to round.
 
@@ -345,7 +355,7 @@ class _EdgePrices:
         if len(self.edges):
             unchanged = np.flatnonzero(~(changed[self.edges[:, 0]] | changed[self.edges[:, 1]]))
             fresh = np.flatnonzero(~stale)               # indices and np.take: faster than boolean masks
-            points[fresh] = np.take(self.points, unchanged, axis=0)
+            _as_items(points)[fresh] = np.take(_as_items(self.points), unchanged)
             cost[fresh] = np.take(self.cost, unchanged)
             keep[fresh] = np.take(self.keep, unchanged)
         todo = np.flatnonzero(stale)
@@ -364,7 +374,8 @@ class _EdgePrices:
             kept[pinned] = np.where(b_on[pinned], b[pinned], a[pinned])
             p[pinned] = vertices[kept[pinned]]
             c[pinned] = _packed_cost(quadric[:, pinned], p[pinned].T)
-        points[todo], cost[todo], keep[todo] = p, c, kept
+        _as_items(points)[todo] = _as_items(p)
+        cost[todo], keep[todo] = c, kept
         self.edges, self.points, self.cost, self.keep = edges, points, cost, keep
         remove = np.where(keep == edges[:, 0], edges[:, 1], edges[:, 0])
         return points, cost, keep, remove
