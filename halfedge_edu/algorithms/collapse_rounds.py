@@ -609,7 +609,7 @@ def choose_round(
     known_owner, known_vertex = known_opposites if known_opposites is not None else (empty, empty)
     if priority is None:
         priority = np.arange(len(candidates), dtype=np.int64)   # candidates are cheapest first
-    cand_edges = edges[candidates]
+    cand_edges = np.take(edges, candidates, axis=0)                    # (k, 2)
     # independent_edges looks only at mesh edges between two ends of open candidates,
     # and the open candidates only get fewer from pass to pass: so cut the mesh's edges
     # to those once, instead of scanning all of them in every pass.
@@ -638,8 +638,9 @@ def choose_round(
         open_[which] = False
         # The geometric check last, for the fewest; a refused one just drops out.
         passed[which[~check_turned_faces(which)]] = False
-        chosen |= passed
-        ends = cand_edges[passed].reshape(-1)
+        accepted = which[passed[which]]
+        chosen[accepted] = True
+        ends = np.take(cand_edges, accepted, axis=0).reshape(-1)
         blocked[ends] = True
         if neighbours is None:
             at_end = np.zeros(n, dtype=bool)

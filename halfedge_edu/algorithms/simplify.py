@@ -552,7 +552,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
 
         keep_c, remove_c = keep[chosen], remove[chosen]
         vertices[keep_c] = points[chosen]
-        quadrics[:, keep_c] += quadrics[:, remove_c]
+        quadrics[:, keep_c] = np.take(quadrics, keep_c, axis=1) + np.take(quadrics, remove_c, axis=1)
         changed[:] = False
         changed[keep_c] = True
         changed[remove_c] = True
