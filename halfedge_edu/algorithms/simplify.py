@@ -343,10 +343,11 @@ class _EdgePrices:
     def __init__(self):
         self.edges = np.empty((0, 2), dtype=np.int64)
 
-    def update(self, edges, boundary_edge, boundary_vertex, vertices, quadrics, changed):
+    def update(self, edges, boundary_edge, boundary_vertex, vertices, quadrics, changed, positions):
         """Prices of ``edges`` (E, 2, key order): ``(points (E, 3), cost, keep, remove)``.
 
-        ``changed`` (n,) marks the vertices moved or merged away since the last call.
+        ``changed`` (n,) marks the vertices moved or merged away since the last call;
+        ``positions`` (3, n) are ``vertices`` by coordinate, for contiguous midpoints.
         """
         stale = changed[edges[:, 0]] | changed[edges[:, 1]]
         points = np.empty((len(edges), 3))
@@ -361,7 +362,7 @@ class _EdgePrices:
         todo = np.flatnonzero(stale)
         a, b = np.take(edges[:, 0], todo), np.take(edges[:, 1], todo)
         quadric = np.take(quadrics, a, axis=1) + np.take(quadrics, b, axis=1)        # (10, t)
-        midpoint = 0.5 * (np.take(vertices, a, axis=0) + np.take(vertices, b, axis=0)).T   # (3, t)
+        midpoint = 0.5 * (np.take(positions, a, axis=1) + np.take(positions, b, axis=1))   # (3, t)
         x, c = _packed_optimal_points(quadric, midpoint)
         p = np.ascontiguousarray(x.T)                                                 # (t, 3)
         kept = a
@@ -473,7 +474,9 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         boundary_vertex = np.zeros(n, dtype=bool)
         boundary_vertex[edges[boundary_edge].reshape(-1)] = True
         degree = np.diff(this_round.neighbours[0])                     # (n,) a row lists each neighbour once
-        points, cost, keep, remove = priced.update(edges, boundary_edge, boundary_vertex, vertices, quadrics, changed)
+        positions = np.ascontiguousarray(vertices.T)          # (3, n): one copy for the pricing and every check
+        points, cost, keep, remove = priced.update(edges, boundary_edge, boundary_vertex, vertices, quadrics, changed,
+                                                   positions)
 
         # Consider the cheapest edges only, and not many more than the faces still to go.
         faces_to_remove = len(faces) - target_faces
@@ -490,7 +493,6 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         spread = spread_ties_keys if len(edges) <= SPREAD_KEY_IDS else spread_ties
 
         faces_around, neighbours = this_round.faces_around, this_round.neighbours
-        positions = np.ascontiguousarray(vertices.T)          # (3, n): one copy for every check of the round
 
         def check_topology(indices: np.ndarray):
             chosen_edges = candidates[indices]
