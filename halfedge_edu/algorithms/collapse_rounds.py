@@ -31,11 +31,11 @@ from typing import Callable, NamedTuple
 
 import numpy as np
 
-from ..core.arrays import cross_rows, expand, sort_undirected
+from ..core.arrays import expand, sort_undirected
 
 __all__ = [
     "FOLD_ANGLE", "RoundTables", "choose_round", "collapse_topology_ok", "drop_folding_neighbours", "independent_edges",
-    "no_turned_faces", "one_collapse_per_opposite_vertex", "round_tables",
+    "no_turned_faces", "one_collapse_per_opposite_vertex", "round_tables", "spread_ties", "spread_ties_keys",
 ]
 
 
@@ -113,6 +113,7 @@ class _MovedFaces(NamedTuple):
 
     Each face is read from its moving corner: ``(moving corner, u, w)`` is the face's
     own counter-clockwise order, and ``u - w`` its far edge, the one that stays.
+    Vectors are stored by coordinate, (3, j): see :func:`_columns`.
     """
 
     owner: np.ndarray          # (j,) which collapse moves the face
@@ -120,8 +121,39 @@ class _MovedFaces(NamedTuple):
     position: np.ndarray       # (j,) 0, 1 or 2: which corner moves
     u: np.ndarray              # (j,) the corner after the moving one
     w: np.ndarray              # (j,) the corner after u
-    normal_before: np.ndarray  # (j, 3) cross products, length twice the area
-    normal_after: np.ndarray   # (j, 3)
+    normal_before: np.ndarray | None  # (3, j) cross products, length twice the area
+    normal_after: np.ndarray   # (3, j)
+
+
+# The checks below keep their vectors by coordinate, (3, j): three contiguous rows of j
+# numbers. Gathering positions that way (np.take along axis 1 of the (3, n) transposed
+# positions) costs what gathering (j, 3) rows does, but then every product and sum runs
+# over contiguous rows instead of columns strided three apart, and the cross products
+# need no stacking: the whole check runs about a third faster.
+
+def _columns(rows: np.ndarray) -> np.ndarray:
+    """(3, k) the coordinates of (k, 3) rows, each contiguous."""
+    return np.ascontiguousarray(rows.T)
+
+
+def _cross(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """(3, j) cross products of (3, j) vectors, as :func:`halfedge_edu.core.arrays.cross_rows` computes them."""
+    return np.array([u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]])
+
+
+def _dot(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """(j,) dot products of (3, j) vectors.
+
+    Summed in the order ``np.einsum("ij,ij->i", ...)`` sums three products on this
+    machine's numpy (first plus last, then the middle), which these checks used on (j, 3)
+    rows before: rounding is then the same to the last bit, and so is every verdict.
+    """
+    return (u[0] * v[0] + u[2] * v[2]) + u[1] * v[1]
+
+
+def _unit(vectors: np.ndarray) -> np.ndarray:
+    """(3, j) vectors scaled to length 1 (zero vectors stay zero)."""
+    return vectors / np.maximum(np.sqrt(_dot(vectors, vectors)), 1e-300)
 
 
 def _holds_any(columns: tuple[np.ndarray, np.ndarray, np.ndarray], *vertices: np.ndarray) -> np.ndarray:
@@ -143,11 +175,13 @@ def _keep_where(mask: np.ndarray, *arrays: np.ndarray) -> tuple[np.ndarray, ...]
     return tuple(np.take(array, rows, axis=0) for array in arrays)
 
 
-def _moved_faces(vertices, faces, faces_around, points, keep, remove) -> _MovedFaces:
+def _moved_faces(positions, faces, faces_around, points, keep, remove, *, before: bool = True) -> _MovedFaces:
     """Every face around ``keep[i]`` or ``remove[i]`` that survives collapse i, moved to ``points[i]``.
 
-    The two faces holding both ends vanish and are left out. Rows come in the order of
-    ``keep``'s faces, then ``remove``'s.
+    ``positions`` (3, n) are the vertex positions by coordinate (:func:`_columns`),
+    ``points`` (k, 3) the new points. The two faces holding both ends vanish and are
+    left out. Rows come in the order of ``keep``'s faces, then ``remove``'s. With
+    ``before=False`` the normals before the move are not computed (``None``).
     """
     k = len(keep)
     end = np.concatenate([keep, remove])                                # (2k,) the moving ends
@@ -158,26 +192,24 @@ def _moved_faces(vertices, faces, faces_around, points, keep, remove) -> _MovedF
     flat = faces.reshape(-1)
     first_corner = 3 * face
     c0, c1, c2 = (np.take(flat, first_corner + i) for i in range(3))   # (j,) each
-    gone = other[row]
+    gone = np.take(other, row)
     survives = np.flatnonzero((c0 != gone) & (c1 != gone) & (c2 != gone))   # faces holding both vanish
-    row, face, first_corner = row[survives], face[survives], first_corner[survives]
-    c0, c1 = c0[survives], c1[survives]
+    row, face, c0, c1, c2 = (np.take(array, survives) for array in (row, face, c0, c1, c2))
     mover = np.take(end, row)
     position = np.where(c0 == mover, 0, np.where(c1 == mover, 1, 2))
-    u = np.take(flat, first_corner + (position + 1) % 3)
-    w = np.take(flat, first_corner + (position + 2) % 3)
+    # The two corners after the mover, picked from the columns already gathered.
+    u = np.where(position == 0, c1, np.where(position == 1, c2, c0))
+    w = np.where(position == 0, c2, np.where(position == 1, c0, c1))
     owner = np.where(row < k, row, row - k)
     # (mover, u, w) is a rotation of the face's corners, so (u - x) x (w - x) is its
     # cross product for x at the mover's old place and at the new point.
-    at_u, at_w = np.take(vertices, u, axis=0), np.take(vertices, w, axis=0)
-    before, after = np.take(vertices, mover, axis=0), np.take(points, owner, axis=0)
-    return _MovedFaces(owner, face, position, u, w,
-                       cross_rows(at_u - before, at_w - before), cross_rows(at_u - after, at_w - after))
-
-
-def _unit(rows: np.ndarray) -> np.ndarray:
-    """(j, 3) rows scaled to length 1 (zero rows stay zero)."""
-    return rows / np.maximum(np.sqrt(np.einsum("ij,ij->i", rows, rows)), 1e-300)[:, None]
+    at_u, at_w = np.take(positions, u, axis=1), np.take(positions, w, axis=1)        # (3, j)
+    after = np.take(_columns(points), owner, axis=1)
+    normal_before = None
+    if before:
+        at_mover = np.take(positions, mover, axis=1)
+        normal_before = _cross(at_u - at_mover, at_w - at_mover)
+    return _MovedFaces(owner, face, position, u, w, normal_before, _cross(at_u - after, at_w - after))
 
 
 def no_turned_faces(
@@ -190,6 +222,7 @@ def no_turned_faces(
     max_normal_cos: float,
     *,
     face_across: np.ndarray | None = None,
+    positions: np.ndarray | None = None,
 ) -> np.ndarray:
     """(k,) True where moving both ends of edge ``keep[i] - remove[i]`` to ``points[i]``
     turns no face over and folds no pair of neighbouring faces.
@@ -213,17 +246,22 @@ def no_turned_faces(
     across each face's edge ``faces[f, k] -> faces[f, k + 1]``, -1 on the boundary. It
     names the unmoved neighbour of each moved face directly; without it the neighbour
     is searched for among the faces around the far edge's end, several times the work.
+
+    ``positions`` (3, n), if the caller has them: ``vertices`` by coordinate
+    (:func:`_columns`), so that several checks of one round share one copy.
     """
-    moved = _moved_faces(vertices, faces, faces_around, points, keep, remove)
+    if positions is None:
+        positions = _columns(vertices)                                  # (3, n)
+    moved = _moved_faces(positions, faces, faces_around, points, keep, remove)
     owner, position, u, w = moved.owner, moved.position, moved.u, moved.w
-    n_before, n_after = moved.normal_before, moved.normal_after
-    length_before = np.sqrt(np.einsum("ij,ij->i", n_before, n_before))
-    length_after = np.sqrt(np.einsum("ij,ij->i", n_after, n_after))
+    n_before, n_after = moved.normal_before, moved.normal_after         # (3, j) each
+    length_before = np.sqrt(_dot(n_before, n_before))
+    length_after = np.sqrt(_dot(n_after, n_after))
     had_normal = length_before > 1e-12 * length_after
-    cosine = np.einsum("ij,ij->i", n_before, n_after) / np.maximum(length_before * length_after, 1e-300)
+    cosine = _dot(n_before, n_after) / np.maximum(length_before * length_after, 1e-300)
     turned = had_normal & (cosine < max_normal_cos)
     turned |= length_after <= 1e-12 * np.maximum(length_before, 1e-300)
-    unit_after = _unit(n_after)
+    unit_after = n_after / np.maximum(length_after, 1e-300)            # _unit, with the length at hand
     fold_cos = float(np.cos(np.radians(FOLD_ANGLE)))
 
     # Moved faces that share an edge at the new vertex: after the collapse both faces
@@ -235,8 +273,8 @@ def no_turned_faces(
     sorted_w = key_w[by_w]
     at = np.minimum(np.searchsorted(sorted_w, key_u), max(len(sorted_w) - 1, 0))
     first = np.flatnonzero(np.take(sorted_w, at) == key_u) if len(sorted_w) else at
-    second = by_w[at[first]]
-    folded = np.einsum("ij,ij->i", unit_after[first], unit_after[second]) < fold_cos
+    second = np.take(by_w, np.take(at, first))
+    folded = _dot(np.take(unit_after, first, axis=1), np.take(unit_after, second, axis=1)) < fold_cos
     turned[first[folded]] = True
 
     # A moved face and the unmoved face across its far edge (u, w), the face holding
@@ -249,10 +287,12 @@ def no_turned_faces(
         neighbour = np.take(face_across.reshape(-1), 3 * moved.face + (position + 1) % 3)   # across u -> w
         row, neighbour = _keep_where(neighbour >= 0, np.arange(len(owner)), neighbour)
     b0, b1, b2 = (np.take(flat, 3 * neighbour + i) for i in range(3))
-    row, b0, b1, b2 = _keep_where(~_holds_any((b0, b1, b2), keep[owner[row]], remove[owner[row]]), row, b0, b1, b2)
-    at_b0 = np.take(vertices, b0, axis=0)
-    n_beyond = _unit(cross_rows(np.take(vertices, b1, axis=0) - at_b0, np.take(vertices, b2, axis=0) - at_b0))
-    folded = np.einsum("ij,ij->i", unit_after[row], n_beyond) < fold_cos
+    row_owner = np.take(owner, row)
+    row, b0, b1, b2 = _keep_where(~_holds_any((b0, b1, b2), np.take(keep, row_owner), np.take(remove, row_owner)),
+                                  row, b0, b1, b2)
+    at_b0 = np.take(positions, b0, axis=1)
+    n_beyond = _unit(_cross(np.take(positions, b1, axis=1) - at_b0, np.take(positions, b2, axis=1) - at_b0))
+    folded = _dot(np.take(unit_after, row, axis=1), n_beyond) < fold_cos
     turned[row[folded]] = True
 
     ok = np.ones(len(keep), dtype=bool)
@@ -296,21 +336,42 @@ def round_tables(faces: np.ndarray, n: int) -> RoundTables:
     next_vertex.reshape(-1, 3)[:, 2] = faces[:, 0]
     n_halfedges = len(corner_vertex)
     order, sorted_key = sort_undirected(corner_vertex, next_vertex, n)
-    new_run = np.ones(n_halfedges, dtype=bool)
-    new_run[1:] = sorted_key[1:] != sorted_key[:-1]
-    starts = np.flatnonzero(new_run)                                  # (E,) first use of each edge
-    count = np.diff(np.append(starts, n_halfedges))
-    keys = sorted_key[starts]
-    first = order[starts]
-    inner = count == 2
-    second = order[starts[inner] + 1]
-    across = np.full(n_halfedges, -1, dtype=np.int64)
-    across[first[inner]] = second // 3
-    across[second] = first[inner] // 3
-    boundary_halfedge = first[count == 1]
+    if _used_twice_each(sorted_key):
+        # A closed mesh: the sorted uses pair up, (0, 1), (2, 3), ..., so the runs need no search.
+        keys, first, second = sorted_key[0::2], order[0::2], order[1::2]
+        boundary = np.zeros(len(keys), dtype=bool)
+        boundary_halfedge = first[:0]
+        across = np.empty(n_halfedges, dtype=np.int64)
+        across[first] = second // 3
+        across[second] = first // 3
+    else:
+        new_run = np.ones(n_halfedges, dtype=bool)
+        new_run[1:] = sorted_key[1:] != sorted_key[:-1]
+        starts = np.flatnonzero(new_run)                              # (E,) first use of each edge
+        count = np.diff(np.append(starts, n_halfedges))
+        keys = sorted_key[starts]
+        first = order[starts]
+        inner = count == 2
+        second = order[starts[inner] + 1]
+        across = np.full(n_halfedges, -1, dtype=np.int64)
+        across[first[inner]] = second // 3
+        across[second] = first[inner] // 3
+        boundary = count == 1
+        boundary_halfedge = first[boundary]
     faces_around, neighbours = _vertex_rings(corner_vertex, next_vertex, boundary_halfedge, n)
-    return RoundTables(np.stack([keys // n, keys % n], axis=1), count == 1, boundary_halfedge,
+    low = keys // n
+    high = keys - low * n                                             # keys % n, without a second division
+    return RoundTables(np.stack([low, high], axis=1), boundary, boundary_halfedge,
                        across.reshape(-1, 3), faces_around, neighbours)
+
+
+def _used_twice_each(sorted_key: np.ndarray) -> bool:
+    """True if every key in ``sorted_key`` (ascending) occurs exactly twice: each pair (2i, 2i + 1) equal, and
+    each pair different from the next."""
+    if len(sorted_key) % 2:
+        return False
+    return bool(np.array_equal(sorted_key[0::2], sorted_key[1::2])
+                and not (sorted_key[1:-1:2] == sorted_key[2::2]).any())
 
 
 def _grouping_order(rows: np.ndarray, n: int) -> np.ndarray:
@@ -342,14 +403,18 @@ def _vertex_rings(corner_vertex: np.ndarray, next_vertex: np.ndarray, boundary_h
     vertex with two fans), and the neighbour at its clockwise end is missing; it is the
     tail of the boundary edge whose head is v, so each boundary edge adds one row.
     """
-    rows = np.concatenate([corner_vertex, next_vertex[boundary_halfedge]])     # (3m + b,) the head for the extra rows
-    values = np.concatenate([next_vertex, corner_vertex[boundary_halfedge]])   # ... and the tail as its neighbour
+    rows, values = corner_vertex, next_vertex
+    if len(boundary_halfedge):
+        rows = np.concatenate([rows, next_vertex[boundary_halfedge]])      # (3m + b,) the head for the extra rows
+        values = np.concatenate([values, corner_vertex[boundary_halfedge]])   # ... and the tail as its neighbour
     order = _grouping_order(rows, n)
     face_offsets = np.zeros(n + 1, dtype=np.int64)
     np.cumsum(np.bincount(corner_vertex, minlength=n), out=face_offsets[1:])
-    neighbour_offsets = np.zeros(n + 1, dtype=np.int64)
-    np.cumsum(np.bincount(rows, minlength=n), out=neighbour_offsets[1:])
-    corners = order[order < len(corner_vertex)]                       # the sort, without the extra rows
+    # A vertex has as many neighbours as faces, plus one on the boundary: count only the extra rows.
+    neighbour_offsets = face_offsets.copy()
+    neighbour_offsets[1:] += np.cumsum(np.bincount(next_vertex[boundary_halfedge], minlength=n))
+    # The sort, without the extra rows (a closed mesh has none).
+    corners = order[order < len(corner_vertex)] if len(boundary_halfedge) else order
     return (face_offsets, corners // 3), (neighbour_offsets, values[order])
 
 
@@ -370,7 +435,7 @@ def drop_folding_neighbours(vertices: np.ndarray, faces: np.ndarray, faces_aroun
     or, given ``face_across`` (from :func:`round_tables`), as moved faces whose
     neighbour across the far edge is moved too, without a sort.
     """
-    moved = _moved_faces(vertices, faces, faces_around, points, keep, remove)
+    moved = _moved_faces(_columns(vertices), faces, faces_around, points, keep, remove, before=False)
     if face_across is None:
         u, w = moved.u, moved.w
         key = np.minimum(u, w) * len(vertices) + np.maximum(u, w)      # each face's far edge
@@ -386,8 +451,9 @@ def drop_folding_neighbours(vertices: np.ndarray, faces: np.ndarray, faces_aroun
         second = other[first]
     apart = moved.owner[first] != moved.owner[second]
     first, second = first[apart], second[apart]
-    unit_after = _unit(moved.normal_after)
-    folded = np.einsum("ij,ij->i", unit_after[first], unit_after[second]) < float(np.cos(np.radians(FOLD_ANGLE)))
+    unit_after = _unit(moved.normal_after)                                # (3, j)
+    folded = (_dot(np.take(unit_after, first, axis=1), np.take(unit_after, second, axis=1))
+              < float(np.cos(np.radians(FOLD_ANGLE))))
     ok = np.ones(len(keep), dtype=bool)
     ok[moved.owner[first[folded]]] = False
     ok[moved.owner[second[folded]]] = False
@@ -463,10 +529,33 @@ def spread_ties(cost_class: np.ndarray, ids: np.ndarray) -> np.ndarray:
     """
     # A multiplicative hash (Knuth's, 64-bit; the product wraps around): neighbouring
     # numbers land far apart.
-    shuffle = ids.astype(np.uint64) * np.uint64(0x9E3779B97F4A7C15)
+    shuffle = ids.astype(np.uint64) * _KNUTH
     priority = np.empty(len(ids), dtype=np.int64)
     priority[np.lexsort((shuffle, cost_class))] = np.arange(len(ids))
     return priority
+
+
+_KNUTH = np.uint64(0x9E3779B97F4A7C15)     # 2**64 / golden ratio, odd: multiplying by it permutes 64-bit numbers
+
+#: The largest ids :func:`spread_ties_keys` takes (see there why).
+SPREAD_KEY_IDS = 2 ** 30
+
+
+def spread_ties_keys(cost_class: np.ndarray, ids: np.ndarray) -> np.ndarray:
+    """(k,) priorities in exactly :func:`spread_ties`' order, computed without a sort.
+
+    :func:`choose_round` only compares priorities, so it needs their order, not their
+    ranks: each key here is the class in the top 4 bits and the top 59 bits of the
+    64-bit hash below, ``class << 59 | hash >> 5``, which sorts as ``(class, hash)``,
+    the order :func:`spread_ties` ranks by, as long as no two hashes share their top 59
+    bits. They do not: two hashes differ by ``(i - j) * _KNUTH`` (mod 2**64), and for
+    every ``0 < |i - j| < 2**30`` that is at least ``2**33`` away from 0 (checked by
+    brute force; the golden ratio is the number worst approximated by fractions), so
+    the top 59 bits differ. ``cost_class`` must lie in 0-15 and ``ids`` in
+    ``[0, SPREAD_KEY_IDS)``; :func:`spread_ties` takes any.
+    """
+    shuffle = ids.astype(np.uint64) * _KNUTH
+    return (cost_class.astype(np.int64) << 59) | (shuffle >> np.uint64(5)).astype(np.int64)
 
 
 def choose_round(
@@ -520,14 +609,24 @@ def choose_round(
     known_owner, known_vertex = known_opposites if known_opposites is not None else (empty, empty)
     if priority is None:
         priority = np.arange(len(candidates), dtype=np.int64)   # candidates are cheapest first
-    cand_edges = edges[candidates]
+    cand_edges = np.take(edges, candidates, axis=0)                    # (k, 2)
+    # independent_edges looks only at mesh edges between two ends of open candidates,
+    # and the open candidates only get fewer from pass to pass: so cut the mesh's edges
+    # to those once, instead of scanning all of them in every pass.
+    open_end = np.zeros(n, dtype=bool)
+    open_end[cand_edges[open_].reshape(-1)] = True
+    ring_edges = np.take(edges, np.flatnonzero(open_end[edges[:, 0]] & open_end[edges[:, 1]]), axis=0)
+    # The open candidates' indices, kept from pass to pass: each pass only shortens the
+    # list, instead of sweeping every candidate's flags again.
+    still_open = np.flatnonzero(open_)
     for _ in range(passes):
-        open_ &= ~blocked[cand_edges[:, 0]] & ~blocked[cand_edges[:, 1]]
         open_[known_owner[opposite_used[known_vertex]]] = False
-        if not open_.any():
+        ends = np.take(cand_edges, still_open, axis=0)                  # (s, 2)
+        still_open = still_open[open_[still_open] & ~blocked[ends[:, 0]] & ~blocked[ends[:, 1]]]
+        if len(still_open) == 0:
             break
-        still_open = np.flatnonzero(open_)
-        picked = still_open[independent_edges(cand_edges[still_open], priority[still_open], edges, n)]
+        picked = still_open[independent_edges(np.take(cand_edges, still_open, axis=0), priority[still_open],
+                                              ring_edges, n)]
         ok, opposite_owner, opposite_vertex = check_topology(picked)
         known_owner = np.concatenate([known_owner, opposite_owner])     # repeats do no harm
         known_vertex = np.concatenate([known_vertex, opposite_vertex])
@@ -535,12 +634,13 @@ def choose_round(
         passed = np.zeros(len(candidates), dtype=bool)
         passed[picked[ok]] = True
         passed = one_collapse_per_opposite_vertex(passed, opposite_owner, opposite_vertex)
-        open_ &= ~passed
-        # The geometric check last, for the fewest; a refused one just drops out.
         which = np.flatnonzero(passed)
+        open_[which] = False
+        # The geometric check last, for the fewest; a refused one just drops out.
         passed[which[~check_turned_faces(which)]] = False
-        chosen |= passed
-        ends = cand_edges[passed].reshape(-1)
+        accepted = which[passed[which]]
+        chosen[accepted] = True
+        ends = np.take(cand_edges, accepted, axis=0).reshape(-1)
         blocked[ends] = True
         if neighbours is None:
             at_end = np.zeros(n, dtype=bool)

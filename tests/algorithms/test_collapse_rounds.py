@@ -9,8 +9,8 @@ from hypothesis import strategies as st
 import halfedge_edu as hx
 from halfedge_edu.algorithms.simplify import simplify_with_report
 from halfedge_edu.algorithms.collapse_rounds import (
-    choose_round, collapse_topology_ok, drop_folding_neighbours, independent_edges, no_turned_faces, round_tables,
-    spread_ties,
+    SPREAD_KEY_IDS, choose_round, collapse_topology_ok, drop_folding_neighbours, independent_edges, no_turned_faces,
+    round_tables, spread_ties, spread_ties_keys,
 )
 from halfedge_edu.core.arrays import compact, merge_vertices, unique_edges, vertex_faces, vertex_neighbours
 from tests import strategies as shapes
@@ -174,6 +174,9 @@ def test_the_face_across_table_gives_no_turned_faces_the_same_answers(case, seed
     tabled = no_turned_faces(vertices, faces, around, points, keep, remove, np.cos(np.radians(80.0)),
                              face_across=this_round.face_across)
     assert np.array_equal(plain, tabled)
+    by_coordinate = no_turned_faces(vertices, faces, around, points, keep, remove, np.cos(np.radians(80.0)),
+                                    face_across=this_round.face_across, positions=np.ascontiguousarray(vertices.T))
+    assert np.array_equal(plain, by_coordinate)
 
 
 @settings(max_examples=60)
@@ -208,6 +211,20 @@ def test_spread_ties_keeps_cost_classes_in_order_and_gives_distinct_ranks(k, cla
     by_priority = np.argsort(priority)
     assert np.all(np.diff(cost_class[by_priority]) >= 0)                  # never a dearer class first
     assert np.array_equal(priority, spread_ties(cost_class.copy(), ids.copy()))   # the same every time
+
+
+@given(k=st.integers(0, 3000), classes=st.integers(1, 16), seed=st.integers(0, 2**31),
+       near_the_top=st.booleans())
+def test_spread_ties_keys_order_candidates_exactly_as_spread_ties_ranks_them(k, classes, seed, near_the_top):
+    rng = np.random.default_rng(seed)
+    low = SPREAD_KEY_IDS - 10 * k - 1 if near_the_top else 0               # the largest ids it takes, too
+    ids = low + rng.permutation(10 * k + 1)[:k]
+    cost_class = rng.integers(0, classes, size=k)
+    keys = spread_ties_keys(cost_class, ids)
+    assert len(np.unique(keys)) == k                                       # distinct, as choose_round needs
+    ranks = np.empty(k, dtype=np.int64)
+    ranks[np.argsort(keys)] = np.arange(k)
+    assert np.array_equal(ranks, spread_ties(cost_class, ids))
 
 
 def test_spread_ties_shuffles_within_a_class():
