@@ -19,9 +19,9 @@ Each iteration runs four phases, then puts the vertices back on the input surfac
 the boundary, are feature lines, found once on the input and carried through every
 phase. A feature edge is split into two feature edges, collapses only along its line
 (never across from one line to another, never removing a corner), and is never
-flipped; in phase 4 a vertex on a line moves only along it (corners not at all), and in
-phase 5 it goes back onto the input's lines. With ``feature_angle=None`` only the
-boundary is kept, as described above.
+flipped; in phase 4 a vertex on a line moves only along it, on its own two edges
+(corners not at all), and in phase 5 it goes back onto its own line of the input.
+With ``feature_angle=None`` only the boundary is kept, as described above.
 
 Why 4/3 and 4/5: splitting an edge of length ``l`` leaves two of ``l/2``, which are
 nearer to L than ``l`` was exactly when ``l > 4/3 L``; 4/5 is Botsch and Kobbelt's
@@ -622,13 +622,35 @@ def tangential_smoothing(vertices: np.ndarray, faces: np.ndarray, features: Feat
         step[table.boundary_vertices(n)] = 0.0
         return vertices + fraction * step
     step[features.counts() > 0] = 0.0
+    smoothed = vertices + fraction * step
     on_line, before, after = features.line_neighbours()
     moving = ~features.corners[on_line]
-    on_line, before, after = on_line[moving], before[moving], after[moving]
-    direction = _unit(vertices[after] - vertices[before])                # (j, 3) the line's direction
-    towards = 0.5 * (vertices[before] + vertices[after]) - vertices[on_line]
-    step[on_line] = direction * np.einsum("ij,ij->i", towards, direction)[:, None]
-    return vertices + fraction * step
+    smoothed[on_line[moving]] = _slide_along_line(vertices, on_line[moving], before[moving], after[moving], fraction)
+    return smoothed
+
+
+def _slide_along_line(vertices: np.ndarray, on_line: np.ndarray, before: np.ndarray, after: np.ndarray,
+                      fraction: float) -> np.ndarray:
+    """(j, 3) where smoothing moves each vertex ``on_line`` (j,) along its line, between
+    its two neighbours ``before`` and ``after`` on it: towards the point halfway along
+    the path ``before -> vertex -> after``, ``fraction`` of the way.
+
+    The vertex walks along its own two edges, never along the chord from ``before`` to
+    ``after``: where the line turns at the vertex (by less than the feature angle, or
+    it would be a corner), the chord leaves the line, and the vertex would leave it too.
+    On a straight line both are the same move (to the midpoint of the neighbours).
+    """
+    point = vertices[on_line]                                            # (j, 3)
+    to_before, to_after = vertices[before] - point, vertices[after] - point
+    length_before = np.sqrt(np.einsum("ij,ij->i", to_before, to_before))  # (j,) the vertex's two edges
+    length_after = np.sqrt(np.einsum("ij,ij->i", to_after, to_after))
+    # Signed distance to walk along the path: > 0 towards ``after``, < 0 towards ``before``.
+    # The halfway point lies on the longer of the two edges, |walk| from the vertex.
+    walk = fraction * 0.5 * (length_after - length_before)
+    edge = np.where(walk[:, None] >= 0, to_after, to_before)             # (j, 3) the edge walked along
+    edge_length = np.where(walk >= 0, length_after, length_before)
+    share = np.abs(walk) / np.maximum(edge_length, 1e-300)               # (j,) at most 1/2 of that edge
+    return point + edge * share[:, None]
 
 
 # ----------------------------------------------------------------------------------------
@@ -685,7 +707,8 @@ def closest_points_on_segments(points: np.ndarray, a: np.ndarray, b: np.ndarray)
 class _Surface:
     """The input surface, ready for "nearest point" queries (a k-d tree of centroids, the
     triangles across each triangle's edges and around each vertex), with its boundary
-    polyline and, given ``features``, its crease polylines."""
+    polyline and, given ``features``, its feature lines (the boundary among them), each
+    line apart."""
 
     def __init__(self, vertices: np.ndarray, faces: np.ndarray, features: Features | None = None):
         from scipy.spatial import cKDTree
@@ -710,13 +733,15 @@ class _Surface:
         segments = tables.edges[tables.boundary]
         self.segments = vertices[segments]                             # (S, 2, 3)
         self.segment_tree = cKDTree(self.segments.mean(axis=1)) if len(segments) else None
-        if features is None:
-            creases = tables.edges[:0]
-        else:
-            keys = tables.edges[:, 0] * np.int64(len(vertices)) + tables.edges[:, 1]
-            creases = tables.edges[features.edge_mask(keys) & ~tables.boundary]
-        self.crease_segments = vertices[creases]                       # (C, 2, 3)
-        self.crease_tree = cKDTree(self.crease_segments.mean(axis=1)) if len(creases) else None
+        self.line_tree = None
+        if features is not None and len(features.edges):
+            self.line_segments = vertices[features.edges]              # (C, 2, 3)
+            self.line_numbers = features.lines                         # (C,)
+            # One tree for all lines, with the line's number as a fourth coordinate, far
+            # apart: a query carrying its own line's number finds that line's segments
+            # first (any other line is farther than the whole input is wide).
+            self.line_spacing = 4.0 * float(np.ptp(vertices, axis=0).max()) + 1.0
+            self.line_tree = cKDTree(self._with_line(self.line_segments.mean(axis=1), self.line_numbers))
 
     def project(self, points: np.ndarray) -> np.ndarray:
         """Nearest points on the input triangles.
@@ -766,22 +791,36 @@ class _Surface:
 
     def project_to_boundary(self, points: np.ndarray) -> np.ndarray:
         """Nearest points on the input's boundary polyline."""
-        return self._nearest_on_segments(points, self.segments, self.segment_tree)
+        found, gap, _ = self._nearest_on_segments(points, self.segments, self.segment_tree)
+        return found[np.arange(len(points)), np.argmin(gap, axis=1)]
 
-    def project_to_creases(self, points: np.ndarray) -> np.ndarray:
-        """Nearest points on the input's crease polylines (feature edges off the boundary)."""
-        return self._nearest_on_segments(points, self.crease_segments, self.crease_tree)
+    def _with_line(self, points: np.ndarray, line_numbers: np.ndarray) -> np.ndarray:
+        """(P, 4) the points with their line's number, times ``line_spacing``, as a fourth coordinate."""
+        return np.column_stack([points, self.line_spacing * line_numbers])
+
+    def project_to_lines(self, points: np.ndarray, line_numbers: np.ndarray) -> np.ndarray:
+        """Nearest points on the input's feature lines, each point (P, 3) on its own line
+        ``line_numbers`` (P,): a vertex goes back onto the line it was on, never onto
+        another one nearby (which would pull an edge of its line across the surface)."""
+        found, gap, near = self._nearest_on_segments(points, self.line_segments, self.line_tree,
+                                                     self._with_line(points, line_numbers))
+        # Of the 4 segments nearest, only those of the point's own line count (the
+        # nearest one always is: other lines are line_spacing away in the tree).
+        gap[self.line_numbers[near] != line_numbers[:, None]] = np.inf
+        return found[np.arange(len(points)), np.argmin(gap, axis=1)]
 
     @staticmethod
-    def _nearest_on_segments(points, segments, tree):
-        """The nearest point on the 4 segments whose midpoints are nearest."""
+    def _nearest_on_segments(points, segments, tree, keys=None):
+        """The nearest point on each of the (up to) 4 segments whose midpoints are nearest
+        (to ``keys``, the points' tree coordinates, if given): ``(points (P, k, 3),
+        squared distances (P, k), the segments (P, k))``."""
         k = min(4, tree.n)
-        _, near = tree.query(points, k=k)
-        near = near.reshape(-1)                                        # (P k,)
+        _, near = tree.query(points if keys is None else keys, k=k)
+        near = near.reshape(len(points), k)                            # (P, k)
         repeated = np.repeat(points, k, axis=0)
-        found = closest_points_on_segments(repeated, segments[near, 0], segments[near, 1]).reshape(len(points), k, 3)
-        gap = np.einsum("ikj,ikj->ik", found - points[:, None], found - points[:, None])
-        return found[np.arange(len(points)), np.argmin(gap, axis=1)]
+        flat = near.reshape(-1)
+        found = closest_points_on_segments(repeated, segments[flat, 0], segments[flat, 1]).reshape(len(points), k, 3)
+        return found, np.einsum("ikj,ikj->ik", found - points[:, None], found - points[:, None]), near
 
 
 def _nearly_flat(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
@@ -801,36 +840,41 @@ def _project(vertices, faces, surface: _Surface, features: Features | None, on_b
     """Put every vertex on the nearest point of the input surface (boundary vertices on
     its boundary), except where that would flatten a face.
 
-    With ``features``, vertices on a crease line go onto the input's crease lines and
-    corners stay exactly where they are.
+    With ``features``, a vertex on a feature line (a crease or the boundary) goes onto
+    its own line of the input, and corners stay exactly where they are.
 
     Where the input folds (a crease, a thin part), two corners of one face can land on
     the same nearest point, or three on one line, and the face would be left with no
-    area. The corners of such a face keep their positions from before the projection;
-    that may flatten a face next to them in turn, so this repeats until no face is
-    flattened (each pass puts back at least one more vertex, so it ends). ``on_boundary``
-    (n,): the boundary vertices (not changed).
+    area. Corners of such a face are put back where they were before the projection:
+    first only those off the lines, which need not be on anything exactly, and only if
+    a face has none of those left to put back, its corners on lines (which smoothing
+    may have moved off their line where it turns). Putting back may flatten a face next
+    to them in turn, so this repeats until no face is flattened (each pass puts back at
+    least one more vertex, so it ends). ``on_boundary`` (n,): the boundary vertices.
     """
-    on_boundary = on_boundary.copy()
     result = vertices.copy()
     if features is None:
+        on_line = on_boundary
         inside = np.flatnonzero(~on_boundary)
+        if on_boundary.any() and surface.segment_tree is not None:
+            result[on_boundary] = surface.project_to_boundary(vertices[on_boundary])
     else:
         on_line = features.counts() > 0
         inside = np.flatnonzero(~on_line)
-        on_crease = np.flatnonzero(on_line & ~on_boundary & ~features.corners)
-        on_boundary &= ~features.corners
-        if len(on_crease) and surface.crease_tree is not None:
-            result[on_crease] = surface.project_to_creases(vertices[on_crease])
+        line_of = features.vertex_lines()                              # (n,) -1 off the lines and at corners
+        moving = np.flatnonzero(line_of >= 0)
+        if len(moving) and surface.line_tree is not None:
+            result[moving] = surface.project_to_lines(vertices[moving], line_of[moving])
     result[inside] = surface.project(vertices[inside])
-    if on_boundary.any() and surface.segment_tree is not None:
-        result[on_boundary] = surface.project_to_boundary(vertices[on_boundary])
     while True:
         flat = np.flatnonzero(_nearly_flat(result, faces))
         flattened = flat[~_nearly_flat(vertices, faces[flat])]        # flat now, and not before (few)
         if len(flattened) == 0:
             return result
-        put_back = faces[flattened].reshape(-1)
+        corners = faces[flattened]                                     # (k, 3)
+        moved = (result[corners] != vertices[corners]).any(axis=2)     # (k, 3) not put back yet
+        loose = moved & ~on_line[corners]                              # (k, 3) and off the lines
+        put_back = corners[np.where(loose.any(axis=1)[:, None], loose, moved)]
         result[put_back] = vertices[put_back]
 
 
