@@ -13,7 +13,10 @@ Each iteration runs four phases, then puts the vertices back on the input surfac
    shrinking. Boundary vertices stay put.
 5. **Project** every vertex back onto the input surface (boundary vertices onto the
    input's boundary polyline): splitting at chord midpoints and smoothing in a plane
-   both step a little off a curved surface.
+   both step a little off a curved surface. A vertex that lands within
+   ``SNAP_TO_INPUT_VERTEX * L`` of an input vertex goes onto it: the input's vertices
+   are the points where its surface was measured (a scan) or modelled, and a triangle
+   resting on them follows it more closely than one whose corners lie between them.
 
 **Features** (``feature_angle``, :mod:`.features`): creases sharper than the angle, and
 the boundary, are feature lines, found once on the input and carried through every
@@ -87,6 +90,12 @@ MAX_FLIP_DIHEDRAL = 20.0
 #: A face counts as flat (no area) when twice its area is at most this times its
 #: squared longest edge; the projection never leaves a face flat that was not.
 MIN_RELATIVE_AREA = 1e-10
+#: The projection puts a vertex (off the lines) onto an input vertex within this times
+#: L of the point it found (0 turns it off). On the bunny, a scan, at L = its mean edge
+#: length, the mean distance to the input (at the vertices of both) falls from 0.0088 L
+#: to 0.0081 L with the full smoothing step and from 0.0073 L to 0.0054 L with half of it,
+#: while the edge-length spread grows from 0.136 to 0.140 and from 0.150 to 0.165.
+SNAP_TO_INPUT_VERTEX = 0.1
 
 PHASES = ("split", "collapse", "flip", "smooth", "project")
 
@@ -733,6 +742,14 @@ class _Surface:
         segments = tables.edges[tables.boundary]
         self.segments = vertices[segments]                             # (S, 2, 3)
         self.segment_tree = cKDTree(self.segments.mean(axis=1)) if len(segments) else None
+        # The input's vertices off its lines (off its boundary, without features): where
+        # the projection may put a vertex exactly (snap_to_vertices).
+        on_line = np.zeros(len(vertices), dtype=bool)
+        on_line[segments.reshape(-1)] = True
+        if features is not None:
+            on_line |= features.counts() > 0
+        self.rest_points = vertices[~on_line]                          # (R, 3)
+        self.rest_tree = cKDTree(self.rest_points) if len(self.rest_points) else None
         self.line_tree = None
         if features is not None and len(features.edges):
             self.line_segments = vertices[features.edges]              # (C, 2, 3)
@@ -766,6 +783,23 @@ class _Surface:
             slot = self.fan_offsets[corner][:, None] + np.arange(int(fan.max())) % fan[:, None]
             found[rows] = self._nearest_of(points[rows], self.fans[slot])[0]
         return found
+
+    def snap_to_vertices(self, points: np.ndarray, radius: float) -> np.ndarray:
+        """The points (P, 3), each moved onto the nearest input vertex off the lines if it
+        is within ``radius``; where several points are near one input vertex, only the
+        nearest of them goes onto it (two vertices on one point would make a face flat,
+        or touch the surface to itself)."""
+        if self.rest_tree is None or radius <= 0.0 or len(points) == 0:
+            return points
+        distance, nearest = self.rest_tree.query(points, distance_upper_bound=radius)   # inf: none near
+        close = np.flatnonzero(np.isfinite(distance))
+        order = close[np.lexsort((distance[close], nearest[close]))]   # by input vertex, nearest first
+        claims = nearest[order]
+        first = np.ones(len(order), dtype=bool)
+        first[1:] = claims[1:] != claims[:-1]
+        snapped = points.copy()
+        snapped[order[first]] = self.rest_points[claims[first]]
+        return snapped
 
     def _nearest_of(self, points: np.ndarray, near: np.ndarray) -> tuple[np.ndarray, ...]:
         """The nearest point to each point on its candidate triangles ``near`` (P, k):
@@ -836,9 +870,12 @@ def _nearly_flat(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     return np.einsum("ij,ij->i", cross, cross) <= (MIN_RELATIVE_AREA * longest) ** 2
 
 
-def _project(vertices, faces, surface: _Surface, features: Features | None, on_boundary: np.ndarray) -> np.ndarray:
+def _project(vertices, faces, surface: _Surface, features: Features | None, on_boundary: np.ndarray,
+             snap_radius: float = 0.0) -> np.ndarray:
     """Put every vertex on the nearest point of the input surface (boundary vertices on
-    its boundary), except where that would flatten a face.
+    its boundary), except where that would flatten a face; a vertex off the lines whose
+    nearest point is within ``snap_radius`` of an input vertex goes onto that vertex
+    (:meth:`_Surface.snap_to_vertices`).
 
     With ``features``, a vertex on a feature line (a crease or the boundary) goes onto
     its own line of the input, and corners stay exactly where they are.
@@ -865,7 +902,7 @@ def _project(vertices, faces, surface: _Surface, features: Features | None, on_b
         moving = np.flatnonzero(line_of >= 0)
         if len(moving) and surface.line_tree is not None:
             result[moving] = surface.project_to_lines(vertices[moving], line_of[moving])
-    result[inside] = surface.project(vertices[inside])
+    result[inside] = surface.snap_to_vertices(surface.project(vertices[inside]), snap_radius)
     while True:
         flat = np.flatnonzero(_nearly_flat(result, faces))
         flattened = flat[~_nearly_flat(vertices, faces[flat])]        # flat now, and not before (few)
@@ -921,7 +958,8 @@ def _phases(mesh: HalfedgeMesh, target_length, iterations, project, progress,
         vertices = tangential_smoothing(vertices, faces, features, smoothing_step, table=table)
         yield iteration + 1, "smooth", vertices, faces, features
         if surface is not None:
-            vertices = _project(vertices, faces, surface, features, table.boundary_vertices(len(vertices)))
+            vertices = _project(vertices, faces, surface, features, table.boundary_vertices(len(vertices)),
+                                SNAP_TO_INPUT_VERTEX * target_length)
             yield iteration + 1, "project", vertices, faces, features
 
 
@@ -942,12 +980,14 @@ def remesh(
         target_length: the edge length ``L`` to aim for; default: the input's mean edge length.
         iterations: how many rounds of split / collapse / flip / smooth / project.
         project: put the vertices back on the input surface after each smoothing (the
-            boundary ones on the input's boundary polyline, the ones on a crease on the
-            input's creases). Each vertex goes to the nearest point of a few input
-            triangles near it (a k-d tree of centroids, then the triangles beside the
-            nearest; of the four segments nearest, on a line), which is the true
-            nearest point almost always. Without it, midpoints of splits and
-            tangential moves drift slightly inside curved regions.
+            boundary ones on the input's boundary polyline, the ones on a feature line
+            on that line of the input). Each vertex goes to the nearest point of a few
+            input triangles near it (a k-d tree of centroids, then the triangles beside
+            the nearest; of the four segments of its line nearest, on a line), which is
+            the true nearest point almost always; one that lands within
+            ``SNAP_TO_INPUT_VERTEX * L`` (0.1 L) of an input vertex off the lines goes
+            onto that vertex. Without it, midpoints of splits and tangential moves drift
+            slightly inside curved regions.
         progress: show a progress bar (tqdm) over the iterations.
         feature_angle: keep the creases: edges whose two faces' normals differ by more
             than this many degrees (default :data:`~halfedge_edu.algorithms.features.DEFAULT_FEATURE_ANGLE`),
@@ -957,9 +997,11 @@ def remesh(
         smoothing_step: how much of the tangential step to its neighbours' centroid each
             vertex takes per smoothing phase, from 0 to 1. 1 (Botsch and Kobbelt) makes
             the most even triangles; smaller values leave the vertices nearer where
-            splits and collapses put them, which follows a noisy input (a scan) more
-            closely at the price of less even triangles (0.25 is about PyMeshLab's
-            balance on the bunny).
+            splits and collapses put them, and nearer the input's vertices (where the
+            projection puts those within ``SNAP_TO_INPUT_VERTEX * L``), which follows a
+            noisy input (a scan) more closely at the price of less even triangles (0.5:
+            PyMeshLab's mean distance to the bunny, with more even triangles than
+            PyMeshLab's).
 
     Returns:
         A new :class:`HalfedgeMesh`. For the mesh after every phase, call

@@ -11,7 +11,8 @@ from hypothesis import example, given
 from hypothesis import strategies as st
 
 import halfedge_edu as hx
-from halfedge_edu.algorithms.features import DEFAULT_FEATURE_ANGLE, Features, detect_features, feature_arrays, number_lines
+from halfedge_edu.algorithms.features import (DEFAULT_FEATURE_ANGLE, Features, detect_features, feature_arrays,
+                                              number_lines)
 from halfedge_edu.cli import main
 from halfedge_edu.core.arrays import edge_table
 from tests import strategies as shapes
@@ -93,7 +94,8 @@ def test_features_follow_a_split_a_merge_and_a_compaction():
     renumbered = merged.renumber(np.array([0, 1, 2, 3]))
     assert renumbered.edges.tolist() == [[0, 1], [1, 2]] and renumbered.corners.tolist() == [True, False, True, False]
     assert renumbered.vertex_lines().tolist() == [-1, 7, -1, -1]      # corners and vertex 3 are on no single line
-    assert Features(np.array([[0, 1], [1, 2]]), np.zeros(4, bool), np.zeros(2, int)).line_neighbours()[0].tolist() == [1]
+    chain = Features(np.array([[0, 1], [1, 2]]), np.zeros(4, bool), np.zeros(2, int))
+    assert chain.line_neighbours()[0].tolist() == [1]
 
 
 def test_each_line_runs_from_corner_to_corner_and_has_its_own_number():
