@@ -743,13 +743,12 @@ class _Surface:
         self.segments = vertices[segments]                             # (S, 2, 3)
         self.segment_tree = cKDTree(self.segments.mean(axis=1)) if len(segments) else None
         # The input's vertices off its lines (off its boundary, without features): where
-        # the projection may put a vertex exactly (snap_to_vertices).
-        on_line = np.zeros(len(vertices), dtype=bool)
-        on_line[segments.reshape(-1)] = True
+        # the projection may put a vertex exactly (see project's snap_radius).
+        self.vertices = vertices
+        self.rests = np.ones(len(vertices), dtype=bool)                # (n,)
+        self.rests[segments.reshape(-1)] = False
         if features is not None:
-            on_line |= features.counts() > 0
-        self.rest_points = vertices[~on_line]                          # (R, 3)
-        self.rest_tree = cKDTree(self.rest_points) if len(self.rest_points) else None
+            self.rests &= features.counts() == 0
         self.line_tree = None
         if features is not None and len(features.edges):
             self.line_segments = vertices[features.edges]              # (C, 2, 3)
@@ -760,8 +759,10 @@ class _Surface:
             self.line_spacing = 4.0 * float(np.ptp(vertices, axis=0).max()) + 1.0
             self.line_tree = cKDTree(self._with_line(self.line_segments.mean(axis=1), self.line_numbers))
 
-    def project(self, points: np.ndarray) -> np.ndarray:
-        """Nearest points on the input triangles.
+    def project(self, points: np.ndarray, snap_radius: float = 0.0) -> np.ndarray:
+        """Nearest points on the input triangles; with ``snap_radius``, a point found
+        within that distance of a corner of its triangle off the lines goes onto that
+        corner (:meth:`_rest_on_corners`).
 
         First among the triangle whose centroid is nearest and the three across its
         edges. Where the point found lies on the rim of its triangle (an edge or a
@@ -781,24 +782,34 @@ class _Surface:
             corner = self.face_corners[face[rows], np.argmax(weights, axis=1)]
             fan = self.degree[corner]                                  # (r,)
             slot = self.fan_offsets[corner][:, None] + np.arange(int(fan.max())) % fan[:, None]
-            found[rows] = self._nearest_of(points[rows], self.fans[slot])[0]
+            found[rows], face[rows] = self._nearest_of(points[rows], self.fans[slot])[:2]
+        if snap_radius > 0.0:
+            found = self._rest_on_corners(found, face, snap_radius)
         return found
 
-    def snap_to_vertices(self, points: np.ndarray, radius: float) -> np.ndarray:
-        """The points (P, 3), each moved onto the nearest input vertex off the lines if it
-        is within ``radius``; where several points are near one input vertex, only the
-        nearest of them goes onto it (two vertices on one point would make a face flat,
-        or touch the surface to itself)."""
-        if self.rest_tree is None or radius <= 0.0 or len(points) == 0:
-            return points
-        distance, nearest = self.rest_tree.query(points, distance_upper_bound=radius)   # inf: none near
-        close = np.flatnonzero(np.isfinite(distance))
-        order = close[np.lexsort((distance[close], nearest[close]))]   # by input vertex, nearest first
-        claims = nearest[order]
+    def _rest_on_corners(self, found: np.ndarray, face: np.ndarray, radius: float) -> np.ndarray:
+        """The points ``found`` (P, 3) on the triangles ``face`` (P,), each moved onto the
+        nearest corner of its triangle if that corner is off the lines and within
+        ``radius``. Where several points are near one corner, only the nearest of them
+        goes onto it: two vertices on one point would make a face flat, or make the
+        surface touch itself.
+
+        The corners of the point's own triangle stand in for all input vertices: a point
+        that near a vertex lies on one of its triangles (no k-d tree query needed).
+        """
+        corners = self.face_corners[face]                              # (P, 3)
+        gap = np.take(self.vertices, corners, axis=0) - found[:, None, :]
+        distance = np.einsum("pkj,pkj->pk", gap, gap)                  # (P, 3) squared
+        which = np.argmin(distance, axis=1)
+        rows = np.arange(len(found))
+        corner, distance = corners[rows, which], distance[rows, which]
+        close = np.flatnonzero((distance <= radius * radius) & self.rests[corner])
+        order = close[np.lexsort((distance[close], corner[close]))]    # by corner, nearest first
+        claims = corner[order]
         first = np.ones(len(order), dtype=bool)
         first[1:] = claims[1:] != claims[:-1]
-        snapped = points.copy()
-        snapped[order[first]] = self.rest_points[claims[first]]
+        snapped = found.copy()
+        snapped[order[first]] = self.vertices[claims[first]]
         return snapped
 
     def _nearest_of(self, points: np.ndarray, near: np.ndarray) -> tuple[np.ndarray, ...]:
@@ -875,7 +886,7 @@ def _project(vertices, faces, surface: _Surface, features: Features | None, on_b
     """Put every vertex on the nearest point of the input surface (boundary vertices on
     its boundary), except where that would flatten a face; a vertex off the lines whose
     nearest point is within ``snap_radius`` of an input vertex goes onto that vertex
-    (:meth:`_Surface.snap_to_vertices`).
+    (see :meth:`_Surface.project`).
 
     With ``features``, a vertex on a feature line (a crease or the boundary) goes onto
     its own line of the input, and corners stay exactly where they are.
@@ -902,7 +913,7 @@ def _project(vertices, faces, surface: _Surface, features: Features | None, on_b
         moving = np.flatnonzero(line_of >= 0)
         if len(moving) and surface.line_tree is not None:
             result[moving] = surface.project_to_lines(vertices[moving], line_of[moving])
-    result[inside] = surface.snap_to_vertices(surface.project(vertices[inside]), snap_radius)
+    result[inside] = surface.project(vertices[inside], snap_radius)
     while True:
         flat = np.flatnonzero(_nearly_flat(result, faces))
         flattened = flat[~_nearly_flat(vertices, faces[flat])]        # flat now, and not before (few)

@@ -337,11 +337,12 @@ def test_snapping_puts_a_near_point_on_the_input_vertex_and_only_one_point_per_v
     vertices = vertices.astype(float)
     surface = remesh_module._Surface(vertices, faces)
     points = np.array([[1.05, 1.0, 0.0], [1.0, 1.02, 0.0], [0.5, 0.5, 0.0], [0.05, 0.0, 0.0]])
-    snapped = surface.snap_to_vertices(points, 0.1)
+    snapped = surface.project(points, snap_radius=0.1)
     # The nearer of the first two goes onto the centre; the other stays, and so do the
     # point far from any vertex and the one near a boundary vertex (on the outline).
-    assert snapped.tolist() == [[1.05, 1.0, 0.0], [1.0, 1.0, 0.0], [0.5, 0.5, 0.0], [0.05, 0.0, 0.0]]
-    assert np.array_equal(surface.snap_to_vertices(points, 0.0), points)
+    assert np.allclose(snapped, [[1.05, 1.0, 0.0], [1.0, 1.0, 0.0], [0.5, 0.5, 0.0], [0.05, 0.0, 0.0]], rtol=0, atol=1e-15)
+    assert np.array_equal(snapped[1], vertices[4])                   # exactly on it
+    assert np.allclose(surface.project(points), points, rtol=0, atol=1e-15)   # without a radius: the nearest points
 
 
 def noisy_sphere(seed: int = 0) -> hx.HalfedgeMesh:
