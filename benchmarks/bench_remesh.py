@@ -9,9 +9,10 @@ length L (the input's mean edge length) and 5 iterations; each time is the media
 ``--repeats`` runs:
 * halfedge_edu: ``remesh`` with ``feature_angle=30`` (creases sharper than 30 degrees and
   the boundary kept; PyMeshLab's default angle, so both keep the same creases), once
-  with the full tangential smoothing step (the default) and once ("halfedge_edu 0.25")
-  with ``smoothing_step=0.25``, which leaves vertices nearer the input's: closer to a
-  noisy scan, less even triangles (about PyMeshLab's balance);
+  with the full tangential smoothing step (the default: the most even triangles) and
+  once ("halfedge_edu 0.5") with ``smoothing_step=0.5``, which leaves vertices nearer
+  the input's, and so more of them within ``SNAP_TO_INPUT_VERTEX * L`` of one, where
+  the projection puts them: closer to a noisy scan, less even triangles;
 * PyMeshLab: ``meshing_isotropic_explicit_remeshing`` (VCG, C++, one edge at a time),
   its defaults otherwise (``featuredeg=30``, and ``checksurfdist``: no operation may
   move the surface more than 1% of the bounding box diagonal);
@@ -55,7 +56,7 @@ SAMPLES = 100_000
 
 
 #: The shorter smoothing step of the second halfedge_edu row.
-SHORT_STEP = 0.25
+SHORT_STEP = 0.5
 
 
 def run_ours(mesh, length, smoothing_step=1.0):

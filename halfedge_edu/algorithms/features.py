@@ -8,11 +8,13 @@ feature edges (where three creases of a cube meet, or where a crease ends), or o
 where its line turns by more than the threshold (the corner of a square hole): it has
 no single straight line to move along, so it stays exactly where it is.
 
-Feature edges chain into **feature lines**. Remeshing (Botsch and Kobbelt 2004, as in
+Feature edges chain into **feature lines**, from corner to corner (or around a loop
+without corners), each with a number. Remeshing (Botsch and Kobbelt 2004, as in
 pmp-library's ``uniform_remeshing``) keeps them by four rules: a feature edge is never
 flipped; a collapse never moves a feature vertex off its line; a split of a feature
 edge makes two feature halves; feature vertices are smoothed only along their line and
-projected back onto the input's feature lines.
+projected back onto their own line of the input (by its number: not onto another line
+that happens to pass nearer).
 
 Everything here works on plain arrays, as :mod:`.remesh` does: :class:`Features` holds
 the feature edges as vertex pairs (k, 2) and the corners as a mask (n,), and has one
@@ -34,7 +36,7 @@ from ..core.arrays import EdgeTable, csr, edge_table, face_cross
 from ..core.mesh import HalfedgeMesh
 from .arguments import check_mesh, real_number
 
-__all__ = ["DEFAULT_FEATURE_ANGLE", "Features", "detect_features", "feature_arrays"]
+__all__ = ["DEFAULT_FEATURE_ANGLE", "Features", "detect_features", "feature_arrays", "number_lines"]
 
 #: Edges whose faces meet at more than this many degrees (between the normals) are
 #: creases by default. PyMeshLab's isotropic remeshing uses 30, CGAL's examples 60; 45
@@ -48,9 +50,13 @@ def _keys(pairs: np.ndarray, n: int) -> np.ndarray:
     return np.minimum(pairs[:, 0], pairs[:, 1]) * np.int64(n) + np.maximum(pairs[:, 0], pairs[:, 1])
 
 
-def _sorted_unique(pairs: np.ndarray) -> np.ndarray:
-    """Rows ``low, high`` without repeats, sorted (the form :class:`Features` keeps)."""
-    return np.unique(pairs, axis=0) if len(pairs) else pairs.reshape(0, 2)
+def _sorted_unique(pairs: np.ndarray, lines: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Rows ``low, high`` without repeats, sorted (the form :class:`Features` keeps), and
+    the line number (k,) of each kept row."""
+    if len(pairs) == 0:
+        return pairs.reshape(0, 2), lines
+    unique, first = np.unique(pairs, axis=0, return_index=True)
+    return unique, lines[first]
 
 
 def _unit_rows(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -61,7 +67,8 @@ def _unit_rows(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 class Features(NamedTuple):
-    """The feature edges of a face array, and the corners among their vertices.
+    """The feature edges of a face array, the corners among their vertices, and which
+    line each edge belongs to.
 
     ``edges`` (k, 2): each feature edge as ``low, high`` vertex indices, rows sorted.
     ``corners`` (n,): True for the vertices that must not move at all: those with other
@@ -69,10 +76,14 @@ class Features(NamedTuple):
     angle (the corner of a square hole has two boundary edges, at 90 degrees). Corners
     are found once, on the input, and carried along: a vertex made later (a midpoint)
     is never a corner, and no collapse removes one.
+    ``lines`` (k,): the number of the line each edge lies on (:func:`number_lines`): the
+    edges of one chain between corners share it. Halves of a split edge keep their
+    edge's number, so a vertex that is not a corner always has two edges of one line.
     """
 
     edges: np.ndarray
     corners: np.ndarray
+    lines: np.ndarray
 
     def counts(self) -> np.ndarray:
         """(n,) how many feature edges each vertex has (0: not a feature vertex)."""
@@ -92,6 +103,15 @@ class Features(NamedTuple):
             at = np.minimum(np.searchsorted(keys, feature_keys), len(keys) - 1)
             mask[at[keys[at] == feature_keys]] = True
         return mask
+
+    def vertex_lines(self) -> np.ndarray:
+        """(n,) the number of the line through each vertex, -1 where there is none or
+        more than one (off the lines, and at corners where lines meet)."""
+        line_of = np.full(len(self.corners), -1, dtype=np.int64)
+        line_of[self.edges[:, 0]] = self.lines
+        line_of[self.edges[:, 1]] = self.lines
+        line_of[self.corners] = -1
+        return line_of
 
     def line_neighbours(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The two neighbours along its line of every vertex with exactly two feature edges.
@@ -114,13 +134,15 @@ class Features(NamedTuple):
         n = len(self.corners)
         corners = np.concatenate([self.corners, np.zeros(int((midpoint_of >= 0).sum()), dtype=bool)])
         if len(self.edges) == 0:
-            return Features(self.edges, corners)
+            return Features(self.edges, corners, self.lines)
         mid = midpoint_of[np.searchsorted(table.keys, _keys(self.edges, n))]
         cut = mid >= 0
         halves = np.concatenate([np.stack([self.edges[cut, 0], mid[cut]], axis=1),
                                  np.stack([mid[cut], self.edges[cut, 1]], axis=1)])
         halves.sort(axis=1)
-        return Features(_sorted_unique(np.concatenate([self.edges[~cut], halves])), corners)
+        lines = np.concatenate([self.lines[~cut], self.lines[cut], self.lines[cut]])
+        edges, lines = _sorted_unique(np.concatenate([self.edges[~cut], halves]), lines)
+        return Features(edges, corners, lines)
 
     def merge(self, remove: np.ndarray, keep: np.ndarray) -> "Features":
         """After merging vertex ``remove[i]`` into ``keep[i]`` (collapses): a collapsed
@@ -129,16 +151,17 @@ class Features(NamedTuple):
         relabel = np.arange(len(self.corners))
         relabel[remove] = keep
         edges = relabel[self.edges]
-        edges = edges[edges[:, 0] != edges[:, 1]]
-        edges.sort(axis=1)
-        return Features(_sorted_unique(edges), self.corners)
+        kept = edges[:, 0] != edges[:, 1]
+        edges = np.sort(edges[kept], axis=1)
+        edges, lines = _sorted_unique(edges, self.lines[kept])
+        return Features(edges, self.corners, lines)
 
     def renumber(self, kept: np.ndarray) -> "Features":
         """After :func:`halfedge_edu.core.arrays.compact` kept the vertices ``kept`` (old
         indices, ascending): the same features in the new numbering."""
         new_index = np.full(len(self.corners), -1, dtype=np.int64)
         new_index[kept] = np.arange(len(kept))
-        return Features(new_index[self.edges], self.corners[kept])
+        return Features(new_index[self.edges], self.corners[kept], self.lines)
 
 
 def feature_arrays(vertices: np.ndarray, faces: np.ndarray, feature_angle: float) -> Features:
@@ -161,11 +184,33 @@ def feature_arrays(vertices: np.ndarray, faces: np.ndarray, feature_angle: float
     corners = np.zeros(n, dtype=bool)
     count = np.bincount(edges.reshape(-1), minlength=n)
     corners[(count > 0) & (count != 2)] = True
-    on_line, before, after = Features(edges, corners).line_neighbours()
+    unnumbered = np.zeros(len(edges), dtype=np.int64)                   # line_neighbours needs no numbers
+    on_line, before, after = Features(edges, corners, unnumbered).line_neighbours()
     incoming, _ = _unit_rows(vertices[on_line] - vertices[before])
     outgoing, _ = _unit_rows(vertices[after] - vertices[on_line])
     corners[on_line[np.einsum("ij,ij->i", incoming, outgoing) < limit]] = True
-    return Features(edges, corners)
+    return Features(edges, corners, number_lines(edges, corners))
+
+
+def number_lines(edges: np.ndarray, corners: np.ndarray) -> np.ndarray:
+    """(k,) a number for each feature edge (k, 2), the same along one line: two edges
+    are on one line when they meet at a vertex that is not a corner.
+
+    The lines are the connected pieces of a graph whose nodes are the edges, linked
+    at every vertex that is not a corner (such a vertex has exactly two edges: a corner
+    is any vertex with other than two). scipy finds the pieces.
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    n, k = len(corners), len(edges)
+    if k == 0:
+        return np.zeros(0, dtype=np.int64)
+    offsets, edge_at = csr(edges.reshape(-1), np.repeat(np.arange(k), 2), n)   # each vertex's edges
+    through = np.flatnonzero((np.diff(offsets) == 2) & ~corners)               # (j,) vertices inside a line
+    first, second = edge_at[offsets[through]], edge_at[offsets[through] + 1]   # (j,) its two edges
+    links = coo_matrix((np.ones(len(through)), (first, second)), shape=(k, k))
+    return connected_components(links, directed=False)[1].astype(np.int64)
 
 
 def detect_features(mesh: HalfedgeMesh, feature_angle: float = DEFAULT_FEATURE_ANGLE) -> Features:

@@ -13,15 +13,18 @@ Each iteration runs four phases, then puts the vertices back on the input surfac
    shrinking. Boundary vertices stay put.
 5. **Project** every vertex back onto the input surface (boundary vertices onto the
    input's boundary polyline): splitting at chord midpoints and smoothing in a plane
-   both step a little off a curved surface.
+   both step a little off a curved surface. A vertex that lands within
+   ``SNAP_TO_INPUT_VERTEX * L`` of an input vertex goes onto it: the input's vertices
+   are the points where its surface was measured (a scan) or modelled, and a triangle
+   resting on them follows it more closely than one whose corners lie between them.
 
 **Features** (``feature_angle``, :mod:`.features`): creases sharper than the angle, and
 the boundary, are feature lines, found once on the input and carried through every
 phase. A feature edge is split into two feature edges, collapses only along its line
 (never across from one line to another, never removing a corner), and is never
-flipped; in phase 4 a vertex on a line moves only along it (corners not at all), and in
-phase 5 it goes back onto the input's lines. With ``feature_angle=None`` only the
-boundary is kept, as described above.
+flipped; in phase 4 a vertex on a line moves only along it, on its own two edges
+(corners not at all), and in phase 5 it goes back onto its own line of the input.
+With ``feature_angle=None`` only the boundary is kept, as described above.
 
 Why 4/3 and 4/5: splitting an edge of length ``l`` leaves two of ``l/2``, which are
 nearer to L than ``l`` was exactly when ``l > 4/3 L``; 4/5 is Botsch and Kobbelt's
@@ -87,6 +90,12 @@ MAX_FLIP_DIHEDRAL = 20.0
 #: A face counts as flat (no area) when twice its area is at most this times its
 #: squared longest edge; the projection never leaves a face flat that was not.
 MIN_RELATIVE_AREA = 1e-10
+#: The projection puts a vertex (off the lines) onto an input vertex within this times
+#: L of the point it found (0 turns it off). On the bunny, a scan, at L = its mean edge
+#: length, the mean distance to the input (at the vertices of both) falls from 0.0088 L
+#: to 0.0081 L with the full smoothing step and from 0.0073 L to 0.0054 L with half of it,
+#: while the edge-length spread grows from 0.136 to 0.140 and from 0.150 to 0.165.
+SNAP_TO_INPUT_VERTEX = 0.1
 
 PHASES = ("split", "collapse", "flip", "smooth", "project")
 
@@ -622,13 +631,35 @@ def tangential_smoothing(vertices: np.ndarray, faces: np.ndarray, features: Feat
         step[table.boundary_vertices(n)] = 0.0
         return vertices + fraction * step
     step[features.counts() > 0] = 0.0
+    smoothed = vertices + fraction * step
     on_line, before, after = features.line_neighbours()
     moving = ~features.corners[on_line]
-    on_line, before, after = on_line[moving], before[moving], after[moving]
-    direction = _unit(vertices[after] - vertices[before])                # (j, 3) the line's direction
-    towards = 0.5 * (vertices[before] + vertices[after]) - vertices[on_line]
-    step[on_line] = direction * np.einsum("ij,ij->i", towards, direction)[:, None]
-    return vertices + fraction * step
+    smoothed[on_line[moving]] = _slide_along_line(vertices, on_line[moving], before[moving], after[moving], fraction)
+    return smoothed
+
+
+def _slide_along_line(vertices: np.ndarray, on_line: np.ndarray, before: np.ndarray, after: np.ndarray,
+                      fraction: float) -> np.ndarray:
+    """(j, 3) where smoothing moves each vertex ``on_line`` (j,) along its line, between
+    its two neighbours ``before`` and ``after`` on it: towards the point halfway along
+    the path ``before -> vertex -> after``, ``fraction`` of the way.
+
+    The vertex walks along its own two edges, never along the chord from ``before`` to
+    ``after``: where the line turns at the vertex (by less than the feature angle, or
+    it would be a corner), the chord leaves the line, and the vertex would leave it too.
+    On a straight line both are the same move (to the midpoint of the neighbours).
+    """
+    point = vertices[on_line]                                            # (j, 3)
+    to_before, to_after = vertices[before] - point, vertices[after] - point
+    length_before = np.sqrt(np.einsum("ij,ij->i", to_before, to_before))  # (j,) the vertex's two edges
+    length_after = np.sqrt(np.einsum("ij,ij->i", to_after, to_after))
+    # Signed distance to walk along the path: > 0 towards ``after``, < 0 towards ``before``.
+    # The halfway point lies on the longer of the two edges, |walk| from the vertex.
+    walk = fraction * 0.5 * (length_after - length_before)
+    edge = np.where(walk[:, None] >= 0, to_after, to_before)             # (j, 3) the edge walked along
+    edge_length = np.where(walk >= 0, length_after, length_before)
+    share = np.abs(walk) / np.maximum(edge_length, 1e-300)               # (j,) at most 1/2 of that edge
+    return point + edge * share[:, None]
 
 
 # ----------------------------------------------------------------------------------------
@@ -685,7 +716,8 @@ def closest_points_on_segments(points: np.ndarray, a: np.ndarray, b: np.ndarray)
 class _Surface:
     """The input surface, ready for "nearest point" queries (a k-d tree of centroids, the
     triangles across each triangle's edges and around each vertex), with its boundary
-    polyline and, given ``features``, its crease polylines."""
+    polyline and, given ``features``, its feature lines (the boundary among them), each
+    line apart."""
 
     def __init__(self, vertices: np.ndarray, faces: np.ndarray, features: Features | None = None):
         from scipy.spatial import cKDTree
@@ -710,16 +742,27 @@ class _Surface:
         segments = tables.edges[tables.boundary]
         self.segments = vertices[segments]                             # (S, 2, 3)
         self.segment_tree = cKDTree(self.segments.mean(axis=1)) if len(segments) else None
-        if features is None:
-            creases = tables.edges[:0]
-        else:
-            keys = tables.edges[:, 0] * np.int64(len(vertices)) + tables.edges[:, 1]
-            creases = tables.edges[features.edge_mask(keys) & ~tables.boundary]
-        self.crease_segments = vertices[creases]                       # (C, 2, 3)
-        self.crease_tree = cKDTree(self.crease_segments.mean(axis=1)) if len(creases) else None
+        # The input's vertices off its lines (off its boundary, without features): where
+        # the projection may put a vertex exactly (see project's snap_radius).
+        self.vertices = vertices
+        self.rests = np.ones(len(vertices), dtype=bool)                # (n,)
+        self.rests[segments.reshape(-1)] = False
+        if features is not None:
+            self.rests &= features.counts() == 0
+        self.line_tree = None
+        if features is not None and len(features.edges):
+            self.line_segments = vertices[features.edges]              # (C, 2, 3)
+            self.line_numbers = features.lines                         # (C,)
+            # One tree for all lines, with the line's number as a fourth coordinate, far
+            # apart: a query carrying its own line's number finds that line's segments
+            # first (any other line is farther than the whole input is wide).
+            self.line_spacing = 4.0 * float(np.ptp(vertices, axis=0).max()) + 1.0
+            self.line_tree = cKDTree(self._with_line(self.line_segments.mean(axis=1), self.line_numbers))
 
-    def project(self, points: np.ndarray) -> np.ndarray:
-        """Nearest points on the input triangles.
+    def project(self, points: np.ndarray, snap_radius: float = 0.0) -> np.ndarray:
+        """Nearest points on the input triangles; with ``snap_radius``, a point found
+        within that distance of a corner of its triangle off the lines goes onto that
+        corner (:meth:`_rest_on_corners`).
 
         First among the triangle whose centroid is nearest and the three across its
         edges. Where the point found lies on the rim of its triangle (an edge or a
@@ -739,8 +782,35 @@ class _Surface:
             corner = self.face_corners[face[rows], np.argmax(weights, axis=1)]
             fan = self.degree[corner]                                  # (r,)
             slot = self.fan_offsets[corner][:, None] + np.arange(int(fan.max())) % fan[:, None]
-            found[rows] = self._nearest_of(points[rows], self.fans[slot])[0]
+            found[rows], face[rows] = self._nearest_of(points[rows], self.fans[slot])[:2]
+        if snap_radius > 0.0:
+            found = self._rest_on_corners(found, face, snap_radius)
         return found
+
+    def _rest_on_corners(self, found: np.ndarray, face: np.ndarray, radius: float) -> np.ndarray:
+        """The points ``found`` (P, 3) on the triangles ``face`` (P,), each moved onto the
+        nearest corner of its triangle if that corner is off the lines and within
+        ``radius``. Where several points are near one corner, only the nearest of them
+        goes onto it: two vertices on one point would make a face flat, or make the
+        surface touch itself.
+
+        The corners of the point's own triangle stand in for all input vertices: a point
+        that near a vertex lies on one of its triangles (no k-d tree query needed).
+        """
+        corners = self.face_corners[face]                              # (P, 3)
+        gap = np.take(self.vertices, corners, axis=0) - found[:, None, :]
+        distance = np.einsum("pkj,pkj->pk", gap, gap)                  # (P, 3) squared
+        which = np.argmin(distance, axis=1)
+        rows = np.arange(len(found))
+        corner, distance = corners[rows, which], distance[rows, which]
+        close = np.flatnonzero((distance <= radius * radius) & self.rests[corner])
+        order = close[np.lexsort((distance[close], corner[close]))]    # by corner, nearest first
+        claims = corner[order]
+        first = np.ones(len(order), dtype=bool)
+        first[1:] = claims[1:] != claims[:-1]
+        snapped = found.copy()
+        snapped[order[first]] = self.vertices[claims[first]]
+        return snapped
 
     def _nearest_of(self, points: np.ndarray, near: np.ndarray) -> tuple[np.ndarray, ...]:
         """The nearest point to each point on its candidate triangles ``near`` (P, k):
@@ -766,22 +836,36 @@ class _Surface:
 
     def project_to_boundary(self, points: np.ndarray) -> np.ndarray:
         """Nearest points on the input's boundary polyline."""
-        return self._nearest_on_segments(points, self.segments, self.segment_tree)
+        found, gap, _ = self._nearest_on_segments(points, self.segments, self.segment_tree)
+        return found[np.arange(len(points)), np.argmin(gap, axis=1)]
 
-    def project_to_creases(self, points: np.ndarray) -> np.ndarray:
-        """Nearest points on the input's crease polylines (feature edges off the boundary)."""
-        return self._nearest_on_segments(points, self.crease_segments, self.crease_tree)
+    def _with_line(self, points: np.ndarray, line_numbers: np.ndarray) -> np.ndarray:
+        """(P, 4) the points with their line's number, times ``line_spacing``, as a fourth coordinate."""
+        return np.column_stack([points, self.line_spacing * line_numbers])
+
+    def project_to_lines(self, points: np.ndarray, line_numbers: np.ndarray) -> np.ndarray:
+        """Nearest points on the input's feature lines, each point (P, 3) on its own line
+        ``line_numbers`` (P,): a vertex goes back onto the line it was on, never onto
+        another one nearby (which would pull an edge of its line across the surface)."""
+        found, gap, near = self._nearest_on_segments(points, self.line_segments, self.line_tree,
+                                                     self._with_line(points, line_numbers))
+        # Of the 4 segments nearest, only those of the point's own line count (the
+        # nearest one always is: other lines are line_spacing away in the tree).
+        gap[self.line_numbers[near] != line_numbers[:, None]] = np.inf
+        return found[np.arange(len(points)), np.argmin(gap, axis=1)]
 
     @staticmethod
-    def _nearest_on_segments(points, segments, tree):
-        """The nearest point on the 4 segments whose midpoints are nearest."""
+    def _nearest_on_segments(points, segments, tree, keys=None):
+        """The nearest point on each of the (up to) 4 segments whose midpoints are nearest
+        (to ``keys``, the points' tree coordinates, if given): ``(points (P, k, 3),
+        squared distances (P, k), the segments (P, k))``."""
         k = min(4, tree.n)
-        _, near = tree.query(points, k=k)
-        near = near.reshape(-1)                                        # (P k,)
+        _, near = tree.query(points if keys is None else keys, k=k)
+        near = near.reshape(len(points), k)                            # (P, k)
         repeated = np.repeat(points, k, axis=0)
-        found = closest_points_on_segments(repeated, segments[near, 0], segments[near, 1]).reshape(len(points), k, 3)
-        gap = np.einsum("ikj,ikj->ik", found - points[:, None], found - points[:, None])
-        return found[np.arange(len(points)), np.argmin(gap, axis=1)]
+        flat = near.reshape(-1)
+        found = closest_points_on_segments(repeated, segments[flat, 0], segments[flat, 1]).reshape(len(points), k, 3)
+        return found, np.einsum("ikj,ikj->ik", found - points[:, None], found - points[:, None]), near
 
 
 def _nearly_flat(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
@@ -797,40 +881,48 @@ def _nearly_flat(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     return np.einsum("ij,ij->i", cross, cross) <= (MIN_RELATIVE_AREA * longest) ** 2
 
 
-def _project(vertices, faces, surface: _Surface, features: Features | None, on_boundary: np.ndarray) -> np.ndarray:
+def _project(vertices, faces, surface: _Surface, features: Features | None, on_boundary: np.ndarray,
+             snap_radius: float = 0.0) -> np.ndarray:
     """Put every vertex on the nearest point of the input surface (boundary vertices on
-    its boundary), except where that would flatten a face.
+    its boundary), except where that would flatten a face; a vertex off the lines whose
+    nearest point is within ``snap_radius`` of an input vertex goes onto that vertex
+    (see :meth:`_Surface.project`).
 
-    With ``features``, vertices on a crease line go onto the input's crease lines and
-    corners stay exactly where they are.
+    With ``features``, a vertex on a feature line (a crease or the boundary) goes onto
+    its own line of the input, and corners stay exactly where they are.
 
     Where the input folds (a crease, a thin part), two corners of one face can land on
     the same nearest point, or three on one line, and the face would be left with no
-    area. The corners of such a face keep their positions from before the projection;
-    that may flatten a face next to them in turn, so this repeats until no face is
-    flattened (each pass puts back at least one more vertex, so it ends). ``on_boundary``
-    (n,): the boundary vertices (not changed).
+    area. Corners of such a face are put back where they were before the projection:
+    first only those off the lines, which need not be on anything exactly, and only if
+    a face has none of those left to put back, its corners on lines (which smoothing
+    may have moved off their line where it turns). Putting back may flatten a face next
+    to them in turn, so this repeats until no face is flattened (each pass puts back at
+    least one more vertex, so it ends). ``on_boundary`` (n,): the boundary vertices.
     """
-    on_boundary = on_boundary.copy()
     result = vertices.copy()
     if features is None:
+        on_line = on_boundary
         inside = np.flatnonzero(~on_boundary)
+        if on_boundary.any() and surface.segment_tree is not None:
+            result[on_boundary] = surface.project_to_boundary(vertices[on_boundary])
     else:
         on_line = features.counts() > 0
         inside = np.flatnonzero(~on_line)
-        on_crease = np.flatnonzero(on_line & ~on_boundary & ~features.corners)
-        on_boundary &= ~features.corners
-        if len(on_crease) and surface.crease_tree is not None:
-            result[on_crease] = surface.project_to_creases(vertices[on_crease])
-    result[inside] = surface.project(vertices[inside])
-    if on_boundary.any() and surface.segment_tree is not None:
-        result[on_boundary] = surface.project_to_boundary(vertices[on_boundary])
+        line_of = features.vertex_lines()                              # (n,) -1 off the lines and at corners
+        moving = np.flatnonzero(line_of >= 0)
+        if len(moving) and surface.line_tree is not None:
+            result[moving] = surface.project_to_lines(vertices[moving], line_of[moving])
+    result[inside] = surface.project(vertices[inside], snap_radius)
     while True:
         flat = np.flatnonzero(_nearly_flat(result, faces))
         flattened = flat[~_nearly_flat(vertices, faces[flat])]        # flat now, and not before (few)
         if len(flattened) == 0:
             return result
-        put_back = faces[flattened].reshape(-1)
+        corners = faces[flattened]                                     # (k, 3)
+        moved = (result[corners] != vertices[corners]).any(axis=2)     # (k, 3) not put back yet
+        loose = moved & ~on_line[corners]                              # (k, 3) and off the lines
+        put_back = corners[np.where(loose.any(axis=1)[:, None], loose, moved)]
         result[put_back] = vertices[put_back]
 
 
@@ -877,7 +969,8 @@ def _phases(mesh: HalfedgeMesh, target_length, iterations, project, progress,
         vertices = tangential_smoothing(vertices, faces, features, smoothing_step, table=table)
         yield iteration + 1, "smooth", vertices, faces, features
         if surface is not None:
-            vertices = _project(vertices, faces, surface, features, table.boundary_vertices(len(vertices)))
+            vertices = _project(vertices, faces, surface, features, table.boundary_vertices(len(vertices)),
+                                SNAP_TO_INPUT_VERTEX * target_length)
             yield iteration + 1, "project", vertices, faces, features
 
 
@@ -898,12 +991,14 @@ def remesh(
         target_length: the edge length ``L`` to aim for; default: the input's mean edge length.
         iterations: how many rounds of split / collapse / flip / smooth / project.
         project: put the vertices back on the input surface after each smoothing (the
-            boundary ones on the input's boundary polyline, the ones on a crease on the
-            input's creases). Each vertex goes to the nearest point of a few input
-            triangles near it (a k-d tree of centroids, then the triangles beside the
-            nearest; of the four segments nearest, on a line), which is the true
-            nearest point almost always. Without it, midpoints of splits and
-            tangential moves drift slightly inside curved regions.
+            boundary ones on the input's boundary polyline, the ones on a feature line
+            on that line of the input). Each vertex goes to the nearest point of a few
+            input triangles near it (a k-d tree of centroids, then the triangles beside
+            the nearest; of the four segments of its line nearest, on a line), which is
+            the true nearest point almost always; one that lands within
+            ``SNAP_TO_INPUT_VERTEX * L`` (0.1 L) of an input vertex off the lines goes
+            onto that vertex. Without it, midpoints of splits and tangential moves drift
+            slightly inside curved regions.
         progress: show a progress bar (tqdm) over the iterations.
         feature_angle: keep the creases: edges whose two faces' normals differ by more
             than this many degrees (default :data:`~halfedge_edu.algorithms.features.DEFAULT_FEATURE_ANGLE`),
@@ -913,9 +1008,11 @@ def remesh(
         smoothing_step: how much of the tangential step to its neighbours' centroid each
             vertex takes per smoothing phase, from 0 to 1. 1 (Botsch and Kobbelt) makes
             the most even triangles; smaller values leave the vertices nearer where
-            splits and collapses put them, which follows a noisy input (a scan) more
-            closely at the price of less even triangles (0.25 is about PyMeshLab's
-            balance on the bunny).
+            splits and collapses put them, and nearer the input's vertices (where the
+            projection puts those within ``SNAP_TO_INPUT_VERTEX * L``), which follows a
+            noisy input (a scan) more closely at the price of less even triangles (0.5:
+            PyMeshLab's mean distance to the bunny, with more even triangles than
+            PyMeshLab's).
 
     Returns:
         A new :class:`HalfedgeMesh`. For the mesh after every phase, call

@@ -329,6 +329,49 @@ def test_closest_points_on_triangles_match_trimesh_in_every_region():
     assert np.allclose(ours, theirs, atol=1e-9)
 
 
+# ---- resting on the input's vertices ----------------------------------------------------
+
+def test_snapping_puts_a_near_point_on_the_input_vertex_and_only_one_point_per_vertex():
+    # A flat square of 2 x 2 quads: vertex 4, the centre, is the only one off the boundary.
+    vertices, faces = shapes.grid(2, 2)
+    vertices = vertices.astype(float)
+    surface = remesh_module._Surface(vertices, faces)
+    points = np.array([[1.05, 1.0, 0.0], [1.0, 1.02, 0.0], [0.5, 0.5, 0.0], [0.05, 0.0, 0.0]])
+    snapped = surface.project(points, snap_radius=0.1)
+    # The nearer of the first two goes onto the centre; the other stays, and so do the
+    # point far from any vertex and the one near a boundary vertex (on the outline).
+    assert np.allclose(snapped, [[1.05, 1.0, 0.0], [1.0, 1.0, 0.0], [0.5, 0.5, 0.0], [0.05, 0.0, 0.0]], rtol=0, atol=1e-15)
+    assert np.array_equal(snapped[1], vertices[4])                   # exactly on it
+    assert np.allclose(surface.project(points), points, rtol=0, atol=1e-15)   # without a radius: the nearest points
+
+
+def noisy_sphere(seed: int = 0) -> hx.HalfedgeMesh:
+    """An icosphere (2,562 vertices) with every vertex moved along its radius by up to 2% of
+    the radius: the bumps of a scan at the scale of its edges."""
+    sphere = trimesh.creation.icosphere(subdivisions=4)
+    radial = 1.0 + np.random.default_rng(seed).uniform(-0.02, 0.02, len(sphere.vertices))
+    vertices = sphere.vertices * radial[:, None]
+    return hx.HalfedgeMesh.from_faces(vertices, sphere.faces)
+
+
+def test_resting_on_input_vertices_brings_the_result_closer_to_a_noisy_input(monkeypatch):
+    sphere = noisy_sphere()
+    input_vertices = sphere.to_arrays()[0]
+    length = mean_edge_length(sphere)
+    gaps = []
+    for radius in (remesh_module.SNAP_TO_INPUT_VERTEX, 0.0):
+        monkeypatch.setattr(remesh_module, "SNAP_TO_INPUT_VERTEX", radius)
+        result = remesh(sphere, length, smoothing_step=0.5)
+        result.validate()
+        vertices = result.to_arrays()[0]
+        assert len(np.unique(vertices, axis=0)) == len(vertices)      # no two vertices on one point
+        gaps.append(trimesh.proximity.closest_point(result.to_trimesh(), input_vertices)[1].mean() / length)
+        on_input = (vertices[:, None] == input_vertices[None]).all(axis=2).any(axis=1)
+        if radius > 0:
+            assert on_input.mean() > 0.2                              # many rest on input vertices
+    assert gaps[0] < 0.8 * gaps[1]
+
+
 # ---- the quality report ----------------------------------------------------------------
 
 def test_quality_report_of_the_icosahedron():

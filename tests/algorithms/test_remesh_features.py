@@ -7,11 +7,12 @@ import importlib
 import numpy as np
 import pytest
 import trimesh
-from hypothesis import given
+from hypothesis import example, given
 from hypothesis import strategies as st
 
 import halfedge_edu as hx
-from halfedge_edu.algorithms.features import DEFAULT_FEATURE_ANGLE, Features, detect_features, feature_arrays
+from halfedge_edu.algorithms.features import (DEFAULT_FEATURE_ANGLE, Features, detect_features, feature_arrays,
+                                              number_lines)
 from halfedge_edu.cli import main
 from halfedge_edu.core.arrays import edge_table
 from tests import strategies as shapes
@@ -82,16 +83,32 @@ def test_features_follow_a_split_a_merge_and_a_compaction():
     vertices = np.array([[0.0, 0, 0], [1, 0, 0], [2, 0, 0], [1, 1, 0]])
     faces = np.array([[0, 1, 3], [1, 2, 3]])
     table = edge_table(faces, 4)
-    features = Features(np.array([[0, 1], [1, 2]]), np.array([True, False, True, False]))
+    features = Features(np.array([[0, 1], [1, 2]]), np.array([True, False, True, False]), np.array([7, 7]))
     midpoint_of = np.full(len(table.edges), -1)
     midpoint_of[np.searchsorted(table.keys, 0 * 4 + 1)] = 4          # split 0-1 at new vertex 4
     split = features.split(table, midpoint_of)
     assert split.edges.tolist() == [[0, 4], [1, 2], [1, 4]] and split.corners.tolist() == [True, False, True, False, False]
+    assert split.lines.tolist() == [7, 7, 7]                        # the halves stay on their line
     merged = split.merge(np.array([4]), np.array([1]))               # collapse 1-4 onto 1
-    assert merged.edges.tolist() == [[0, 1], [1, 2]]
+    assert merged.edges.tolist() == [[0, 1], [1, 2]] and merged.lines.tolist() == [7, 7]
     renumbered = merged.renumber(np.array([0, 1, 2, 3]))
     assert renumbered.edges.tolist() == [[0, 1], [1, 2]] and renumbered.corners.tolist() == [True, False, True, False]
-    assert Features(np.array([[0, 1], [1, 2]]), np.zeros(4, bool)).line_neighbours()[0].tolist() == [1]
+    assert renumbered.vertex_lines().tolist() == [-1, 7, -1, -1]      # corners and vertex 3 are on no single line
+    chain = Features(np.array([[0, 1], [1, 2]]), np.zeros(4, bool), np.zeros(2, int))
+    assert chain.line_neighbours()[0].tolist() == [1]
+
+
+def test_each_line_runs_from_corner_to_corner_and_has_its_own_number():
+    cube = detect_features(hx.sample("cube"))
+    assert sorted(np.unique(cube.lines)) == list(range(12))           # every edge joins two corners
+    sheet = detect_features(folded_sheet(4))
+    # The crease, and the outline cut at the four square corners and the crease's two ends.
+    assert len(np.unique(sheet.lines)) == 7
+    # Two edges meeting at a vertex that is not a corner are on one line; at a corner, not.
+    edges = np.array([[0, 1], [1, 2], [2, 3]])
+    assert number_lines(edges, np.array([True, False, False, True])).tolist() == [0, 0, 0]
+    numbers = number_lines(edges, np.array([True, False, True, True]))
+    assert numbers[0] == numbers[1] != numbers[2]
 
 
 # ---- what remeshing keeps ---------------------------------------------------------------
@@ -202,6 +219,44 @@ def test_a_smoothing_step_outside_0_to_1_is_refused_by_name(bad):
         remesh(hx.sample("cube"), smoothing_step=bad)
 
 
+def test_smoothing_keeps_a_line_vertex_on_its_line_where_the_line_turns():
+    # The boundary of a fan turns by 15 degrees at each rim vertex (less than the
+    # feature angle, so no rim vertex is a corner but the first): the chord between a
+    # vertex's two neighbours leaves the rim, the vertex's own two edges do not.
+    vertices, faces = shapes.fan(24)
+    features = feature_arrays(vertices, faces, DEFAULT_FEATURE_ANGLE)
+    features = features._replace(corners=np.arange(len(vertices)) == 1)
+    moved = vertices.copy()
+    moved[2] = 0.7 * vertices[2] + 0.3 * vertices[3]                  # slid along its edge towards 3
+    smoothed = remesh_module.tangential_smoothing(moved, faces, features)
+    rim = np.stack([moved[1:], np.roll(moved[1:], -1, axis=0)], axis=1)   # the edges of the rim
+    assert distance_to_segments(smoothed[1:], rim).max() < 1e-12
+    assert np.array_equal(smoothed[1], moved[1])                     # the corner stays
+    # Along a straight line the move is the one to the neighbours' midpoint, as before.
+    sheet = folded_sheet(8)
+    sheet_vertices, sheet_faces = sheet.to_arrays()
+    sheet_features = feature_arrays(sheet_vertices, sheet_faces, DEFAULT_FEATURE_ANGLE)
+    on_line, before, after = sheet_features.line_neighbours()
+    # The vertices inside the lines along y (the crease and two sides), slid along them.
+    along_y = ~sheet_features.corners[on_line] & (sheet_vertices[before, 0] == sheet_vertices[after, 0])
+    on_line, before, after = on_line[along_y], before[along_y], after[along_y]
+    shifted = sheet_vertices.copy()
+    shifted[on_line, 1] += np.random.default_rng(3).uniform(-0.02, 0.02, len(on_line))
+    straight = remesh_module.tangential_smoothing(shifted, sheet_faces, sheet_features)
+    assert np.allclose(straight[on_line], 0.5 * (shifted[before] + shifted[after]), rtol=0, atol=1e-12)
+
+
+def test_a_line_vertex_is_projected_onto_its_own_line_even_with_another_nearer():
+    # Two parallel lines 1 apart, numbered 0 and 1; a point 0.4 from line 1 and 0.6
+    # from line 0 that belongs to line 0 goes onto line 0.
+    vertices = np.array([[0.0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0], [1, 1, 0], [2, 1, 0]])
+    faces = np.array([[0, 1, 4], [0, 4, 3], [1, 2, 5], [1, 5, 4]])
+    lines = Features(np.array([[0, 1], [1, 2], [3, 4], [4, 5]]), np.zeros(6, bool), np.array([0, 0, 1, 1]))
+    surface = remesh_module._Surface(vertices, faces, lines)
+    points = np.array([[0.5, 0.6, 0.0], [1.5, 0.6, 0.0]])
+    assert np.allclose(surface.project_to_lines(points, np.array([0, 1])), [[0.5, 0.0, 0.0], [1.5, 1.0, 0.0]])
+
+
 # ---- properties on random creased meshes ---------------------------------------------------
 
 @given(case=shapes.cases(), where=st.floats(-0.5, 0.5), slope=st.floats(0.5, 3.0),
@@ -216,8 +271,24 @@ def test_flips_never_flip_a_feature_edge(case, where, slope, angle):
     assert np.isin(wanted, keys).all()
 
 
+def torus_case(n_around: int, n_tube: int, seed: int) -> shapes.MeshCase:
+    """A torus with each quad's diagonal drawn from ``seed``, as :func:`shapes.cases` draws them."""
+    diagonals = np.random.default_rng(seed).random((n_around, n_tube)) < 0.5
+    return shapes.MeshCase("torus", *shapes.torus(n_around, n_tube, diagonals), genus=1, n_boundary_loops=0)
+
+
 @given(case=shapes.cases(), where=st.floats(-0.5, 0.5), slope=st.floats(0.5, 3.0),
        scale=st.sampled_from([0.5, 1.0, 2.0]), angle=st.sampled_from([20.0, 45.0]))
+# Found by this property, on tiny creased tori (almost every vertex a corner):
+# smoothing moved a line vertex along the chord of its turning line, 0.0044 L off it,
+# and projecting it back would flatten a face with a vertex that went onto another line
+# (now a line vertex slides along its own two edges, and goes back onto its own line);
+@example(case=torus_case(3, 8, 188608786), where=-0.20028810946261522, slope=1.556718052994146, scale=0.5, angle=20.0)
+# the projection put a line vertex on another line nearer to it, 0.12 L off its own;
+@example(case=torus_case(8, 3, 820397721), where=0.497209935789211, slope=2.952088346940575, scale=0.5, angle=20.0)
+# projecting would flatten a face of a line vertex and a vertex off the lines, and both
+# were put back, the line vertex 0.001 L off its line (now the one off the lines goes first).
+@example(case=torus_case(8, 3, 518323071), where=0.1994486316010482, slope=2.777602714904173, scale=0.5, angle=45.0)
 def test_lines_stay_on_the_input_lines_and_corners_stay_exactly(case, where, slope, scale, angle):
     mesh = hx.HalfedgeMesh.from_faces(creased(case.vertices, where, slope), case.faces)
     input_vertices, input_faces = mesh.to_arrays()
