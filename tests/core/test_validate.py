@@ -600,107 +600,68 @@ LUNE_SPHERES = {
 }
 
 
+def _only_broken_rule(mesh: hx.HalfedgeMesh, check: str, rule: str, element) -> None:
+    """``mesh`` breaks only the rule that ``validate_module.<check>`` checks: with that
+    check switched off validate() passes; the fast path sees it; validate() names
+    ``rule`` and ``element``."""
+    with mock.patch.object(validate_module, check, lambda *args: None):
+        mesh.validate()                                       # every other rule holds
+    assert not validate_module._every_rule_holds(mesh)
+    with pytest.raises(hx.MeshInvariantError) as caught:
+        mesh.validate()
+    assert (caught.value.rule, caught.value.element) == (rule, element)
+
+
+def _hand_built(nxt, origin, face, vertex_halfedge, face_halfedge) -> hx.HalfedgeMesh:
+    """A mesh from hand-written halfedge arrays (prev is next's inverse), all points at 0."""
+    nxt = np.array(nxt)
+    arrays = HalfedgeArrays(
+        positions=np.zeros((len(vertex_halfedge), 3)),
+        vertex_halfedge=np.array(vertex_halfedge),
+        halfedge_next=nxt,
+        halfedge_prev=np.argsort(nxt),
+        halfedge_vertex=np.array(origin),
+        halfedge_face=np.array(face),
+        face_halfedge=np.array(face_halfedge),
+    )
+    return hx.HalfedgeMesh(arrays)
+
+
 @pytest.mark.parametrize("open_face", [False, True], ids=["closed", "open"])
 @pytest.mark.parametrize("shape", sorted(LUNE_SPHERES))
 def test_parallel_edges_between_vertices_of_any_degree_are_found(shape, open_face):
     mesh = _lune_sphere(**LUNE_SPHERES[shape], open_face=open_face)
     assert mesh.euler_characteristic == (1 if open_face else 2)
     assert (mesh.halfedge_face < 0).sum() == (3 if open_face else 0)
-    with mock.patch.object(validate_module, "_no_duplicate_edges", lambda *args: None):
-        mesh.validate()                                       # every other rule holds
-    assert not validate_module._every_rule_holds(mesh)
-    with pytest.raises(hx.MeshInvariantError) as caught:
-        mesh.validate()
-    assert (caught.value.rule, caught.value.element) == ("duplicate-edge", ("edge", (0, 1)))
-
-
-def _two_triangles_pinched_at_both_ends_of_an_edge() -> hx.HalfedgeMesh:
-    """Triangles (1, 0, 2) and (0, 1, 3), each with its own edge between 0 and 1, touching only there.
-
-    Halfedges 0 2 4 and 6 8 10 are the faces, their odd twins the boundary. At vertices
-    0 and 1 the boundary goes from one triangle to the other (so each walk round them
-    meets both triangles), and one boundary loop runs 0 -> 1 -> 0 along the two edges.
-    The vertices' halfedges are chosen so that, round both, the two edges to the other
-    one are met one step apart and not first: only the boundary check sees them.
-    """
-    nxt = np.array([2, 7, 4, 11, 0, 3, 8, 1, 10, 5, 6, 9])
-    arrays = HalfedgeArrays(
-        positions=np.zeros((4, 3)),
-        vertex_halfedge=np.array([11, 5, 3, 9]),
-        halfedge_next=nxt,
-        halfedge_prev=np.argsort(nxt),
-        halfedge_vertex=np.array([1, 0, 0, 2, 2, 1, 0, 1, 1, 3, 3, 0]),
-        halfedge_face=np.array([0, -1, 0, -1, 0, -1, 1, -1, 1, -1, 1, -1]),
-        face_halfedge=np.array([0, 6]),
-    )
-    return hx.HalfedgeMesh(arrays)
-
-
-def _digon_disk() -> hx.HalfedgeMesh:
-    """Triangles (0, 1, 2) and (1, 0, 2), each with its own edge between 0 and 1: a disk
-    whose boundary runs 0 -> 1 -> 0 along those two edges.
-
-    Edges 0 and 3 join vertices 0 and 1 (halfedges 0 and 6 in the faces, 1 and 7 the
-    boundary); edges 1 and 2 join both faces to vertex 2. Every vertex has one fan and
-    at most one boundary halfedge, so only the two edges between 0 and 1 are wrong, and
-    round vertices 0 and 1 the walk meets them one step apart, across the boundary.
-    """
-    nxt = np.array([2, 7, 4, 6, 0, 3, 5, 1])
-    arrays = HalfedgeArrays(
-        positions=np.zeros((3, 3)),
-        vertex_halfedge=np.array([7, 1, 4]),
-        halfedge_next=nxt,
-        halfedge_prev=np.argsort(nxt),
-        halfedge_vertex=np.array([0, 1, 1, 2, 2, 0, 1, 0]),
-        halfedge_face=np.array([0, -1, 0, 1, 0, 1, 1, -1]),
-        face_halfedge=np.array([0, 6]),
-    )
-    return hx.HalfedgeMesh(arrays)
+    _only_broken_rule(mesh, "_no_duplicate_edges", "duplicate-edge", ("edge", (0, 1)))
 
 
 def test_a_boundary_that_turns_back_along_a_second_edge_is_found():
-    mesh = _digon_disk()
-    with mock.patch.object(validate_module, "_no_duplicate_edges", lambda *args: None):
-        mesh.validate()                                       # every other rule holds
-    assert not validate_module._every_rule_holds(mesh)
-    with pytest.raises(hx.MeshInvariantError) as caught:
-        mesh.validate()
-    assert (caught.value.rule, caught.value.element) == ("duplicate-edge", ("edge", (0, 1)))
-
-
-def _bowtie_linked_crosswise() -> hx.HalfedgeMesh:
-    """Triangles (0, 1, 2) and (0, 3, 4), touching only at vertex 0, built by hand.
-
-    Halfedges 0 2 4 and 6 8 10 are the faces, their odd twins the boundary. At vertex 0
-    the boundary goes from one triangle to the other (1 -> 0 -> 4 and 3 -> 0 -> 2), so
-    there is one boundary loop and the walk round vertex 0 meets all four of its edges;
-    but two boundary halfedges (5 and 11) leave it: two fans. Every other rule holds.
-    """
-    nxt = np.array([2, 11, 4, 1, 0, 3, 8, 5, 10, 7, 6, 9])
-    arrays = HalfedgeArrays(
-        positions=np.zeros((5, 3)),
-        vertex_halfedge=np.array([5, 1, 3, 7, 9]),
-        halfedge_next=nxt,
-        halfedge_prev=np.argsort(nxt),
-        halfedge_vertex=np.array([0, 1, 1, 2, 2, 0, 0, 3, 3, 4, 4, 0]),
-        halfedge_face=np.array([0, -1, 0, -1, 0, -1, 1, -1, 1, -1, 1, -1]),
-        face_halfedge=np.array([0, 6]),
-    )
-    return hx.HalfedgeMesh(arrays)
+    # Triangles (0, 1, 2) and (1, 0, 2), each with its own edge between 0 and 1: a disk
+    # whose boundary runs 0 -> 1 -> 0 along those two edges (halfedges 0 and 6 in the
+    # faces, 1 and 7 the boundary); edges 1 and 2 join both faces to vertex 2. Every
+    # vertex has one fan and at most one boundary halfedge, so only the two edges
+    # between 0 and 1 are wrong, and round vertices 0 and 1 the walk meets them one step
+    # apart, across the boundary: only the boundary check of the fast path sees them.
+    digon_disk = _hand_built(nxt=[2, 7, 4, 6, 0, 3, 5, 1], origin=[0, 1, 1, 2, 2, 0, 1, 0],
+                             face=[0, -1, 0, 1, 0, 1, 1, -1], vertex_halfedge=[7, 1, 4], face_halfedge=[0, 6])
+    _only_broken_rule(digon_disk, "_no_duplicate_edges", "duplicate-edge", ("edge", (0, 1)))
 
 
 def test_a_vertex_on_two_pieces_of_boundary_is_not_manifold():
-    mesh = _bowtie_linked_crosswise()
-    assert validate_module.ring_lengths(mesh.vertex_halfedge, mesh.halfedge_prev).sum() == mesh.n_halfedge_slots
-    with mock.patch.object(validate_module, "_one_piece_of_boundary", lambda *args: None):
-        mesh.validate()                                       # every other rule holds
-    assert not validate_module._every_rule_holds(mesh)
-    with pytest.raises(hx.MeshInvariantError, match="vertex 0 lies on two pieces of boundary") as caught:
-        mesh.validate()
-    assert (caught.value.rule, caught.value.element) == ("vertex-manifold", ("vertex", 0))
+    # Triangles (0, 1, 2) and (0, 3, 4), touching only at vertex 0. Halfedges 0 2 4 and
+    # 6 8 10 are the faces, their odd twins the boundary. At vertex 0 the boundary goes
+    # from one triangle to the other (1 -> 0 -> 4 and 3 -> 0 -> 2), so there is one
+    # boundary loop and the walk round vertex 0 meets all four of its edges; but two
+    # boundary halfedges (5 and 11) leave it: two fans.
+    bowtie = _hand_built(nxt=[2, 11, 4, 1, 0, 3, 8, 5, 10, 7, 6, 9], origin=[0, 1, 1, 2, 2, 0, 0, 3, 3, 4, 4, 0],
+                         face=[0, -1, 0, -1, 0, -1, 1, -1, 1, -1, 1, -1], vertex_halfedge=[5, 1, 3, 7, 9],
+                         face_halfedge=[0, 6])
+    assert validate_module.ring_lengths(bowtie.vertex_halfedge, bowtie.halfedge_prev).sum() == bowtie.n_halfedge_slots
+    _only_broken_rule(bowtie, "_one_piece_of_boundary", "vertex-manifold", ("vertex", 0))
     for seed in (0, 2, 4):                                    # vertex 0 itself, or in the ring
         with pytest.raises(hx.MeshInvariantError, match="vertex 0 lies on two pieces of boundary"):
-            mesh.validate_around(vertices=[seed])
+            bowtie.validate_around(vertices=[seed])
 
 
 def test_from_faces_refuses_what_validate_calls_two_pieces_of_boundary():
@@ -713,18 +674,11 @@ def test_from_faces_refuses_what_validate_calls_two_pieces_of_boundary():
 
 def test_an_edge_between_two_boundaries_with_no_face_is_found_by_the_fast_path():
     # Triangles (0, 1, 2) and (3, 4, 5) and a bare edge 6 between vertices 2 and 3 that
-    # the boundary runs along both ways: only edge-halfedge is broken.
-    nxt = np.array([2, 5, 4, 1, 0, 12, 8, 13, 10, 7, 6, 9, 11, 3])
-    arrays = HalfedgeArrays(
-        positions=np.zeros((6, 3)),
-        vertex_halfedge=np.array([5, 1, 3, 11, 7, 9]),
-        halfedge_next=nxt,
-        halfedge_prev=np.argsort(nxt),
-        halfedge_vertex=np.array([0, 1, 1, 2, 2, 0, 3, 4, 4, 5, 5, 3, 2, 3]),
-        halfedge_face=np.array([0, -1, 0, -1, 0, -1, 1, -1, 1, -1, 1, -1, -1, -1]),
-        face_halfedge=np.array([0, 6]),
-    )
-    mesh = hx.HalfedgeMesh(arrays)
+    # the boundary runs along both ways: edge-halfedge is the first rule broken.
+    mesh = _hand_built(nxt=[2, 5, 4, 1, 0, 12, 8, 13, 10, 7, 6, 9, 11, 3],
+                       origin=[0, 1, 1, 2, 2, 0, 3, 4, 4, 5, 5, 3, 2, 3],
+                       face=[0, -1, 0, -1, 0, -1, 1, -1, 1, -1, 1, -1, -1, -1],
+                       vertex_halfedge=[5, 1, 3, 11, 7, 9], face_halfedge=[0, 6])
     assert not validate_module._every_rule_holds(mesh)
     with pytest.raises(hx.MeshInvariantError) as caught:
         mesh.validate()
