@@ -729,6 +729,24 @@ def test_the_fan_walk_checks_every_block_of_vertices(block):
     assert (caught.value.rule, caught.value.element) == ("vertex-halfedge-origin", ("vertex", v))
 
 
+def test_a_face_of_one_halfedge_on_a_loop_edge_fails_the_fast_path():
+    # Vertices 0 and 1; a loop edge at each (halfedges 0 1 at vertex 0, 6 7 at vertex 1)
+    # and two edges between them (2 3 and 4 5). Triangles (0, 2, 4) and (3, 5, 6), and
+    # halfedges 1 and 7 each a face of its own: next(h) == h. Every pointer rule the fast
+    # path reads at next(h) holds for such a face (prev(h) == h == next(next(h)), and h
+    # ends where it starts), and the walks round both vertices meet all four of their
+    # edges with no neighbour twice but for steps next to each other, which the walk does
+    # not compare: only twin-involution (halfedges 0 and 1 both start at vertex 0) is
+    # left to refuse it, so the fast path must check it itself.
+    mesh = _hand_built(nxt=[2, 1, 4, 5, 0, 6, 3, 7], origin=[0, 0, 0, 1, 1, 0, 1, 1],
+                       face=[0, 2, 0, 1, 0, 1, 1, 3], vertex_halfedge=[0, 6], face_halfedge=[0, 3, 1, 7])
+    assert mesh.euler_characteristic == 2
+    assert not validate_module._every_rule_holds(mesh)
+    with pytest.raises(hx.MeshInvariantError) as caught:
+        mesh.validate()
+    assert (caught.value.rule, caught.value.element) == ("twin-involution", ("halfedge", 0))
+
+
 @pytest.mark.parametrize("open_box", [False, True], ids=["closed cube", "open box"])
 def test_a_mesh_of_quads_fails_the_fast_path(open_box):
     # A cube of six quads (or five: a box without its lid), written as halfedges: every
