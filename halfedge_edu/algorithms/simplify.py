@@ -541,7 +541,8 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         removes_faces = np.where(boundary_edge[chosen], 1, 2)
         chosen = chosen[np.cumsum(removes_faces) <= faces_to_remove]
         chosen = chosen[drop_folding_neighbours(vertices, faces, faces_around, points[chosen],
-                                                keep[chosen], remove[chosen], face_across=face_across)]
+                                                keep[chosen], remove[chosen], face_across=face_across,
+                                                positions=positions)]
         if len(chosen) == 0:
             # Nothing passed the geometric check, or only interior collapses are left with
             # one face to go (then one more collapse is the nearest we can get).
