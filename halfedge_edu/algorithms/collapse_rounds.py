@@ -391,9 +391,15 @@ def round_tables(faces: np.ndarray, n: int) -> RoundTables:
         boundary = count == 1
         boundary_halfedge = first[boundary]
     faces_around, neighbours = _vertex_rings(corner_vertex, next_vertex, boundary_halfedge, n)
-    low = keys // n
-    high = keys - low * n                                             # keys % n, without a second division
-    return RoundTables(np.stack([low, high], axis=1), boundary, boundary_halfedge,
+    # The ends written straight into the (E, 2) table: keys // n, then keys % n without a
+    # second division. No whole-mesh temporaries (on a big mesh each would be tens of
+    # MiB, handed out afresh by the system every round).
+    edges = np.empty((len(keys), 2), dtype=np.int64)
+    low, high = edges[:, 0], edges[:, 1]
+    np.floor_divide(keys, n, out=low)
+    np.multiply(low, n, out=high)
+    np.subtract(keys, high, out=high)
+    return RoundTables(edges, boundary, boundary_halfedge,
                        across.reshape(-1, 3), faces_around, neighbours)
 
 
@@ -416,10 +422,12 @@ def _grouping_order(rows: np.ndarray, n: int) -> np.ndarray:
     bits = max(1, int(len(rows) - 1).bit_length())
     if int(n) >= 2 ** (62 - bits):
         return np.argsort(rows, kind="stable")
-    packed = rows.astype(np.int64) << bits
+    packed = rows.astype(np.int64)                 # a copy, shifted and sorted in place
+    packed <<= bits
     packed |= np.arange(len(rows), dtype=np.int64)
     packed.sort()
-    return packed & ((1 << bits) - 1)
+    packed &= (1 << bits) - 1
+    return packed
 
 
 def _vertex_rings(corner_vertex: np.ndarray, next_vertex: np.ndarray, boundary_halfedge: np.ndarray,
