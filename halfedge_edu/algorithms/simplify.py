@@ -103,15 +103,18 @@ def face_quadrics(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     return area[:, None, None] * plane[:, :, None] * plane[:, None, :]
 
 
-def _face_planes(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _face_planes(vertices: np.ndarray, faces: np.ndarray, *,
+                 columns: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Each face's area (m,) and plane ``p = [n, d]`` (m, 4): :func:`face_quadrics` is ``area * p p^T``.
 
     The same numbers as ``face_cross(vertices[faces])`` and its length, computed one
     coordinate at a time: each corner's x, y and z gathered from a contiguous column
     (``np.take``), then products of contiguous rows: about a third less time than on
-    the (m, 3, 3) corner array.
+    the (m, 3, 3) corner array. ``columns`` (3, n), if the caller has them: ``vertices``
+    by coordinate.
     """
-    columns = np.ascontiguousarray(vertices.T)                       # (3, n)
+    if columns is None:
+        columns = np.ascontiguousarray(vertices.T)                   # (3, n)
     a, b, c = (np.take(columns, faces[:, corner], axis=1) for corner in range(3))   # (3, m) each
     ab, ac = b - a, c - a
     cross = (ab[1] * ac[2] - ab[2] * ac[1], ab[2] * ac[0] - ab[0] * ac[2], ab[0] * ac[1] - ab[1] * ac[0])
@@ -120,6 +123,22 @@ def _face_planes(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, n
     normal = [coordinate / scale for coordinate in cross]
     offset = -((normal[0] * a[0] + normal[2] * a[2]) + normal[1] * a[1])     # in np.einsum's order: see _dot
     return 0.5 * double_area, np.stack([*normal, offset], axis=1)     # (m,), (m, 4)
+
+
+def _face_quadric_rows(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """(m, 10) each face's packed quadric (:func:`_packed_outer` of :func:`_face_planes`), in blocks of faces.
+
+    Each face's numbers depend on that face alone, so blocks of :data:`PRICING_BLOCK`
+    faces give the same rows as one pass; their temporaries (some twenty arrays of one
+    number per face) stay in the processor's cache instead of being hundreds of MiB,
+    which on a big mesh the system hands out afresh, page by page.
+    """
+    columns = np.ascontiguousarray(vertices.T)                       # (3, n)
+    rows = np.empty((len(faces), len(_PACKED_ENTRIES)))
+    for start in range(0, len(faces), PRICING_BLOCK):
+        block = slice(start, start + PRICING_BLOCK)
+        rows[block] = _packed_outer(*_face_planes(vertices, faces[block], columns=columns))
+    return rows
 
 
 def boundary_quadrics(vertices: np.ndarray, faces: np.ndarray, boundary_edges: np.ndarray,
@@ -330,6 +349,31 @@ def _as_items(points: np.ndarray) -> np.ndarray:
     return points.view(np.dtype((np.void, 3 * points.itemsize))).reshape(-1)
 
 
+def _price_edges(a: np.ndarray, b: np.ndarray, on_boundary: np.ndarray, boundary_vertex: np.ndarray,
+                 vertices: np.ndarray, quadrics: np.ndarray, positions: np.ndarray):
+    """Collapse point (t, 3), cost (t,) and kept end (t,) of the t edges ``a[i] - b[i]``.
+
+    ``on_boundary`` (t,) marks the boundary edges among them, ``boundary_vertex`` (n,)
+    the boundary vertices; ``quadrics`` (10, n) are packed, ``positions`` (3, n) the
+    vertices by coordinate.
+    """
+    quadric = np.take(quadrics, a, axis=1) + np.take(quadrics, b, axis=1)        # (10, t)
+    midpoint = 0.5 * (np.take(positions, a, axis=1) + np.take(positions, b, axis=1))   # (3, t)
+    x, c = _packed_optimal_points(quadric, midpoint)
+    p = np.ascontiguousarray(x.T)                                                 # (t, 3)
+    kept = a
+    # An interior edge with one boundary end collapses onto that end, keeping the outline.
+    a_on, b_on = boundary_vertex[a], boundary_vertex[b]
+    one_on = np.flatnonzero(a_on != b_on)                      # few: the rest skips this
+    if len(one_on):
+        pinned = one_on[~on_boundary[one_on]]
+        kept = a.copy()
+        kept[pinned] = np.where(b_on[pinned], b[pinned], a[pinned])
+        p[pinned] = vertices[kept[pinned]]
+        c[pinned] = _packed_cost(quadric[:, pinned], p[pinned].T)
+    return p, c, kept
+
+
 class _EdgePrices:
     """Collapse point and cost of every edge, kept from round to round.
 
@@ -353,30 +397,25 @@ class _EdgePrices:
         points = np.empty((len(edges), 3))
         cost = np.empty(len(edges))
         keep = np.empty(len(edges), dtype=np.int64)
+        # Both steps below go PRICING_BLOCK edges at a time: on a big mesh a whole-round
+        # temporary (ten quadric rows of every stale edge, say) is hundreds of MiB, which
+        # the system hands out afresh, page by page, every time; a block's stays in cache.
         if len(self.edges):
             unchanged = np.flatnonzero(~(changed[self.edges[:, 0]] | changed[self.edges[:, 1]]))
             fresh = np.flatnonzero(~stale)               # indices and np.take: faster than boolean masks
-            _as_items(points)[fresh] = np.take(_as_items(self.points), unchanged)
-            cost[fresh] = np.take(self.cost, unchanged)
-            keep[fresh] = np.take(self.keep, unchanged)
+            for start in range(0, len(fresh), PRICING_BLOCK):
+                to, since = fresh[start:start + PRICING_BLOCK], unchanged[start:start + PRICING_BLOCK]
+                _as_items(points)[to] = np.take(_as_items(self.points), since)
+                cost[to] = np.take(self.cost, since)
+                keep[to] = np.take(self.keep, since)
         todo = np.flatnonzero(stale)
-        a, b = np.take(edges[:, 0], todo), np.take(edges[:, 1], todo)
-        quadric = np.take(quadrics, a, axis=1) + np.take(quadrics, b, axis=1)        # (10, t)
-        midpoint = 0.5 * (np.take(positions, a, axis=1) + np.take(positions, b, axis=1))   # (3, t)
-        x, c = _packed_optimal_points(quadric, midpoint)
-        p = np.ascontiguousarray(x.T)                                                 # (t, 3)
-        kept = a
-        # An interior edge with one boundary end collapses onto that end, keeping the outline.
-        a_on, b_on = boundary_vertex[a], boundary_vertex[b]
-        one_on = np.flatnonzero(a_on != b_on)                      # few: the rest skips this
-        if len(one_on):
-            pinned = one_on[~boundary_edge[todo[one_on]]]
-            kept = a.copy()
-            kept[pinned] = np.where(b_on[pinned], b[pinned], a[pinned])
-            p[pinned] = vertices[kept[pinned]]
-            c[pinned] = _packed_cost(quadric[:, pinned], p[pinned].T)
-        _as_items(points)[todo] = _as_items(p)
-        cost[todo], keep[todo] = c, kept
+        for start in range(0, len(todo), PRICING_BLOCK):
+            rows = todo[start:start + PRICING_BLOCK]
+            a, b = np.take(edges, rows, axis=0).T.copy()     # not np.take(edges[:, 0], ...): it copies the column
+            p, c, kept = _price_edges(a, b, np.take(boundary_edge, rows), boundary_vertex, vertices, quadrics,
+                                      positions)
+            _as_items(points)[rows] = _as_items(p)
+            cost[rows], keep[rows] = c, kept
         self.edges, self.points, self.cost, self.keep = edges, points, cost, keep
         remove = np.where(keep == edges[:, 0], edges[:, 1], edges[:, 0])
         return points, cost, keep, remove
@@ -453,7 +492,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
     max_normal_cos = float(np.cos(np.radians(max_normal_angle)))
 
     # The vertex quadrics, packed (see _pack_quadrics) from the start: ten columns, not sixteen.
-    quadrics = _accumulate_rows(_packed_outer(*_face_planes(vertices, faces)), faces, n)       # (n, 10)
+    quadrics = _accumulate_rows(_face_quadric_rows(vertices, faces), faces, n)       # (n, 10)
     this_round = round_tables(faces, n)                                # the first round's tables
     if this_round.boundary.any():
         boundary_edges = this_round.edges[this_round.boundary]
@@ -541,7 +580,8 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         removes_faces = np.where(boundary_edge[chosen], 1, 2)
         chosen = chosen[np.cumsum(removes_faces) <= faces_to_remove]
         chosen = chosen[drop_folding_neighbours(vertices, faces, faces_around, points[chosen],
-                                                keep[chosen], remove[chosen], face_across=face_across)]
+                                                keep[chosen], remove[chosen], face_across=face_across,
+                                                positions=positions)]
         if len(chosen) == 0:
             # Nothing passed the geometric check, or only interior collapses are left with
             # one face to go (then one more collapse is the nearest we can get).

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import sys
+from unittest import mock
+
 import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -10,7 +13,7 @@ import halfedge_edu as hx
 from halfedge_edu.algorithms.simplify import simplify_with_report
 from halfedge_edu.algorithms.collapse_rounds import (
     SPREAD_KEY_IDS, choose_round, collapse_topology_ok, drop_folding_neighbours, independent_edges, no_turned_faces,
-    round_tables, spread_ties, spread_ties_keys,
+    one_collapse_per_opposite_vertex, round_tables, spread_ties, spread_ties_keys,
 )
 from halfedge_edu.core.arrays import compact, merge_vertices, unique_edges, vertex_faces, vertex_neighbours
 from tests import strategies as shapes
@@ -99,6 +102,49 @@ def test_independent_edges_are_at_least_two_edges_apart():
     for i in range(len(taken)):
         for j in range(len(taken)):
             assert i == j or not ring[i, taken[j]].any()
+
+
+@settings(max_examples=60)
+@given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1), block=st.integers(1, 4))
+def test_the_checks_give_the_same_verdicts_in_blocks_of_any_size(case, seed, block):
+    # TURN_CHECK_BLOCK only decides how many collapses are worked out at a time: blocks of
+    # one to four collapses (so most meshes here are cut into many) give every collapse
+    # the verdict one block gives, for the turn check and for folds between collapses.
+    vertices, faces = case.vertices, case.faces
+    n, edges, *_ = topology_inputs(vertices, faces)
+    rng = np.random.default_rng(seed)
+    picked = edges[independent_edges(edges, rng.permutation(len(edges)), edges, n)]
+    keep, remove = picked[:, 0], picked[:, 1]
+    size = float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0)))
+    points = vertices[keep] + rng.normal(scale=0.5 * size, size=(len(keep), 3))
+    around, across = vertex_faces(faces, n), round_tables(faces, n).face_across
+
+    def verdicts():
+        return [no_turned_faces(vertices, faces, around, points, keep, remove, np.cos(np.radians(80.0))),
+                no_turned_faces(vertices, faces, around, points, keep, remove, np.cos(np.radians(80.0)),
+                                face_across=across),
+                drop_folding_neighbours(vertices, faces, around, points, keep, remove),
+                drop_folding_neighbours(vertices, faces, around, points, keep, remove, face_across=across)]
+
+    one_block = verdicts()
+    with mock.patch.object(sys.modules["halfedge_edu.algorithms.collapse_rounds"], "TURN_CHECK_BLOCK", block):
+        in_blocks = verdicts()
+    for whole, blocked in zip(one_block, in_blocks):
+        assert np.array_equal(whole, blocked)
+
+
+@settings(max_examples=200)
+@given(k=st.integers(1, 40), n=st.integers(1, 30), seed=st.integers(0, 2**32 - 1))
+def test_one_collapse_per_opposite_vertex_keeps_only_the_cheapest_chosen_one_at_each_vertex(k, n, seed):
+    rng = np.random.default_rng(seed)
+    chosen = rng.random(k) < 0.7                                     # (k,) over candidates, cheapest first
+    pairs = {(int(o), int(v)) for o, v in zip(rng.integers(0, k, 3 * k), rng.integers(0, n, 3 * k))}
+    owner, vertex = (np.array(column, dtype=np.int64) for column in zip(*sorted(pairs)))
+    kept = one_collapse_per_opposite_vertex(chosen, owner, vertex)
+    for candidate in range(k):       # the rule, one candidate at a time: a cheaper chosen one at a shared vertex?
+        mine = vertex[owner == candidate]
+        cheaper = [o for o, v in zip(owner, vertex) if o < candidate and chosen[o] and v in mine]
+        assert kept[candidate] == (chosen[candidate] and not cheaper)
 
 
 @settings(max_examples=60)

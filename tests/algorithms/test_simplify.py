@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import sys
 import warnings
+from unittest import mock
 
 import numpy as np
 import pytest
@@ -187,6 +189,25 @@ def test_the_same_input_gives_the_same_mesh_every_time():
     first = simplify(mesh, 2000).to_arrays()
     second = simplify(mesh.copy(), 2000).to_arrays()
     assert all(np.array_equal(a, b) for a, b in zip(first, second))
+
+
+@pytest.mark.parametrize("name", ["spot", "bumpy grid"])
+def test_pricing_in_small_blocks_gives_the_same_mesh(name):
+    # PRICING_BLOCK only decides how many edges (and faces, for the first quadrics) are
+    # worked out at a time; the test meshes are smaller than one block, so cut them into
+    # blocks of seven: every price, and so the mesh, must come out the same. The grid is
+    # open and bumpy, so blocks also hold boundary edges and edges pinned to the outline.
+    if name == "spot":
+        mesh = hx.sample("spot")
+    else:
+        vertices, faces = shapes.grid(30, 30)
+        vertices[:, 2] = 0.05 * np.sin(3.0 * vertices[:, 0]) * np.cos(2.0 * vertices[:, 1])
+        mesh = hx.HalfedgeMesh.from_faces(vertices, faces)
+    target = mesh.n_faces // 5
+    whole = simplify(mesh, target).to_arrays()
+    with mock.patch.object(sys.modules["halfedge_edu.algorithms.simplify"], "PRICING_BLOCK", 7):
+        in_blocks = simplify(mesh, target).to_arrays()
+    assert all(np.array_equal(a, b) for a, b in zip(whole, in_blocks))
 
 
 def test_a_flat_patch_stays_flat_and_keeps_its_outline():
