@@ -225,6 +225,15 @@ def _farthest_neighbour(vertices: np.ndarray, neighbours: tuple[np.ndarray, np.n
     return np.sqrt(np.maximum.reduceat(np.einsum("ij,ij->i", gap, gap), np.cumsum(counts) - counts))
 
 
+def _longest_edge_at(n: int, edges: np.ndarray, length: np.ndarray) -> np.ndarray:
+    """(n,) the length of the longest of the ``edges`` (E, 2) at each vertex (0 if none),
+    given their ``length`` (E,)."""
+    reach = np.zeros(n)
+    np.maximum.at(reach, edges[:, 0], length)
+    np.maximum.at(reach, edges[:, 1], length)
+    return reach
+
+
 class _Refused:
     """Short edges refused in earlier rounds, so later rounds can skip them.
 
@@ -324,22 +333,35 @@ def _collapse_round(vertices, faces, region: np.ndarray | None, target_length, m
     valid = ~(on_line[a] & on_line[b] & ~along) & ~(corner[a] & corner[b])
 
     # Try the places in turn; the first one that makes no edge longer than 4/3 L wins.
+    # A neighbour q of an end x is at most reach[x] + |x - place| from the place
+    # (triangle inequality), so where that bound already fits, the neighbours need not
+    # be gathered (about half the short edges of the first round on subdivided Spot).
+    limit = SPLIT_ABOVE * target_length
+    reach = _longest_edge_at(n, edges, length)                         # (n,)
+    span = length[candidates]                                          # (k,) |a - b|
     keep, remove = first.copy(), second.copy()
     points = np.full((len(candidates), 3), np.nan)
-    options = (
-        (0.5 * (vertices[a] + vertices[b]), first, free),
-        (vertices[first], first, ~free),
-        (vertices[first], first, free),
-        (vertices[second], second, free | (along & ~corner[first])),
+    options = (  # (which place, the end kept, allowed, a bound on its farthest neighbour)
+        ("midpoint", first, free, np.maximum(reach[a], reach[b]) + 0.5 * span),
+        ("kept", first, ~free, np.maximum(reach[first], reach[second] + span)),
+        ("kept", first, free, np.maximum(reach[first], reach[second] + span)),
+        ("kept", second, free | (along & ~corner[first]), np.maximum(reach[second], reach[first] + span)),
     )
-    for place, kept, allowed in options:
+    for where, kept, allowed, bound in options:
         todo = np.flatnonzero(valid & allowed & np.isnan(points[:, 0]))
         if len(todo) == 0:
             continue
-        longest = np.maximum(_farthest_neighbour(vertices, neighbours, a[todo], place[todo]),
-                             _farthest_neighbour(vertices, neighbours, b[todo], place[todo]))
-        fits = todo[longest <= SPLIT_ABOVE * target_length]
-        points[fits] = place[fits]
+        place = (0.5 * (vertices[a[todo]] + vertices[b[todo]]) if where == "midpoint"
+                 else vertices[kept[todo]])                            # (t, 3)
+        # The bound is computed with rounding too: a margin of 1e-9 keeps "surely fits"
+        # true of the exact check below, so the choice is the same as checking all.
+        surely = bound[todo] <= limit * (1.0 - 1e-9)
+        check = np.flatnonzero(~surely)
+        longest = np.maximum(_farthest_neighbour(vertices, neighbours, a[todo[check]], place[check]),
+                             _farthest_neighbour(vertices, neighbours, b[todo[check]], place[check]))
+        surely[check[longest <= limit]] = True
+        fits = todo[surely]
+        points[fits] = place[surely]
         keep[fits] = kept[fits]
         remove[fits] = np.where(kept[fits] == first[fits], second[fits], first[fits])
     valid &= ~np.isnan(points[:, 0])
