@@ -491,6 +491,19 @@ class _EdgeUses(NamedTuple):
         table = edge_table(faces, n)
         return cls(table.keys, table.first, table.second)
 
+    def table(self, n: int) -> EdgeTable:
+        """The :class:`~halfedge_edu.core.arrays.EdgeTable` of the faces these uses are of
+        (``n`` vertices), without sorting their edges again: smoothing and projection
+        after the flips ask for it."""
+        inner = self.second >= 0
+        count = np.where(inner, 2, 1)
+        corner_edge = np.empty(2 * len(self.keys) - int((~inner).sum()), dtype=np.int64)   # (3m,)
+        corner_edge[self.first] = np.arange(len(self.keys))
+        corner_edge[self.second[inner]] = np.flatnonzero(inner)
+        low = self.keys // n
+        edges = np.stack([low, self.keys - low * n], axis=1)
+        return EdgeTable(edges, corner_edge.reshape(-1, 3), count, self.first, self.second, self.keys)
+
     def after_flips(self, n: int, a, b, c, d, h1, h2) -> "_EdgeUses":
         """The uses after flipping edges ``a-b`` (directed edge ``h1`` in face ``[a, b, c]``,
         ``h2`` in ``[b, a, d]``) into ``c-d``, the faces becoming ``[c, a, d]`` and
@@ -610,14 +623,16 @@ def _flip_pass(vertices, faces, rng, max_crease_cos, features: Features | None =
     return faces, len(take), uses.after_flips(n, a[take], b[take], c[take], d[take], h1[take], h2[take])
 
 
-def _flip_to_regular_degrees(vertices, faces, rng, features: Features | None):
+def _flip_to_regular_degrees(vertices, faces, rng, features: Features | None) -> tuple[np.ndarray, EdgeTable]:
+    """Flip passes until few flips are left (at most ``MAX_FLIP_PASSES``). Returns ``(faces,
+    their edge table)``: the table comes from the uses the passes kept up to date."""
     max_crease_cos = math.cos(math.radians(MAX_FLIP_DIHEDRAL))
     uses = _EdgeUses.of(faces, len(vertices))
     for _ in range(MAX_FLIP_PASSES):
         faces, n_flipped, uses = _flip_pass(vertices, faces, rng, max_crease_cos, features, uses=uses)
         if n_flipped <= MIN_FLIP_FRACTION * len(faces):
             break
-    return faces
+    return faces, uses.table(len(vertices))
 
 
 # ----------------------------------------------------------------------------------------
@@ -985,9 +1000,8 @@ def _phases(mesh: HalfedgeMesh, target_length, iterations, project, progress,
         yield iteration + 1, "split", vertices, faces, features
         vertices, faces, features = _collapse_short_edges(vertices, faces, target_length, features)
         yield iteration + 1, "collapse", vertices, faces, features
-        faces = _flip_to_regular_degrees(vertices, faces, rng, features)
+        faces, table = _flip_to_regular_degrees(vertices, faces, rng, features)   # table: for smoothing and projection
         yield iteration + 1, "flip", vertices, faces, features
-        table = edge_table(faces, len(vertices))                       # for both smoothing and projection
         vertices = tangential_smoothing(vertices, faces, features, smoothing_step, table=table)
         yield iteration + 1, "smooth", vertices, faces, features
         if surface is not None:
