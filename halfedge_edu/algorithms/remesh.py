@@ -113,7 +113,9 @@ class RemeshStep(NamedTuple):
 # ----------------------------------------------------------------------------------------
 
 def _edge_lengths(vertices: np.ndarray, edges: np.ndarray) -> np.ndarray:
-    d = vertices[edges[:, 0]] - vertices[edges[:, 1]]
+    """(E,) the length of each edge (E, 2). ``np.take`` gathers the rows: the same
+    numbers as ``vertices[edges[:, 0]]``, without fancy indexing's general machinery."""
+    d = np.take(vertices, edges[:, 0], axis=0) - np.take(vertices, edges[:, 1], axis=0)
     return np.sqrt(np.einsum("ij,ij->i", d, d))
 
 
@@ -768,6 +770,9 @@ class _Surface:
         ab, ac = self.sides[:, 0], self.sides[:, 1]
         self.gram = np.stack([np.einsum("ij,ij->i", ab, ab), np.einsum("ij,ij->i", ab, ac),
                               np.einsum("ij,ij->i", ac, ac)], axis=1)  # (F, 3)
+        # The same twelve numbers per triangle in one row (a, b - a, c - a, gram): a query
+        # gathers one contiguous row per candidate instead of three scattered pieces.
+        self.rows = np.concatenate([self.origin, self.sides.reshape(-1, 6), self.gram], axis=1)   # (F, 12)
         self.face_corners = faces
         self.fan_offsets, self.fans = vertex_faces(faces, len(vertices))   # each vertex's triangles, CSR
         self.degree = np.diff(self.fan_offsets)
@@ -859,11 +864,11 @@ class _Surface:
         ac.ac``, all numbers already at hand, so the point itself is built only for the
         winning candidate.
         """
-        ap = points[:, None, :] - self.origin[near]                    # (P, k, 3)
-        sides = self.sides[near]                                       # (P, k, 2, 3)
-        d1 = np.einsum("pkj,pkj->pk", sides[:, :, 0], ap)
-        d2 = np.einsum("pkj,pkj->pk", sides[:, :, 1], ap)
-        ab_ab, ab_ac, ac_ac = np.moveaxis(self.gram[near], 2, 0)       # (P, k) each
+        rows = np.take(self.rows, near, axis=0)                        # (P, k, 12)
+        ap = points[:, None, :] - rows[:, :, 0:3]                      # (P, k, 3)
+        d1 = np.einsum("pkj,pkj->pk", rows[:, :, 3:6], ap)             # (b - a).(p - a)
+        d2 = np.einsum("pkj,pkj->pk", rows[:, :, 6:9], ap)             # (c - a).(p - a)
+        ab_ab, ab_ac, ac_ac = rows[:, :, 9], rows[:, :, 10], rows[:, :, 11]   # (P, k) each
         s, t = _triangle_coordinates(d1, d2, ab_ab, ab_ac, ac_ac)
         gap = np.einsum("pkj,pkj->pk", ap, ap) - 2 * (s * d1 + t * d2) + s * s * ab_ab + 2 * s * t * ab_ac + t * t * ac_ac
         best = np.argmin(gap, axis=1)                                  # (P,)
