@@ -123,18 +123,22 @@ def _edge_lengths(vertices: np.ndarray, edges: np.ndarray) -> np.ndarray:
 # Phase 1: split
 # ----------------------------------------------------------------------------------------
 
-def _split_pass(vertices: np.ndarray, faces: np.ndarray, max_length: float, features: Features | None = None):
+def _split_pass(vertices: np.ndarray, faces: np.ndarray, max_length: float, features: Features | None = None,
+                table: EdgeTable | None = None):
     """Split every edge longer than ``max_length`` at its midpoint, all at once.
 
     Returns ``(vertices, faces, features, n_split)``. Each face is cut by the template
     for its number of split edges; rotating the face first puts the split edges in
     front, so one template per count covers all cases. Orientation is kept. A split
     feature edge leaves two feature halves (``features`` None: none are tracked).
+    ``table``: the :func:`~halfedge_edu.core.arrays.edge_table` of ``faces``, if the
+    caller has it already.
     """
     n = len(vertices)
     if not _has_long_side(vertices, faces, max_length):            # the usual last pass: no edge table needed
         return vertices, faces, features, 0
-    table = edge_table(faces, n)
+    if table is None:
+        table = edge_table(faces, n)
     long = _edge_lengths(vertices, table.edges) > max_length
     n_split = int(long.sum())
     midpoint_of = np.full(len(table.edges), -1, dtype=np.int64)
@@ -186,10 +190,13 @@ def _has_long_side(vertices: np.ndarray, faces: np.ndarray, max_length: float) -
     return False
 
 
-def _split_long_edges(vertices, faces, target_length, features: Features | None):
-    """Split passes until no edge is longer than 4/3 L (at most ``MAX_SPLIT_PASSES``)."""
+def _split_long_edges(vertices, faces, target_length, features: Features | None, table: EdgeTable | None = None):
+    """Split passes until no edge is longer than 4/3 L (at most ``MAX_SPLIT_PASSES``).
+    ``table``: the edge table of ``faces``, if the caller has it (for the first pass)."""
     for _ in range(MAX_SPLIT_PASSES):
-        vertices, faces, features, n_split = _split_pass(vertices, faces, SPLIT_ABOVE * target_length, features)
+        vertices, faces, features, n_split = _split_pass(vertices, faces, SPLIT_ABOVE * target_length, features,
+                                                         table)
+        table = None                                                   # the faces have changed
         if n_split == 0:
             break
     return vertices, faces, features
@@ -995,13 +1002,15 @@ def _phases(mesh: HalfedgeMesh, target_length, iterations, project, progress,
     """Yield ``(iteration, phase, vertices, faces, features)`` after every phase (arrays,
     not meshes; ``features`` None without ``feature_angle``)."""
     vertices, faces = mesh.to_arrays()
+    table = edge_table(faces, len(vertices))           # the input's edges, sorted once for the next three uses
     if target_length is None:
-        target_length = float(_edge_lengths(vertices, edge_table(faces, len(vertices)).edges).mean())
-    features = feature_arrays(vertices, faces, feature_angle) if feature_angle is not None else None
+        target_length = float(_edge_lengths(vertices, table.edges).mean())
+    features = feature_arrays(vertices, faces, feature_angle, table=table) if feature_angle is not None else None
     surface = _Surface(vertices, faces, features) if project else None
     rng = np.random.default_rng(0)
     for iteration in progress_range(iterations, progress, "remesh"):
-        vertices, faces, features = _split_long_edges(vertices, faces, target_length, features)
+        vertices, faces, features = _split_long_edges(vertices, faces, target_length, features,
+                                                      table if iteration == 0 else None)
         yield iteration + 1, "split", vertices, faces, features
         vertices, faces, features = _collapse_short_edges(vertices, faces, target_length, features)
         yield iteration + 1, "collapse", vertices, faces, features
