@@ -164,15 +164,19 @@ class Features(NamedTuple):
         return Features(new_index[self.edges], self.corners[kept], self.lines)
 
 
-def feature_arrays(vertices: np.ndarray, faces: np.ndarray, feature_angle: float) -> Features:
+def feature_arrays(vertices: np.ndarray, faces: np.ndarray, feature_angle: float, *,
+                   table: EdgeTable | None = None) -> Features:
     """The :class:`Features` of a face array (positions (n, 3), faces (m, 3)).
 
     Feature edges: every boundary edge, and every interior edge whose two face normals
     differ by more than ``feature_angle`` degrees. An edge beside a face of no area is
     not a crease (such a face has no normal to compare); it can still be a boundary edge.
+    ``table``: the :func:`~halfedge_edu.core.arrays.edge_table` of ``faces``, if the
+    caller has it already.
     """
     n = len(vertices)
-    table = edge_table(faces, n)
+    if table is None:
+        table = edge_table(faces, n)
     unit, has_normal = _unit_rows(face_cross(vertices[faces]))            # (m, 3)
     inner = table.count == 2
     f1, f2 = table.first[inner] // 3, table.second[inner] // 3

@@ -113,7 +113,9 @@ class RemeshStep(NamedTuple):
 # ----------------------------------------------------------------------------------------
 
 def _edge_lengths(vertices: np.ndarray, edges: np.ndarray) -> np.ndarray:
-    d = vertices[edges[:, 0]] - vertices[edges[:, 1]]
+    """(E,) the length of each edge (E, 2). ``np.take`` gathers the rows: the same
+    numbers as ``vertices[edges[:, 0]]``, without fancy indexing's general machinery."""
+    d = np.take(vertices, edges[:, 0], axis=0) - np.take(vertices, edges[:, 1], axis=0)
     return np.sqrt(np.einsum("ij,ij->i", d, d))
 
 
@@ -121,18 +123,22 @@ def _edge_lengths(vertices: np.ndarray, edges: np.ndarray) -> np.ndarray:
 # Phase 1: split
 # ----------------------------------------------------------------------------------------
 
-def _split_pass(vertices: np.ndarray, faces: np.ndarray, max_length: float, features: Features | None = None):
+def _split_pass(vertices: np.ndarray, faces: np.ndarray, max_length: float, features: Features | None = None,
+                table: EdgeTable | None = None):
     """Split every edge longer than ``max_length`` at its midpoint, all at once.
 
     Returns ``(vertices, faces, features, n_split)``. Each face is cut by the template
     for its number of split edges; rotating the face first puts the split edges in
     front, so one template per count covers all cases. Orientation is kept. A split
     feature edge leaves two feature halves (``features`` None: none are tracked).
+    ``table``: the :func:`~halfedge_edu.core.arrays.edge_table` of ``faces``, if the
+    caller has it already.
     """
     n = len(vertices)
     if not _has_long_side(vertices, faces, max_length):            # the usual last pass: no edge table needed
         return vertices, faces, features, 0
-    table = edge_table(faces, n)
+    if table is None:
+        table = edge_table(faces, n)
     long = _edge_lengths(vertices, table.edges) > max_length
     n_split = int(long.sum())
     midpoint_of = np.full(len(table.edges), -1, dtype=np.int64)
@@ -184,10 +190,13 @@ def _has_long_side(vertices: np.ndarray, faces: np.ndarray, max_length: float) -
     return False
 
 
-def _split_long_edges(vertices, faces, target_length, features: Features | None):
-    """Split passes until no edge is longer than 4/3 L (at most ``MAX_SPLIT_PASSES``)."""
+def _split_long_edges(vertices, faces, target_length, features: Features | None, table: EdgeTable | None = None):
+    """Split passes until no edge is longer than 4/3 L (at most ``MAX_SPLIT_PASSES``).
+    ``table``: the edge table of ``faces``, if the caller has it (for the first pass)."""
     for _ in range(MAX_SPLIT_PASSES):
-        vertices, faces, features, n_split = _split_pass(vertices, faces, SPLIT_ABOVE * target_length, features)
+        vertices, faces, features, n_split = _split_pass(vertices, faces, SPLIT_ABOVE * target_length, features,
+                                                         table)
+        table = None                                                   # the faces have changed
         if n_split == 0:
             break
     return vertices, faces, features
@@ -223,6 +232,15 @@ def _farthest_neighbour(vertices: np.ndarray, neighbours: tuple[np.ndarray, np.n
     owner, around = expand(*neighbours, ends)
     gap = np.take(vertices, around, axis=0) - np.take(places, owner, axis=0)
     return np.sqrt(np.maximum.reduceat(np.einsum("ij,ij->i", gap, gap), np.cumsum(counts) - counts))
+
+
+def _longest_edge_at(n: int, edges: np.ndarray, length: np.ndarray) -> np.ndarray:
+    """(n,) the length of the longest of the ``edges`` (E, 2) at each vertex (0 if none),
+    given their ``length`` (E,)."""
+    reach = np.zeros(n)
+    np.maximum.at(reach, edges[:, 0], length)
+    np.maximum.at(reach, edges[:, 1], length)
+    return reach
 
 
 class _Refused:
@@ -324,22 +342,35 @@ def _collapse_round(vertices, faces, region: np.ndarray | None, target_length, m
     valid = ~(on_line[a] & on_line[b] & ~along) & ~(corner[a] & corner[b])
 
     # Try the places in turn; the first one that makes no edge longer than 4/3 L wins.
+    # A neighbour q of an end x is at most reach[x] + |x - place| from the place
+    # (triangle inequality), so where that bound already fits, the neighbours need not
+    # be gathered (about half the short edges of the first round on subdivided Spot).
+    limit = SPLIT_ABOVE * target_length
+    reach = _longest_edge_at(n, edges, length)                         # (n,)
+    span = length[candidates]                                          # (k,) |a - b|
     keep, remove = first.copy(), second.copy()
     points = np.full((len(candidates), 3), np.nan)
-    options = (
-        (0.5 * (vertices[a] + vertices[b]), first, free),
-        (vertices[first], first, ~free),
-        (vertices[first], first, free),
-        (vertices[second], second, free | (along & ~corner[first])),
+    options = (  # (which place, the end kept, allowed, a bound on its farthest neighbour)
+        ("midpoint", first, free, np.maximum(reach[a], reach[b]) + 0.5 * span),
+        ("kept", first, ~free, np.maximum(reach[first], reach[second] + span)),
+        ("kept", first, free, np.maximum(reach[first], reach[second] + span)),
+        ("kept", second, free | (along & ~corner[first]), np.maximum(reach[second], reach[first] + span)),
     )
-    for place, kept, allowed in options:
+    for where, kept, allowed, bound in options:
         todo = np.flatnonzero(valid & allowed & np.isnan(points[:, 0]))
         if len(todo) == 0:
             continue
-        longest = np.maximum(_farthest_neighbour(vertices, neighbours, a[todo], place[todo]),
-                             _farthest_neighbour(vertices, neighbours, b[todo], place[todo]))
-        fits = todo[longest <= SPLIT_ABOVE * target_length]
-        points[fits] = place[fits]
+        place = (0.5 * (vertices[a[todo]] + vertices[b[todo]]) if where == "midpoint"
+                 else vertices[kept[todo]])                            # (t, 3)
+        # The bound is computed with rounding too: a margin of 1e-9 keeps "surely fits"
+        # true of the exact check below, so the choice is the same as checking all.
+        surely = bound[todo] <= limit * (1.0 - 1e-9)
+        check = np.flatnonzero(~surely)
+        longest = np.maximum(_farthest_neighbour(vertices, neighbours, a[todo[check]], place[check]),
+                             _farthest_neighbour(vertices, neighbours, b[todo[check]], place[check]))
+        surely[check[longest <= limit]] = True
+        fits = todo[surely]
+        points[fits] = place[surely]
         keep[fits] = kept[fits]
         remove[fits] = np.where(kept[fits] == first[fits], second[fits], first[fits])
     valid &= ~np.isnan(points[:, 0])
@@ -469,6 +500,19 @@ class _EdgeUses(NamedTuple):
         table = edge_table(faces, n)
         return cls(table.keys, table.first, table.second)
 
+    def table(self, n: int) -> EdgeTable:
+        """The :class:`~halfedge_edu.core.arrays.EdgeTable` of the faces these uses are of
+        (``n`` vertices), without sorting their edges again: smoothing and projection
+        after the flips ask for it."""
+        inner = self.second >= 0
+        count = np.where(inner, 2, 1)
+        corner_edge = np.empty(2 * len(self.keys) - int((~inner).sum()), dtype=np.int64)   # (3m,)
+        corner_edge[self.first] = np.arange(len(self.keys))
+        corner_edge[self.second[inner]] = np.flatnonzero(inner)
+        low = self.keys // n
+        edges = np.stack([low, self.keys - low * n], axis=1)
+        return EdgeTable(edges, corner_edge.reshape(-1, 3), count, self.first, self.second, self.keys)
+
     def after_flips(self, n: int, a, b, c, d, h1, h2) -> "_EdgeUses":
         """The uses after flipping edges ``a-b`` (directed edge ``h1`` in face ``[a, b, c]``,
         ``h2`` in ``[b, a, d]``) into ``c-d``, the faces becoming ``[c, a, d]`` and
@@ -588,14 +632,16 @@ def _flip_pass(vertices, faces, rng, max_crease_cos, features: Features | None =
     return faces, len(take), uses.after_flips(n, a[take], b[take], c[take], d[take], h1[take], h2[take])
 
 
-def _flip_to_regular_degrees(vertices, faces, rng, features: Features | None):
+def _flip_to_regular_degrees(vertices, faces, rng, features: Features | None) -> tuple[np.ndarray, EdgeTable]:
+    """Flip passes until few flips are left (at most ``MAX_FLIP_PASSES``). Returns ``(faces,
+    their edge table)``: the table comes from the uses the passes kept up to date."""
     max_crease_cos = math.cos(math.radians(MAX_FLIP_DIHEDRAL))
     uses = _EdgeUses.of(faces, len(vertices))
     for _ in range(MAX_FLIP_PASSES):
         faces, n_flipped, uses = _flip_pass(vertices, faces, rng, max_crease_cos, features, uses=uses)
         if n_flipped <= MIN_FLIP_FRACTION * len(faces):
             break
-    return faces
+    return faces, uses.table(len(vertices))
 
 
 # ----------------------------------------------------------------------------------------
@@ -731,6 +777,9 @@ class _Surface:
         ab, ac = self.sides[:, 0], self.sides[:, 1]
         self.gram = np.stack([np.einsum("ij,ij->i", ab, ab), np.einsum("ij,ij->i", ab, ac),
                               np.einsum("ij,ij->i", ac, ac)], axis=1)  # (F, 3)
+        # The same twelve numbers per triangle in one row (a, b - a, c - a, gram): a query
+        # gathers one contiguous row per candidate instead of three scattered pieces.
+        self.rows = np.concatenate([self.origin, self.sides.reshape(-1, 6), self.gram], axis=1)   # (F, 12)
         self.face_corners = faces
         self.fan_offsets, self.fans = vertex_faces(faces, len(vertices))   # each vertex's triangles, CSR
         self.degree = np.diff(self.fan_offsets)
@@ -822,11 +871,11 @@ class _Surface:
         ac.ac``, all numbers already at hand, so the point itself is built only for the
         winning candidate.
         """
-        ap = points[:, None, :] - self.origin[near]                    # (P, k, 3)
-        sides = self.sides[near]                                       # (P, k, 2, 3)
-        d1 = np.einsum("pkj,pkj->pk", sides[:, :, 0], ap)
-        d2 = np.einsum("pkj,pkj->pk", sides[:, :, 1], ap)
-        ab_ab, ab_ac, ac_ac = np.moveaxis(self.gram[near], 2, 0)       # (P, k) each
+        rows = np.take(self.rows, near, axis=0)                        # (P, k, 12)
+        ap = points[:, None, :] - rows[:, :, 0:3]                      # (P, k, 3)
+        d1 = np.einsum("pkj,pkj->pk", rows[:, :, 3:6], ap)             # (b - a).(p - a)
+        d2 = np.einsum("pkj,pkj->pk", rows[:, :, 6:9], ap)             # (c - a).(p - a)
+        ab_ab, ab_ac, ac_ac = rows[:, :, 9], rows[:, :, 10], rows[:, :, 11]   # (P, k) each
         s, t = _triangle_coordinates(d1, d2, ab_ab, ab_ac, ac_ac)
         gap = np.einsum("pkj,pkj->pk", ap, ap) - 2 * (s * d1 + t * d2) + s * s * ab_ab + 2 * s * t * ab_ac + t * t * ac_ac
         best = np.argmin(gap, axis=1)                                  # (P,)
@@ -953,19 +1002,20 @@ def _phases(mesh: HalfedgeMesh, target_length, iterations, project, progress,
     """Yield ``(iteration, phase, vertices, faces, features)`` after every phase (arrays,
     not meshes; ``features`` None without ``feature_angle``)."""
     vertices, faces = mesh.to_arrays()
+    table = edge_table(faces, len(vertices))           # the input's edges, sorted once for the next three uses
     if target_length is None:
-        target_length = float(_edge_lengths(vertices, edge_table(faces, len(vertices)).edges).mean())
-    features = feature_arrays(vertices, faces, feature_angle) if feature_angle is not None else None
+        target_length = float(_edge_lengths(vertices, table.edges).mean())
+    features = feature_arrays(vertices, faces, feature_angle, table=table) if feature_angle is not None else None
     surface = _Surface(vertices, faces, features) if project else None
     rng = np.random.default_rng(0)
     for iteration in progress_range(iterations, progress, "remesh"):
-        vertices, faces, features = _split_long_edges(vertices, faces, target_length, features)
+        vertices, faces, features = _split_long_edges(vertices, faces, target_length, features,
+                                                      table if iteration == 0 else None)
         yield iteration + 1, "split", vertices, faces, features
         vertices, faces, features = _collapse_short_edges(vertices, faces, target_length, features)
         yield iteration + 1, "collapse", vertices, faces, features
-        faces = _flip_to_regular_degrees(vertices, faces, rng, features)
+        faces, table = _flip_to_regular_degrees(vertices, faces, rng, features)   # table: for smoothing and projection
         yield iteration + 1, "flip", vertices, faces, features
-        table = edge_table(faces, len(vertices))                       # for both smoothing and projection
         vertices = tangential_smoothing(vertices, faces, features, smoothing_step, table=table)
         yield iteration + 1, "smooth", vertices, faces, features
         if surface is not None:

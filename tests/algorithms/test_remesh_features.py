@@ -265,7 +265,7 @@ def test_flips_never_flip_a_feature_edge(case, where, slope, angle):
     # Angles below the flip phase's own limit (MAX_FLIP_DIHEDRAL): only the feature rule stops these.
     vertices = creased(case.vertices, where, slope)
     features = feature_arrays(vertices, case.faces, angle)
-    flipped = remesh_module._flip_to_regular_degrees(vertices, case.faces, np.random.default_rng(0), features)
+    flipped, _ = remesh_module._flip_to_regular_degrees(vertices, case.faces, np.random.default_rng(0), features)
     keys = edge_table(flipped, len(vertices)).keys
     wanted = features.edges[:, 0] * len(vertices) + features.edges[:, 1]
     assert np.isin(wanted, keys).all()

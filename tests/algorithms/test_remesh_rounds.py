@@ -132,4 +132,9 @@ def test_edge_uses_kept_up_to_date_through_flip_passes_equal_a_fresh_table(name)
         # The same two directed edges per edge, in either order.
         assert np.array_equal(np.sort(np.stack([uses.first, uses.second], axis=1), axis=1),
                               np.sort(np.stack([fresh.first, fresh.second], axis=1), axis=1))
+        # The table made from the uses is the fresh one (up to which use of an edge is first).
+        table = uses.table(len(vertices))
+        for field in ("edges", "corner_edge", "count", "keys"):
+            assert np.array_equal(getattr(table, field), getattr(fresh, field)), field
+        assert np.array_equal(table.boundary_vertices(len(vertices)), fresh.boundary_vertices(len(vertices)))
     assert flipped > 0
