@@ -35,8 +35,11 @@ The weights:
   every iteration. Obtuse angles make cotangents negative; a negative edge weight
   could push a vertex out of its neighbours' hull, so edge weights are clamped at
   zero. Each cotangent is also clamped to ``[-COT_LIMIT, COT_LIMIT]`` (the cotangent
-  of 1 degree) and a zero-area triangle contributes nothing, so a nearly degenerate
-  triangle cannot dominate. A vertex whose weights all clamp to zero falls back to
+  of 1 degree) and a flat triangle contributes nothing, so a nearly degenerate
+  triangle cannot dominate. "Flat" means zero area up to rounding: twice the area at
+  most ``FLAT_TRIANGLE`` times the longest side squared. A triangle two of whose
+  corners have (nearly) met, as smoothing can make, then gives no weight at all,
+  rather than a cotangent that is the ratio of two rounding errors. A vertex whose weights all clamp to zero falls back to
   uniform weights.
 
 :func:`smooth` is the vectorized version; :func:`smooth_reference` is the loop the
@@ -57,6 +60,10 @@ WEIGHTS = ("uniform", "cotangent")
 BOUNDARY_RULES = ("fixed", "along")
 #: Largest magnitude a cotangent weight may have: cot(1 degree), about 57.3.
 COT_LIMIT = 1.0 / math.tan(math.radians(1.0))
+#: A triangle is flat when twice its area is at most this times its longest side
+#: squared (its height below 1e-12 of that side). Rounding in positions of order 1
+#: leaves areas near 1e-16; a real sliver this thin would be clamped to COT_LIMIT anyway.
+FLAT_TRIANGLE = 1e-12
 
 
 def _check_arguments(iterations: int, weights: str, boundary: str, step: float) -> None:
@@ -167,7 +174,7 @@ def _halfedge_cotangents(mesh: HalfedgeMesh, positions: np.ndarray) -> np.ndarra
     """(n_halfedge_slots,) clamped cotangent of the angle opposite each halfedge in its face.
 
     Halfedge ``h`` runs from ``a`` to ``b``; the opposite corner ``c`` is the origin of
-    ``prev(h)``. Boundary halfedges (no face) and zero-area faces give 0.
+    ``prev(h)``. Boundary halfedges (no face) and flat faces (see ``FLAT_TRIANGLE``) give 0.
     """
     a = mesh.halfedge_vertex                                            # (H,)
     b = mesh.halfedge_tip()                                             # (H,)
@@ -176,7 +183,11 @@ def _halfedge_cotangents(mesh: HalfedgeMesh, positions: np.ndarray) -> np.ndarra
     w = positions[b] - positions[c]
     area2 = np.linalg.norm(np.cross(u, w), axis=1)                      # (H,) twice the area
     dot = np.einsum("ij,ij->i", u, w)
-    has_face = (mesh.halfedge_face >= 0) & (area2 > 0) & ~mesh.halfedge_deleted
+    side = positions[b] - positions[a]
+    longest2 = np.maximum(np.maximum(np.einsum("ij,ij->i", u, u), np.einsum("ij,ij->i", w, w)),
+                          np.einsum("ij,ij->i", side, side))            # (H,) longest side squared
+    flat = area2 <= FLAT_TRIANGLE * longest2
+    has_face = (mesh.halfedge_face >= 0) & ~flat & ~mesh.halfedge_deleted
     cot = np.divide(dot, area2, out=np.zeros_like(dot), where=has_face)
     return np.clip(cot, -COT_LIMIT, COT_LIMIT)
 
@@ -208,14 +219,17 @@ def _cotangent_row_weights(mesh, positions, offsets, uniform) -> np.ndarray:
 # --------------------------------------------------------------------------------------
 
 def _cotangent_opposite(mesh: HalfedgeMesh, positions: np.ndarray, h) -> float:
-    """Clamped cotangent of the angle opposite halfedge ``h`` in its face (0 if none)."""
+    """Clamped cotangent of the angle opposite halfedge ``h`` in its face (0 if none, or
+    if the face is flat: see ``FLAT_TRIANGLE``)."""
     if h.face is None:
         return 0.0
     corner = positions[h.prev.vertex.index]
     u = positions[h.vertex.index] - corner
     w = positions[h.tip.index] - corner
     area2 = float(np.linalg.norm(np.cross(u, w)))
-    if area2 == 0:
+    side = positions[h.tip.index] - positions[h.vertex.index]
+    longest2 = max(float(np.dot(u, u)), float(np.dot(w, w)), float(np.dot(side, side)))
+    if area2 <= FLAT_TRIANGLE * longest2:      # flat up to rounding: no weight
         return 0.0
     return min(max(float(np.dot(u, w)) / area2, -COT_LIMIT), COT_LIMIT)
 
