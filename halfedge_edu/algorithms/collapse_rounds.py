@@ -31,7 +31,7 @@ from typing import Callable, NamedTuple
 
 import numpy as np
 
-from ..core.arrays import expand, sort_undirected
+from ..core.arrays import expand, key_ends, sort_undirected
 
 __all__ = [
     "FOLD_ANGLE", "RoundTables", "choose_round", "collapse_topology_ok", "drop_folding_neighbours", "independent_edges",
@@ -391,15 +391,7 @@ def round_tables(faces: np.ndarray, n: int) -> RoundTables:
         boundary = count == 1
         boundary_halfedge = first[boundary]
     faces_around, neighbours = _vertex_rings(corner_vertex, next_vertex, boundary_halfedge, n)
-    # The ends written straight into the (E, 2) table: keys // n, then keys % n without a
-    # second division. No whole-mesh temporaries (on a big mesh each would be tens of
-    # MiB, handed out afresh by the system every round).
-    edges = np.empty((len(keys), 2), dtype=np.int64)
-    low, high = edges[:, 0], edges[:, 1]
-    np.floor_divide(keys, n, out=low)
-    np.multiply(low, n, out=high)
-    np.subtract(keys, high, out=high)
-    return RoundTables(edges, boundary, boundary_halfedge,
+    return RoundTables(key_ends(keys, n), boundary, boundary_halfedge,
                        across.reshape(-1, 3), faces_around, neighbours)
 
 

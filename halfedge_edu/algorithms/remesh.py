@@ -63,7 +63,7 @@ import numpy as np
 from ..core.errors import MeshInputError
 from ..core.mesh import HalfedgeMesh
 from ._progress import progress_range
-from ..core.arrays import EdgeTable, compact, cross_rows, edge_table, expand, vertex_faces
+from ..core.arrays import EdgeTable, compact, cross_rows, edge_table, expand, key_ends, vertex_faces
 from .arguments import check_mesh, check_remesh, real_number, whole_number
 from .collapse_rounds import choose_round, collapse_topology_ok, no_turned_faces, round_tables
 from .features import DEFAULT_FEATURE_ANGLE, Features, feature_arrays
@@ -509,9 +509,7 @@ class _EdgeUses(NamedTuple):
         corner_edge = np.empty(2 * len(self.keys) - int((~inner).sum()), dtype=np.int64)   # (3m,)
         corner_edge[self.first] = np.arange(len(self.keys))
         corner_edge[self.second[inner]] = np.flatnonzero(inner)
-        low = self.keys // n
-        edges = np.stack([low, self.keys - low * n], axis=1)
-        return EdgeTable(edges, corner_edge.reshape(-1, 3), count, self.first, self.second, self.keys)
+        return EdgeTable(key_ends(self.keys, n), corner_edge.reshape(-1, 3), count, self.first, self.second, self.keys)
 
     def after_flips(self, n: int, a, b, c, d, h1, h2) -> "_EdgeUses":
         """The uses after flipping edges ``a-b`` (directed edge ``h1`` in face ``[a, b, c]``,

@@ -68,6 +68,21 @@ def undirected_keys(tail: np.ndarray, head: np.ndarray, n_vertices: int) -> np.n
     return key
 
 
+def key_ends(keys: np.ndarray, n_vertices: int) -> np.ndarray:
+    """(k, 2) int64 the ends ``(low, high)`` of each edge key of :func:`undirected_keys`.
+
+    Written straight into the table: ``key // n_vertices``, then ``key % n_vertices``
+    as ``key - low * n_vertices`` (no second division), with no whole-array temporaries
+    (on a big mesh each would be tens of MiB, handed out afresh by the system each time).
+    """
+    ends = np.empty((len(keys), 2), dtype=np.int64)
+    low, high = ends[:, 0], ends[:, 1]                        # views into the table
+    np.floor_divide(keys, n_vertices, out=low)
+    np.multiply(low, n_vertices, out=high)
+    np.subtract(keys, high, out=high)
+    return ends
+
+
 def sort_undirected(tail: np.ndarray, head: np.ndarray, n_vertices: int) -> tuple[np.ndarray, np.ndarray]:
     """Sort directed edges by their undirected key, keeping equal keys in input order.
 
@@ -151,7 +166,7 @@ def edge_table(faces: np.ndarray, n_vertices: int) -> EdgeTable:
     corner_edge = np.empty(len(key), dtype=np.int64)
     corner_edge[order] = np.cumsum(np.r_[False, new_run])
     second = np.where(count == 2, order[np.minimum(starts + 1, len(key) - 1)], -1)
-    edges = np.stack([keys // n_vertices, keys % n_vertices], axis=1)
+    edges = key_ends(keys, n_vertices)
     return EdgeTable(edges, corner_edge.reshape(-1, 3), count, order[starts], second, keys)
 
 

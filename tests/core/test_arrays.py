@@ -6,7 +6,7 @@ import numpy as np
 from hypothesis import given
 
 from halfedge_edu.core.arrays import (
-    compact, csr, edge_table, expand, face_cross, face_halfedges, merge_vertices, sort_undirected,
+    compact, csr, edge_table, expand, face_cross, face_halfedges, key_ends, merge_vertices, sort_undirected,
     undirected_keys, unique_edges, vertex_faces, vertex_neighbours,
 )
 from tests import strategies as shapes
@@ -20,6 +20,16 @@ def edges_by_hand(faces: np.ndarray) -> dict[tuple[int, int], list[int]]:
             a, b = face[k], face[(k + 1) % 3]
             uses.setdefault((min(a, b), max(a, b)), []).append(3 * f + k)
     return uses
+
+
+def test_key_ends_give_back_the_low_and_high_end_of_each_key():
+    # Up to 2**31 vertices: a key (below n**2) then needs nearly all of int64.
+    rng = np.random.default_rng(3)
+    for n in (2, 7, 1000, 2**31):
+        tail, head = rng.integers(0, n, 500), rng.integers(0, n, 500)
+        ends = key_ends(undirected_keys(tail, head, n), n)
+        assert ends.dtype == np.int64
+        assert np.array_equal(ends, np.stack([np.minimum(tail, head), np.maximum(tail, head)], axis=1))
 
 
 @given(drawn=shapes.meshes())

@@ -481,6 +481,14 @@ def test_a_sound_mesh_takes_the_fast_path_and_a_broken_one_the_rules():
     assert caught.value.rule == "next-prev-inverse"
 
 
+def _several_blocks(n_items: int, size: int) -> int:
+    """The number of blocks of ``size`` that ``n_items`` fill (the last one partial),
+    checked to be at least three: a block test means nothing on one block."""
+    n_blocks = -(-n_items // size)
+    assert n_blocks >= 3, "the mesh must span several blocks for this test to mean anything"
+    return n_blocks
+
+
 @pytest.mark.parametrize("block", ["first", "middle", "last"])
 def test_the_fast_path_checks_every_block_of_halfedges(block):
     # The fast path reads the halfedges in blocks of _BLOCK; a broken pointer in any
@@ -489,8 +497,7 @@ def test_the_fast_path_checks_every_block_of_halfedges(block):
     # own halfedge, so only that block's next-cycle check can see it.
     mesh = _mesh(shapes.torus(120, 80))                      # 57,600 halfedges: several blocks
     size = validate_module._BLOCK
-    n_blocks = -(-mesh.n_halfedge_slots // size)
-    assert n_blocks >= 3, "the mesh must span several blocks for this test to mean anything"
+    n_blocks = _several_blocks(mesh.n_halfedge_slots, size)
     index = {"first": 0, "middle": n_blocks // 2, "last": n_blocks - 1}[block]
     in_block = np.arange(index * size, min((index + 1) * size, mesh.n_halfedge_slots))
     seen_only_here = ((mesh.halfedge_prev[in_block] // size == index)
@@ -718,8 +725,7 @@ def test_meshes_in_random_order_take_the_packed_rows():
 def test_the_fan_walk_checks_every_block_of_vertices(block):
     mesh = _mesh(shapes.torus(200, 120))                     # 24,000 vertices: several blocks
     size = validate_module._VERTEX_BLOCK
-    n_blocks = -(-mesh.n_vertex_slots // size)
-    assert n_blocks >= 3, "the mesh must span several blocks for this test to mean anything"
+    n_blocks = _several_blocks(mesh.n_vertex_slots, size)
     v = {"first": 0, "middle": (n_blocks // 2) * size + 7, "last": mesh.n_vertex_slots - 1}[block]
     neighbour = int(mesh.halfedge_vertex[int(mesh.vertex_halfedge[v]) ^ 1])
     mesh.vertex_halfedge[v] = mesh.vertex_halfedge[neighbour]
