@@ -185,14 +185,18 @@ class WidgetInLab:
 
     # -- checking --------------------------------------------------------------------
 
-    def check(self, what: str) -> None:
+    def check(self, what: str, settled: tuple | None = None) -> None:
         """No red status line, every picture drawn (not blank, not stripes), the marked
-        table rows in view."""
+        table rows in view. ``settled``: the :meth:`state` that :meth:`settle` just
+        returned, whose pictures are the settled ones (they were taken after the text
+        and equal the frame before them), so they need not be taken again: a picture
+        costs a screenshot of each view, the most expensive read of a check."""
         html = self.output.inner_html(timeout=30_000)
         if ERROR_RED in html:
             red = self.output.locator(f'[style*="{ERROR_RED}"]').all_inner_texts()
             pytest.fail(f"{self.name}, {what}: the widget shows an error: {red}")
-        for k, picture in enumerate(self.pictures()):
+        pictures = self.pictures() if settled is None else settled[2]
+        for k, picture in enumerate(pictures):
             std, colours = drawn(picture)
             assert std >= MIN_STD and colours >= MIN_COLOURS, (
                 f"{self.name}, {what}: picture {k} is blank (std {std:.1f}, {colours} colours)")
@@ -251,7 +255,7 @@ class WidgetInLab:
             click_in_place(buttons[k], timeout=30)
             record.count(f"{self.name} '{labels[k]}'")
             state = self.settle(state, f"after '{labels[k]}'")
-            self.check(f"after '{labels[k]}'")
+            self.check(f"after '{labels[k]}'", state)
         self.save("checked")
         for _ in range(RAPID_CLICKS):
             k = rng.randrange(len(buttons))
@@ -260,8 +264,8 @@ class WidgetInLab:
             buttons[k].click(timeout=30_000)
             record.count(f"{self.name} '{labels[k]}' (rapid)")
             time.sleep(0.08)
-        self.settle(state, "after a burst of clicks", timeout=BURST_TIMEOUT)
-        self.check("after a burst of clicks")
+        state = self.settle(state, "after a burst of clicks", timeout=BURST_TIMEOUT)
+        self.check("after a burst of clicks", state)
         self.save("burst")
 
     def drive_dropdowns(self, record: Record, changes: int | None = None) -> None:
@@ -277,12 +281,12 @@ class WidgetInLab:
                 record.count(f"{self.name} dropdown")
                 if changes is None or k % 10 == 9:
                     state = self.settle(state, f"after choosing {option!r}")
-                    self.check(f"after choosing {option!r}")
+                    self.check(f"after choosing {option!r}", state)
                 else:
                     time.sleep(0.3)
             select.select_option(value=first, timeout=30_000)
-            self.settle(state, "after the dropdown's first option again")
-            self.check("after the dropdown's first option again")
+            state = self.settle(state, "after the dropdown's first option again")
+            self.check("after the dropdown's first option again", state)
 
     def drive_sliders(self, record: Record, moves: int | None = None) -> None:
         """Each slider by keyboard through all its values up and back down (or ``moves``
@@ -315,7 +319,7 @@ class WidgetInLab:
                 record.count(f"{self.name} slider")
                 if k % 10 == 9 or k == len(keys) - 1:
                     state = self.settle(state, f"after {k + 1} slider moves")
-                    self.check(f"after {k + 1} slider moves")
+                    self.check(f"after {k + 1} slider moves", state)
                 else:
                     time.sleep(0.15)
 
@@ -333,8 +337,8 @@ class WidgetInLab:
             box.fill(good)
             box.blur()
             record.count(f"{self.name} text edit")
-            self.settle(broken, "after mending the file")
-            self.check("after mending the file")
+            mended = self.settle(broken, "after mending the file")
+            self.check("after mending the file", mended)
 
 
 def kernel_problems(page, lab, log_start: int) -> list[str]:
@@ -352,12 +356,27 @@ def kernel_problems(page, lab, log_start: int) -> list[str]:
 EDITOR_KEYS_BOX = 'input[placeholder="click, type f s c l u"]'
 
 
+#: JavaScript: number the output areas that hold a control someone can operate (the
+#: editor aside, see above) with a ``data-widget-under-test`` attribute, and count them.
+MARK_WIDGET_OUTPUTS = """([controls, editorKeys]) => {
+    const found = [...document.querySelectorAll('.jp-OutputArea-output')]
+        .filter(o => o.querySelector(controls) && !o.querySelector(editorKeys));
+    found.forEach((o, k) => o.setAttribute('data-widget-under-test', String(k)));
+    return found.length;
+}"""
+
+
 def widget_outputs(page) -> list:
-    """The output areas that hold a widget someone can operate (the editor aside, see above)."""
+    """The output areas that hold a widget someone can operate (the editor aside, see above).
+
+    Each is found again by an attribute set on it now, not by its place among the page's
+    output areas (Playwright's ``.all()`` hands out ``nth(k)`` locators): an output area
+    added above a widget while it is driven (a late-rendered output, a message) would
+    otherwise turn the widget's locator into its neighbour's."""
     controls = ("button.jupyter-button, .widget-dropdown select, .widget-slider .noUi-handle, "
                 ".widget-textarea textarea:not([disabled])")
-    return [o for o in page.locator(".jp-OutputArea-output").all()
-            if o.locator(controls).count() and not o.locator(EDITOR_KEYS_BOX).count()]
+    count = page.evaluate(MARK_WIDGET_OUTPUTS, [controls, EDITOR_KEYS_BOX])
+    return [page.locator(f'[data-widget-under-test="{k}"]') for k in range(count)]
 
 
 @pytest.mark.parametrize("notebook", sorted(CHAPTERS))
@@ -381,8 +400,7 @@ def test_every_widget_survives_a_students_clicks(notebook, lab, browser_context,
             for k, output in enumerate(outputs):
                 widget = WidgetInLab(page, output, f"w{k}", shots)
                 output.scroll_into_view_if_needed(timeout=30_000)
-                widget.settle(None, "as the notebook left it")
-                widget.check("as the notebook left it")
+                widget.check("as the notebook left it", widget.settle(None, "as the notebook left it"))
                 widget.save("0-as-left")
                 if notebook.startswith("08"):
                     widget.drive_dropdowns(record, changes=DROPDOWN_CHANGES)
