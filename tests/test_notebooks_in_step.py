@@ -18,7 +18,8 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tools"))
 from build_notebooks import (  # noqa: E402
-    EDITIONS, chapter_id, chapter_sources, in_step, new_notebook, parse_source, student_stub, target_of,
+    EDITIONS, chapter_id, chapter_sources, in_step, merged_streams, new_notebook, parse_source, student_stub,
+    target_of,
 )
 
 SOURCES = chapter_sources([])
@@ -141,3 +142,16 @@ def test_the_student_edition_has_no_answer_left(source: Path):
 def test_notebooks_are_stamped_with_chapter_and_edition():
     notebook = new_notebook([], "06", "student")
     assert notebook.metadata["halfedge_edu"] == {"chapter": "06", "edition": "student"}
+
+
+def test_runs_of_one_stream_are_joined_and_nothing_else_is():
+    out = nbformat.v4.new_output
+    outputs = [out("stream", name="stdout", text="a\n"), out("stream", name="stdout", text="b\n"),
+               out("stream", name="stderr", text="warned\n"), out("stream", name="stdout", text="c\n"),
+               out("execute_result", data={"text/plain": "1"}, execution_count=1),
+               out("stream", name="stdout", text="d\n"), out("stream", name="stdout", text="e")]
+    merged = merged_streams(outputs)
+    assert [(o.output_type, o.get("name"), o.get("text")) for o in merged] == [
+        ("stream", "stdout", "a\nb\n"), ("stream", "stderr", "warned\n"), ("stream", "stdout", "c\n"),
+        ("execute_result", None, None), ("stream", "stdout", "d\ne"),
+    ]

@@ -215,6 +215,25 @@ def new_notebook(cells: list[nbformat.NotebookNode], chapter: str | None = None,
     return notebook
 
 
+def merged_streams(outputs: list) -> list:
+    """``outputs`` with each run of stream outputs of one name (stdout, stderr) joined
+    into one.
+
+    How a cell's printing is cut into stream messages depends on when the kernel
+    flushes, so the same cell run twice can store one output or three; joined, a
+    rebuilt chapter differs from the stored one only where its text does (nbval joins
+    them the same way before comparing).
+    """
+    merged: list = []
+    for output in outputs:
+        if (output.get("output_type") == "stream" and merged and merged[-1].get("output_type") == "stream"
+                and merged[-1].get("name") == output.get("name")):
+            merged[-1]["text"] = "".join(merged[-1]["text"]) + "".join(output["text"])
+        else:
+            merged.append(output)
+    return merged
+
+
 def target_of(source: Path, edition: str) -> Path:
     """Where ``source``'s notebook of ``edition`` is written."""
     return EDITION_FOLDERS[edition] / (source.stem + ".ipynb")
@@ -237,6 +256,8 @@ def build(source: Path, edition: str = "solution") -> Path:
     client.execute()
     for cell in notebook.cells:
         cell.metadata.pop("execution", None)
+        if cell.cell_type == "code":
+            cell.outputs = merged_streams(cell.outputs)
     nbformat.write(notebook, target)
     return target
 
