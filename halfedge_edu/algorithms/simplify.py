@@ -531,6 +531,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         spread = spread_ties_keys if len(edges) <= SPREAD_KEY_IDS else spread_ties
 
         faces_around, neighbours = this_round.faces_around, this_round.neighbours
+        corners_around = this_round.corners_around                      # faces_around's rows as corners 3 f + k
 
         def check_topology(indices: np.ndarray):
             chosen_edges = candidates[indices]
@@ -543,7 +544,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
             chosen_edges = candidates[indices]
             ok = no_turned_faces(vertices, faces, faces_around, points[chosen_edges],
                                  keep[chosen_edges], remove[chosen_edges], max_normal_cos,
-                                 face_across=face_across, positions=positions)
+                                 face_across=face_across, positions=positions, corners_around=corners_around)
             # Where the best point turns a face over, an endpoint may not: in a flat
             # region all three cost nothing, and moving onto a neighbour folds less
             # often than moving to the middle of a long edge. Accept an endpoint only
@@ -562,7 +563,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
                 return ok
             passes[cheap] = no_turned_faces(vertices, faces, faces_around, option[cheap], keep[twice[cheap]],
                                             remove[twice[cheap]], max_normal_cos, face_across=face_across,
-                                            positions=positions)
+                                            positions=positions, corners_around=corners_around)
             r = len(retry)
             pick = np.where(passes[:r], np.arange(r), np.arange(r) + r)    # (r,) the kept end if it passes
             good = passes[pick]
@@ -580,7 +581,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         chosen = chosen[np.cumsum(removes_faces) <= faces_to_remove]
         chosen = chosen[drop_folding_neighbours(vertices, faces, faces_around, points[chosen],
                                                 keep[chosen], remove[chosen], face_across=face_across,
-                                                positions=positions)]
+                                                positions=positions, corners_around=corners_around)]
         if len(chosen) == 0:
             # Nothing passed the geometric check, or only interior collapses are left with
             # one face to go (then one more collapse is the nearest we can get).
