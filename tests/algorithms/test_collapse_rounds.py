@@ -183,6 +183,12 @@ def test_a_round_chosen_with_the_real_checks_collapses_all_at_once_into_a_valid_
     assert (after.genus, after.n_boundary_loops) == (before.genus, before.n_boundary_loops)
 
 
+def roughened_tables(case: shapes.MeshCase, seed: int, n_collapses: int):
+    """``(vertices, faces, n, round_tables(faces, n))`` of the :func:`roughened` mesh."""
+    vertices, faces = roughened(case, seed, n_collapses).to_arrays()
+    return vertices, faces, len(vertices), round_tables(faces, len(vertices))
+
+
 def _rows(csr_pair, n):
     """Each CSR row as a sorted list, to compare two CSRs whose rows hold the same values in any order."""
     offsets, values = csr_pair
@@ -192,9 +198,7 @@ def _rows(csr_pair, n):
 @settings(max_examples=60)
 @given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1), n_collapses=st.integers(0, 25))
 def test_round_tables_hold_what_the_array_toolbox_gives(case, seed, n_collapses):
-    vertices, faces = roughened(case, seed, n_collapses).to_arrays()
-    n = len(vertices)
-    tables = round_tables(faces, n)
+    vertices, faces, n, tables = roughened_tables(case, seed, n_collapses)
     edges, count = unique_edges(faces, n)
     assert np.array_equal(tables.edges, edges) and np.array_equal(tables.boundary, count == 1)
     tail, head = tables.boundary_halfedge, 3 * (tables.boundary_halfedge // 3) + (tables.boundary_halfedge + 1) % 3
@@ -256,9 +260,7 @@ def test_the_checks_give_the_same_verdicts_reading_corners_instead_of_faces(case
     # Every edge moved to a random point near it (some far enough to turn faces over),
     # then a round of edges two apart moved farther: the turned-face check and the fold
     # check read the moved faces off corners_around or off faces_around, with the same verdicts.
-    vertices, faces = roughened(case, seed, n_collapses).to_arrays()
-    n = len(vertices)
-    tables = round_tables(faces, n)
+    vertices, faces, n, tables = roughened_tables(case, seed, n_collapses)
     rng = np.random.default_rng(seed)
     size = float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0)))
     keep, remove = tables.edges[:, 0], tables.edges[:, 1]
