@@ -5,6 +5,7 @@
     python benchmarks/bench_simplify.py --repeat 5  # median of 5 runs each (default 3)
     python benchmarks/bench_simplify.py --profile   # where our time goes, phase by phase
     python benchmarks/bench_simplify.py --cpu       # CPU time of this process instead of wall-clock time
+    python benchmarks/bench_simplify.py --rounds    # each round's phases, and how much of the mesh it touched
 
 Three inputs of about 100k faces, three kinds of surface: the bunny (a scan), Spot
 subdivided twice at edge midpoints (piecewise flat: many collapses cost nothing) and
@@ -26,6 +27,7 @@ counts the time the process waited for a core.
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 
 import numpy as np
@@ -99,6 +101,79 @@ def profile(name: str, mesh, target: int) -> None:
         print(f"   {label:<36}{seconds:7.3f} s {100 * seconds / total:5.1f}%")
 
 
+#: The phases ``--rounds`` times, as (column, function name in the simplify module). The
+#: first two do the same work whatever the round collapses (sorts of, or a pass over,
+#: every face); the others work mostly on what the round picks and changes.
+ROUND_PHASES = [
+    ("tables", "round_tables"),          # two sorts of the face array
+    ("apply", "merge_vertices"),         # one pass over the face array
+    ("pricing", "_EdgePrices.update"),   # re-prices the edges at moved vertices
+    ("choice", "choose_round"),          # picks, topology and turned-face checks
+    ("folds", "drop_folding_neighbours"),
+]
+
+
+def profile_rounds(name: str, mesh, target: int) -> None:
+    """Print, round by round, the CPU time of each phase of ``simplify`` and how much of the mesh the round touched.
+
+    The phases are timed by wrapping the functions the simplify module calls (the
+    wrappers are taken off again at the end). "touched" is the share of the faces that
+    hold an end of one of the round's collapses: the region a round changes (counting
+    it is left out of the times). "tables" in a row are those the round worked on
+    (built at the end of the round before).
+    """
+    module = sys.modules[simplify.__module__]
+    seconds = {}                                 # (round, column) -> CPU seconds
+    touched = []                                 # per round: (faces before, collapses, faces touched)
+    state = {"round": 0, "counting": 0.0}        # the round under way; CPU seconds spent counting touched faces
+
+    def owner_and_name(path):                    # "f" is module.f, "C.f" is module.C.f
+        *owner, name = path.split(".")
+        return (getattr(module, owner[0]) if owner else module), name
+
+    originals = {path: getattr(*owner_and_name(path)) for _, path in ROUND_PHASES}
+
+    def timed_phase(column, function):
+        def wrapper(*args, **kwargs):
+            start = time.process_time()
+            result = function(*args, **kwargs)
+            key = (state["round"], column)
+            seconds[key] = seconds.get(key, 0.0) + time.process_time() - start
+            if column == "apply":                # merge_vertices(faces, remove, keep, n) ends a round
+                counting = time.process_time()
+                faces, remove, keep, n = args
+                merged = np.zeros(n, dtype=bool)
+                merged[remove] = True
+                merged[keep] = True
+                touched.append((len(faces), len(remove), int(merged[faces].any(axis=1).sum())))
+                state["round"] += 1
+                state["counting"] += time.process_time() - counting
+            return result
+        return wrapper
+
+    for column, path in ROUND_PHASES:
+        setattr(*owner_and_name(path), timed_phase(column, originals[path]))
+    try:
+        start = time.process_time()
+        result = simplify_with_report(mesh, target)
+        total = time.process_time() - start - state["counting"]
+    finally:
+        for path, original in originals.items():
+            setattr(*owner_and_name(path), original)
+    columns = [column for column, _ in ROUND_PHASES]
+    print(f"{name}: {total:.3f} s CPU, {result.report.rounds} rounds (ms of CPU per phase)")
+    print(f"{'round':>5}{'faces':>8}{'collapses':>10}{'touched':>9}" + "".join(f"{c:>9}" for c in columns))
+    for index, (faces, collapses, faces_touched) in enumerate(touched):
+        times = "".join(f"{1000 * seconds.get((index, column), 0.0):9.1f}" for column in columns)
+        print(f"{index + 1:>5}{faces:>8}{collapses:>10}{faces_touched / faces:>9.0%}{times}")
+    sums = {column: sum(s for (_, c), s in seconds.items() if c == column) for column in columns}
+    whole = sums["tables"] + sums["apply"]
+    print(f"  sums: " + ", ".join(f"{c} {1000 * sums[c]:.0f} ms" for c in columns)
+          + f", the rest (first quadrics, candidate order) {1000 * (total - sum(sums.values())):.0f} ms")
+    print(f"  whole-mesh rebuilds (tables + apply): {100 * whole / total:.0f}% of the time; "
+          f"faces touched per round: {sum(t for _, _, t in touched) / sum(f for f, _, _ in touched):.0%} on average")
+
+
 def median_cpu_of(repeats: int, function, *args):
     """``(seconds, result)`` like ``median_of``, in CPU time of this process (``time.process_time``)."""
     runs = []
@@ -115,8 +190,14 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--repeat", type=int, default=3, help="time each method this many times, keep the median")
     parser.add_argument("--profile", action="store_true", help="profile our phases instead of timing the peers")
     parser.add_argument("--cpu", action="store_true", help="time in CPU seconds of this process, not wall-clock")
+    parser.add_argument("--rounds", action="store_true", help="each round's phases and the share of faces it touched")
     args = parser.parse_args(argv)
     timer = median_cpu_of if args.cpu else median_of
+    if args.rounds:
+        simplify(hx.sample("spot"), 1000)          # first call: imports stay out of the timings
+        for name, mesh in inputs(args.quick):
+            profile_rounds(name, mesh, mesh.n_faces // 10)
+        return
     if args.profile:
         simplify(hx.sample("spot"), 1000)          # first call: imports (scipy.sparse) stay out of the profile
         for name, mesh in inputs(args.quick):

@@ -20,9 +20,18 @@ Checking is the expensive part, so :func:`choose_round` checks only the few cand
 it picks, pass after pass, instead of every candidate.
 
 A round needs the same few tables of the face array every time: the edges, the face
-across each edge, the faces and the neighbours around every vertex.
+across each edge, the faces (and their corners) and the neighbours around every vertex.
 :func:`round_tables` builds them all from two sorts, and the checks take them as
-keyword arguments (``face_across``, ``neighbours``) where they replace a search.
+keyword arguments (``face_across``, ``neighbours``, ``corners_around``) where they
+replace a search.
+
+Why rebuild them every round rather than patch the rows a round changed: a round's
+collapses are spread over the whole mesh, one every few rings, so on the benchmark
+meshes a round touches about half of the faces (43-53% on average, measured with
+``benchmarks/bench_simplify.py --rounds``). Patching that half of the tables in place
+(the faces that vanish, the rows of the merged and opposite vertices, the edges merged
+into key order) took 1.5-1.9 times as long as the two sorts and the scatters of a
+rebuild: numpy sorts integer keys with SIMD instructions, a few passes over the array.
 """
 
 from __future__ import annotations
@@ -175,31 +184,53 @@ def _keep_where(mask: np.ndarray, *arrays: np.ndarray) -> tuple[np.ndarray, ...]
     return tuple(np.take(array, rows, axis=0) for array in arrays)
 
 
-def _moved_faces(positions, faces, faces_around, points, keep, remove, *, before: bool = True) -> _MovedFaces:
+#: The corner after corner k of a face, and the one after that: ``(k + 1) % 3`` and ``(k + 2) % 3``.
+_NEXT_CORNER = np.array([1, 2, 0])
+_NEXT_BUT_ONE_CORNER = np.array([2, 0, 1])
+
+
+def _moved_faces(positions, faces, faces_around, points, keep, remove, *, before: bool = True,
+                 corners_around=None) -> _MovedFaces:
     """Every face around ``keep[i]`` or ``remove[i]`` that survives collapse i, moved to ``points[i]``.
 
     ``positions`` (3, n) are the vertex positions by coordinate (:func:`_columns`),
     ``points`` (k, 3) the new points. The two faces holding both ends vanish and are
     left out. Rows come in the order of ``keep``'s faces, then ``remove``'s. With
     ``before=False`` the normals before the move are not computed (``None``).
+    ``corners_around`` (from :func:`round_tables`), if given, is read instead of
+    ``faces_around``: see :func:`no_turned_faces`.
     """
     k = len(keep)
     end = np.concatenate([keep, remove])                                # (2k,) the moving ends
     other = np.concatenate([remove, keep])
-    row, face = expand(*faces_around, end)                              # faces_around from vertex_faces()
-    # One column of corners at a time, gathered with np.take from the flat face array:
-    # several times faster than fancy indexing rows of a 2-D array.
     flat = faces.reshape(-1)
-    first_corner = 3 * face
-    c0, c1, c2 = (np.take(flat, first_corner + i) for i in range(3))   # (j,) each
-    gone = np.take(other, row)
-    survives = np.flatnonzero((c0 != gone) & (c1 != gone) & (c2 != gone))   # faces holding both vanish
-    row, face, c0, c1, c2 = (np.take(array, survives) for array in (row, face, c0, c1, c2))
-    mover = np.take(end, row)
-    position = np.where(c0 == mover, 0, np.where(c1 == mover, 1, 2))
-    # The two corners after the mover, picked from the columns already gathered.
-    u = np.where(position == 0, c1, np.where(position == 1, c2, c0))
-    w = np.where(position == 0, c2, np.where(position == 1, c0, c1))
+    if corners_around is None:
+        row, face = expand(*faces_around, end)                          # faces_around from vertex_faces()
+        # One column of corners at a time, gathered with np.take from the flat face array:
+        # several times faster than fancy indexing rows of a 2-D array.
+        first_corner = 3 * face
+        c0, c1, c2 = (np.take(flat, first_corner + i) for i in range(3))   # (j,) each
+        gone = np.take(other, row)
+        survives = np.flatnonzero((c0 != gone) & (c1 != gone) & (c2 != gone))   # faces holding both vanish
+        row, face, c0, c1, c2 = (np.take(array, survives) for array in (row, face, c0, c1, c2))
+        mover = np.take(end, row)
+        position = np.where(c0 == mover, 0, np.where(c1 == mover, 1, 2))
+        # The two corners after the mover, picked from the columns already gathered.
+        u = np.where(position == 0, c1, np.where(position == 1, c2, c0))
+        w = np.where(position == 0, c2, np.where(position == 1, c0, c1))
+    else:
+        # Each row names the mover's own corner 3 f + k, so the two corners after it are
+        # read straight from the flat face array: no search for the mover among three.
+        row, corner = expand(*corners_around, end)
+        face = corner // 3
+        position = corner - 3 * face
+        first_corner = corner - position
+        u = np.take(flat, first_corner + np.take(_NEXT_CORNER, position))
+        w = np.take(flat, first_corner + np.take(_NEXT_BUT_ONE_CORNER, position))
+        gone = np.take(other, row)
+        survives = np.flatnonzero((u != gone) & (w != gone))          # faces holding both vanish
+        row, face, position, u, w = (np.take(array, survives) for array in (row, face, position, u, w))
+        mover = np.take(end, row)
     owner = np.where(row < k, row, row - k)
     # (mover, u, w) is a rotation of the face's corners, so (u - x) x (w - x) is its
     # cross product for x at the mover's old place and at the new point.
@@ -219,7 +250,7 @@ def _moved_faces(positions, faces, faces_around, points, keep, remove, *, before
 TURN_CHECK_BLOCK = 1024
 
 
-def _moved_faces_in_blocks(positions, faces, faces_around, points, keep, remove) -> _MovedFaces:
+def _moved_faces_in_blocks(positions, faces, faces_around, points, keep, remove, corners_around=None) -> _MovedFaces:
     """:func:`_moved_faces` without the normals before, worked out :data:`TURN_CHECK_BLOCK` collapses at a time.
 
     A collapse's rows depend only on that collapse, so the blocks' rows, one after the
@@ -228,9 +259,11 @@ def _moved_faces_in_blocks(positions, faces, faces_around, points, keep, remove)
     """
     starts = range(0, len(keep), TURN_CHECK_BLOCK)
     if len(starts) <= 1:
-        return _moved_faces(positions, faces, faces_around, points, keep, remove, before=False)
+        return _moved_faces(positions, faces, faces_around, points, keep, remove, before=False,
+                            corners_around=corners_around)
     blocks = [_moved_faces(positions, faces, faces_around, points[start:start + TURN_CHECK_BLOCK],
-                           keep[start:start + TURN_CHECK_BLOCK], remove[start:start + TURN_CHECK_BLOCK], before=False)
+                           keep[start:start + TURN_CHECK_BLOCK], remove[start:start + TURN_CHECK_BLOCK], before=False,
+                           corners_around=corners_around)
               for start in starts]
     joined = {field: np.concatenate([getattr(block, field) for block in blocks], axis=-1)
               for field in ("face", "position", "u", "w", "normal_after")}
@@ -249,6 +282,7 @@ def no_turned_faces(
     *,
     face_across: np.ndarray | None = None,
     positions: np.ndarray | None = None,
+    corners_around: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> np.ndarray:
     """(k,) True where moving both ends of edge ``keep[i] - remove[i]`` to ``points[i]``
     turns no face over and folds no pair of neighbouring faces.
@@ -275,6 +309,12 @@ def no_turned_faces(
 
     ``positions`` (3, n), if the caller has them: ``vertices`` by coordinate
     (:func:`_columns`), so that several checks of one round share one copy.
+
+    ``corners_around``, if the caller has it (from :func:`round_tables`): each vertex's
+    corners ``3 f + k`` as CSR, the rows of ``faces_around`` before the division by 3.
+    A corner names where the moving vertex sits in its face, so the corners after it
+    are read directly instead of searched for among the face's three (same verdicts,
+    less work for every moved face).
     """
     if positions is None:
         positions = _columns(vertices)                                  # (3, n)
@@ -282,9 +322,10 @@ def no_turned_faces(
         return np.concatenate([
             no_turned_faces(vertices, faces, faces_around, points[start:start + TURN_CHECK_BLOCK],
                             keep[start:start + TURN_CHECK_BLOCK], remove[start:start + TURN_CHECK_BLOCK],
-                            max_normal_cos, face_across=face_across, positions=positions)
+                            max_normal_cos, face_across=face_across, positions=positions,
+                            corners_around=corners_around)
             for start in range(0, len(keep), TURN_CHECK_BLOCK)])
-    moved = _moved_faces(positions, faces, faces_around, points, keep, remove)
+    moved = _moved_faces(positions, faces, faces_around, points, keep, remove, corners_around=corners_around)
     owner, position, u, w = moved.owner, moved.position, moved.u, moved.w
     n_before, n_after = moved.normal_before, moved.normal_after         # (3, j) each
     length_before = np.sqrt(_dot(n_before, n_before))
@@ -342,7 +383,10 @@ class RoundTables(NamedTuple):
     face's edge ``k``, -1 on the boundary; ``faces_around`` and ``neighbours`` each
     vertex's faces and neighbours as CSR, the rows of
     :func:`halfedge_edu.core.arrays.vertex_faces` and
-    :func:`halfedge_edu.core.arrays.vertex_neighbours` (in another order within a row).
+    :func:`halfedge_edu.core.arrays.vertex_neighbours` (in another order within a row);
+    ``corners_around`` the same rows as ``faces_around`` with each face's corner
+    ``3 f + k`` (``faces[f, k]`` is the vertex) instead of ``f``, for
+    :func:`no_turned_faces` and :func:`drop_folding_neighbours`.
     """
 
     edges: np.ndarray
@@ -351,6 +395,7 @@ class RoundTables(NamedTuple):
     face_across: np.ndarray
     faces_around: tuple[np.ndarray, np.ndarray]
     neighbours: tuple[np.ndarray, np.ndarray]
+    corners_around: tuple[np.ndarray, np.ndarray] | None = None
 
 
 def round_tables(faces: np.ndarray, n: int) -> RoundTables:
@@ -390,9 +435,9 @@ def round_tables(faces: np.ndarray, n: int) -> RoundTables:
         across[second] = first[inner] // 3
         boundary = count == 1
         boundary_halfedge = first[boundary]
-    faces_around, neighbours = _vertex_rings(corner_vertex, next_vertex, boundary_halfedge, n)
+    faces_around, neighbours, corners_around = _vertex_rings(corner_vertex, next_vertex, boundary_halfedge, n)
     return RoundTables(key_ends(keys, n), boundary, boundary_halfedge,
-                       across.reshape(-1, 3), faces_around, neighbours)
+                       across.reshape(-1, 3), faces_around, neighbours, corners_around)
 
 
 def _used_twice_each(sorted_key: np.ndarray) -> bool:
@@ -423,8 +468,8 @@ def _grouping_order(rows: np.ndarray, n: int) -> np.ndarray:
 
 
 def _vertex_rings(corner_vertex: np.ndarray, next_vertex: np.ndarray, boundary_halfedge: np.ndarray,
-                  n: int) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
-    """Each vertex's faces and each vertex's neighbours, as two CSRs from one sort of the corners.
+                  n: int) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
+    """Each vertex's faces, neighbours and corners, as three CSRs from one sort of the corners.
 
     ``corner_vertex`` and ``next_vertex`` (3m,) are the tail and head of each directed
     edge ``3 f + k``; ``boundary_halfedge`` (b,) the ones on the boundary.
@@ -447,12 +492,13 @@ def _vertex_rings(corner_vertex: np.ndarray, next_vertex: np.ndarray, boundary_h
     neighbour_offsets[1:] += np.cumsum(np.bincount(next_vertex[boundary_halfedge], minlength=n))
     # The sort, without the extra rows (a closed mesh has none).
     corners = order[order < len(corner_vertex)] if len(boundary_halfedge) else order
-    return (face_offsets, corners // 3), (neighbour_offsets, values[order])
+    return (face_offsets, corners // 3), (neighbour_offsets, values[order]), (face_offsets, corners)
 
 
 def drop_folding_neighbours(vertices: np.ndarray, faces: np.ndarray, faces_around: tuple[np.ndarray, np.ndarray],
                             points: np.ndarray, keep: np.ndarray, remove: np.ndarray, *,
-                            face_across: np.ndarray | None = None, positions: np.ndarray | None = None) -> np.ndarray:
+                            face_across: np.ndarray | None = None, positions: np.ndarray | None = None,
+                            corners_around: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
     """(k,) False for collapses of one round that would fold a face of another's shut.
 
     :func:`no_turned_faces` judges each collapse against the faces around it as they
@@ -465,12 +511,12 @@ def drop_folding_neighbours(vertices: np.ndarray, faces: np.ndarray, faces_aroun
 
     The pairs are moved faces with the same far edge, found by sorting the far edges;
     or, given ``face_across`` (from :func:`round_tables`), as moved faces whose
-    neighbour across the far edge is moved too, without a sort. ``positions`` (3, n), if
-    the caller has them: ``vertices`` by coordinate, as for :func:`no_turned_faces`.
+    neighbour across the far edge is moved too, without a sort. ``positions`` (3, n) and
+    ``corners_around``, if the caller has them: as for :func:`no_turned_faces`.
     """
     if positions is None:
         positions = _columns(vertices)                                  # (3, n)
-    moved = _moved_faces_in_blocks(positions, faces, faces_around, points, keep, remove)
+    moved = _moved_faces_in_blocks(positions, faces, faces_around, points, keep, remove, corners_around)
     if face_across is None:
         u, w = moved.u, moved.w
         key = np.minimum(u, w) * len(vertices) + np.maximum(u, w)      # each face's far edge

@@ -183,6 +183,12 @@ def test_a_round_chosen_with_the_real_checks_collapses_all_at_once_into_a_valid_
     assert (after.genus, after.n_boundary_loops) == (before.genus, before.n_boundary_loops)
 
 
+def roughened_tables(case: shapes.MeshCase, seed: int, n_collapses: int):
+    """``(vertices, faces, n, round_tables(faces, n))`` of the :func:`roughened` mesh."""
+    vertices, faces = roughened(case, seed, n_collapses).to_arrays()
+    return vertices, faces, len(vertices), round_tables(faces, len(vertices))
+
+
 def _rows(csr_pair, n):
     """Each CSR row as a sorted list, to compare two CSRs whose rows hold the same values in any order."""
     offsets, values = csr_pair
@@ -192,15 +198,18 @@ def _rows(csr_pair, n):
 @settings(max_examples=60)
 @given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1), n_collapses=st.integers(0, 25))
 def test_round_tables_hold_what_the_array_toolbox_gives(case, seed, n_collapses):
-    vertices, faces = roughened(case, seed, n_collapses).to_arrays()
-    n = len(vertices)
-    tables = round_tables(faces, n)
+    vertices, faces, n, tables = roughened_tables(case, seed, n_collapses)
     edges, count = unique_edges(faces, n)
     assert np.array_equal(tables.edges, edges) and np.array_equal(tables.boundary, count == 1)
     tail, head = tables.boundary_halfedge, 3 * (tables.boundary_halfedge // 3) + (tables.boundary_halfedge + 1) % 3
     assert np.array_equal(np.sort(faces.reshape(-1)[[tail, head]], axis=0), edges[count == 1].T)
     assert _rows(tables.faces_around, n) == _rows(vertex_faces(faces, n), n)
     assert _rows(tables.neighbours, n) == _rows(vertex_neighbours(edges, n), n)
+    # corners_around: faces_around's rows, each face named by the vertex's own corner 3 f + k.
+    corner_offsets, corners = tables.corners_around
+    assert np.array_equal(corner_offsets, tables.faces_around[0])
+    assert np.array_equal(corners // 3, tables.faces_around[1])
+    assert np.array_equal(faces.reshape(-1)[corners], np.repeat(np.arange(n), np.diff(corner_offsets)))
 
 
 @settings(max_examples=60)
@@ -243,6 +252,35 @@ def test_drop_folding_neighbours_finds_the_same_pairs_with_the_face_across_table
     looked_across = drop_folding_neighbours(vertices, faces, around, points, keep, remove,
                                             face_across=round_tables(faces, n).face_across)
     assert np.array_equal(sorted_pairs, looked_across)
+
+
+@settings(max_examples=60)
+@given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1), n_collapses=st.integers(0, 25))
+def test_the_checks_give_the_same_verdicts_reading_corners_instead_of_faces(case, seed, n_collapses):
+    # Every edge moved to a random point near it (some far enough to turn faces over),
+    # then a round of edges two apart moved farther: the turned-face check and the fold
+    # check read the moved faces off corners_around or off faces_around, with the same verdicts.
+    vertices, faces, n, tables = roughened_tables(case, seed, n_collapses)
+    rng = np.random.default_rng(seed)
+    size = float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0)))
+    keep, remove = tables.edges[:, 0], tables.edges[:, 1]
+    points = 0.5 * (vertices[keep] + vertices[remove]) + rng.normal(scale=0.2 * size, size=(len(keep), 3))
+    cos_80 = np.cos(np.radians(80.0))
+    for across in (None, tables.face_across):
+        by_faces = no_turned_faces(vertices, faces, tables.faces_around, points, keep, remove, cos_80,
+                                   face_across=across)
+        by_corners = no_turned_faces(vertices, faces, tables.faces_around, points, keep, remove, cos_80,
+                                     face_across=across, corners_around=tables.corners_around)
+        assert np.array_equal(by_faces, by_corners)
+    picked = tables.edges[independent_edges(tables.edges, rng.permutation(len(tables.edges)), tables.edges, n)]
+    keep, remove = picked[:, 0], picked[:, 1]
+    points = vertices[keep] + rng.normal(scale=0.5 * size, size=(len(keep), 3))
+    for across in (None, tables.face_across):
+        by_faces = drop_folding_neighbours(vertices, faces, tables.faces_around, points, keep, remove,
+                                           face_across=across)
+        by_corners = drop_folding_neighbours(vertices, faces, tables.faces_around, points, keep, remove,
+                                             face_across=across, corners_around=tables.corners_around)
+        assert np.array_equal(by_faces, by_corners)
 
 
 # ---- spread_ties: cost order between classes, a fixed shuffle within ---------------------
