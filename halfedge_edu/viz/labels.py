@@ -25,7 +25,7 @@ from . import arrows
 from .actors import Actors
 from .geometry import SceneGeometry, facing
 from .highlights import Highlight
-from .neighbourhood import ring_mark
+from .neighbourhood import Rings
 from .palette import Preset
 from .screen import from_screen, to_screen
 
@@ -248,15 +248,16 @@ class Labels:
         reach = "all" if mesh.n_faces <= LABEL_ALL_FACES and not windowed else "near"
         return {kind: reach for kind in self.kinds}
 
-    def draw(self, mesh, geometry: SceneGeometry, highlight: Highlight, focus: np.ndarray, *,
+    def draw(self, mesh, geometry: SceneGeometry, highlight: Highlight, focus: np.ndarray, rings: Rings, *,
              windowed: bool, arrow_halfedges: np.ndarray, corners) -> None:
-        """Place the labels for the highlight around ``focus`` (k,) vertices.
+        """Place the labels for the highlight around ``focus`` (k,) vertices; ``rings``
+        are the mesh's (what "near" the focus means).
 
         ``arrow_halfedges`` are the halfedges drawn now, ``corners`` the arrows' placement
         (``(mesh, halfedges) -> (A, B, third)``): halfedge labels sit beside their arrows.
         """
         choice = self.choice(mesh, windowed)
-        near = ring_mark(mesh, focus, 1) if len(focus) and "near" in choice.values() else None
+        near = rings.mark(focus, 1) if len(focus) and "near" in choice.values() else None
         eye = np.array(self.actors.plotter.camera.position)
         positions = mesh.positions
         wanted: list[Wanted] = []
@@ -288,15 +289,15 @@ class Labels:
             points = middle + 0.6 * ((A + B + third) / 3.0 - middle)
             keep = facing(eye, points, np.cross(B - A, third - A))
             add("halfedge", halfedges[keep], points[keep])
-        self._show(wanted, self._dots(mesh, geometry, highlight, focus, eye, windowed))
+        self._show(wanted, self._dots(mesh, geometry, highlight, focus, rings, eye, windowed))
 
-    def _dots(self, mesh, geometry: SceneGeometry, highlight: Highlight, focus: np.ndarray, eye: np.ndarray,
-              windowed: bool) -> np.ndarray:
+    def _dots(self, mesh, geometry: SceneGeometry, highlight: Highlight, focus: np.ndarray, rings: Rings,
+              eye: np.ndarray, windowed: bool) -> np.ndarray:
         """(k, 3) the vertex dots in sight as screen discs ``(x, y, radius)`` in pixels:
         labels keep off them. On a large mesh only the dots near ``focus`` count."""
         live = np.flatnonzero(~mesh.vertex_deleted)
         if windowed:
-            live = np.flatnonzero(ring_mark(mesh, focus, 2) & ~mesh.vertex_deleted) if len(focus) else live[:0]
+            live = np.flatnonzero(rings.mark(focus, 2) & ~mesh.vertex_deleted) if len(focus) else live[:0]
         live = live[geometry.vertex_in_sight(mesh, eye, live)]
         radius = np.full(len(live), 0.5 * self.preset.vertex_size)
         highlighted = np.concatenate([m for _, m in highlight.members("vertex")] + [np.zeros(0, np.int64)])

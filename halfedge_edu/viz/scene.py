@@ -35,7 +35,7 @@ from .geometry import SceneGeometry
 from .highlights import Highlight
 from .labels import LABEL_ALL_FACES, Labels, label_kinds
 from .legend import Legend, legend_entries
-from .neighbourhood import ring_mark, ring_window
+from .neighbourhood import Rings
 from .palette import Preset, preset as _preset, rgb
 from .pictures import plotter_png
 from .renderer import prepare_plotter
@@ -101,6 +101,7 @@ class HalfedgeScene:
         self._local_faces = np.unique(np.asarray([] if local_faces is None else local_faces, dtype=np.int64))
         self._face_corners = face_corners
         self._window = None if window is None else np.asarray(window, dtype=np.int64)
+        self._rings: Rings | None = None
         self._actors = Actors(self.plotter)
         self._arrows = ArrowLayer(self._actors, self.preset, corners)
         self._highlight = Highlight()
@@ -237,7 +238,7 @@ class HalfedgeScene:
             self._camera.fit(self._geometry, self._whole_mesh_points(),
                              self._camera.direction_toward(self._geometry, vertices))
         else:
-            around = np.flatnonzero(ring_mark(self.mesh, vertices, rings)) if rings else vertices
+            around = np.flatnonzero(self._mesh_rings().mark(vertices, rings)) if rings else vertices
             self._camera.look_at(self.mesh, self._geometry, vertices, around)
         self._draw_labels(self._highlight.focus_vertices(self.mesh, self._geometry))
 
@@ -389,7 +390,7 @@ class HalfedgeScene:
                 inside = np.unique(np.concatenate([mesh.halfedge_vertex[window], mesh.halfedge_vertex[window ^ 1]]))
             else:
                 seeds = focus if len(focus) else np.array([int(np.flatnonzero(~mesh.vertex_deleted)[0])])
-                inside, window = ring_window(mesh, seeds, self.rings)
+                inside, window = self._mesh_rings().window(seeds, self.rings)
             self._arrows.draw(mesh, window, self._geometry.scale)
             ends = mesh.edge_vertices()[np.unique(window >> 1)]             # (k, 2)
             self._window_edge_ends = ends
@@ -411,14 +412,22 @@ class HalfedgeScene:
                             windowed=self.windowed, rings=self.rings, whole_mesh_points=self._whole_mesh_points())
         self._draw_labels(focus)
 
+    def _mesh_rings(self) -> Rings:
+        """The rings of the mesh shown now: walked again only after the mesh changed
+        (a stepper's next state), so a highlight moving on one mesh reuses its degrees."""
+        if self._rings is None or not self._rings.is_for(self.mesh):
+            self._rings = Rings(self.mesh)
+        return self._rings
+
     def _whole_mesh_points(self) -> np.ndarray:
         """What a view of the whole mesh must fit: the vertices and the arrows (boundary
         arrows lie outside the mesh)."""
         return np.concatenate([self.mesh.positions[~self.mesh.vertex_deleted], self._arrows.points()])
 
     def _draw_labels(self, focus: np.ndarray) -> None:
-        self._labels.draw(self.mesh, self._geometry, self._highlight, focus, windowed=self.windowed,
-                          arrow_halfedges=self._arrows.halfedges, corners=self._arrows.corners)
+        self._labels.draw(self.mesh, self._geometry, self._highlight, focus, self._mesh_rings(),
+                          windowed=self.windowed, arrow_halfedges=self._arrows.halfedges,
+                          corners=self._arrows.corners)
 
 
 def scene_picture(mesh, show: "Callable[[HalfedgeScene], None] | None" = None, **options) -> bytes:
