@@ -364,7 +364,13 @@ class HalfedgeScene:
             self._actors.set("local_edges", None)
             return
         ends = mesh.edge_vertices()                                        # (E, 2)
-        near = np.isin(ends, corners).any(axis=1) & ~mesh.edge_deleted & (ends >= 0).all(axis=1)
+        origin, tip = ends[:, 0], ends[:, 1]                               # (E,) each
+        # A lookup table instead of np.isin over both columns (a sort of the whole
+        # mesh's edge ends at every step): one spare False slot at the end, which the
+        # ends still -1 (an edge being created) index.
+        is_corner = np.zeros(mesh.n_vertex_slots + 1, dtype=bool)
+        is_corner[corners] = True
+        near = (is_corner[origin] | is_corner[tip]) & (origin >= 0) & (tip >= 0) & ~mesh.edge_deleted
         self._local_edge_ends = ends[near]
         if not near.any():
             self._actors.set("local_edges", None)
@@ -409,7 +415,7 @@ class HalfedgeScene:
         if self.legend:
             self._legend.show(self.legend_entries())
         self._camera.follow(mesh, self._geometry, focus, self._highlight.faces(), mode=self.follow,
-                            windowed=self.windowed, rings=self.rings, whole_mesh_points=self._whole_mesh_points())
+                            windowed=self.windowed, rings=self.rings, whole_mesh_points=self._whole_mesh_points)
         self._draw_labels(focus)
 
     def _mesh_rings(self) -> Rings:
