@@ -35,7 +35,7 @@ from .geometry import SceneGeometry
 from .highlights import Highlight
 from .labels import LABEL_ALL_FACES, Labels, label_kinds
 from .legend import Legend, legend_entries
-from .neighbourhood import Rings
+from .neighbourhood import Origins, Rings
 from .palette import Preset, preset as _preset, rgb
 from .pictures import plotter_png
 from .renderer import prepare_plotter
@@ -286,6 +286,8 @@ class HalfedgeScene:
         static = ~np.isin(live_faces, self._local_faces)
         self._static_faces = corners[static]                                 # (S, 3) drawn with outlines
         self._window_edge_ends = np.zeros((0, 2), dtype=np.int64)
+        # Who leaves which vertex, for the edited versions set_mesh draws (see Origins).
+        self._origins = Origins(mesh)
         surface = pv.PolyData.from_regular_faces(np.array(mesh.positions), corners[static])
         add = self._actors.add
         add("surface", surface, color=look.surface, show_edges=not self.windowed,
@@ -363,19 +365,15 @@ class HalfedgeScene:
         if len(corners) == 0:
             self._actors.set("local_edges", None)
             return
-        ends = mesh.edge_vertices()                                        # (E, 2)
-        origin, tip = ends[:, 0], ends[:, 1]                               # (E,) each
-        # A lookup table instead of np.isin over both columns (a sort of the whole
-        # mesh's edge ends at every step): one spare False slot at the end, which the
-        # ends still -1 (an edge being created) index.
-        is_corner = np.zeros(mesh.n_vertex_slots + 1, dtype=bool)
-        is_corner[corners] = True
-        near = (is_corner[origin] | is_corner[tip]) & (origin >= 0) & (tip >= 0) & ~mesh.edge_deleted
-        self._local_edge_ends = ends[near]
-        if not near.any():
+        # An edge has an end in ``corners`` when one of its halfedges leaves one of them:
+        # the table of origins answers that from the few halfedges that changed (Origins).
+        edges = np.unique(self._origins.leaving(mesh, corners) >> 1)
+        ends = mesh.edge_vertices()[edges]                                 # (k, 2)
+        self._local_edge_ends = ends[(ends >= 0).all(axis=1)]
+        if len(self._local_edge_ends) == 0:
             self._actors.set("local_edges", None)
             return
-        cells = np.hstack([np.full((int(near.sum()), 1), 2), self._local_edge_ends]).ravel()
+        cells = np.hstack([np.full((len(self._local_edge_ends), 1), 2), self._local_edge_ends]).ravel()
         self._actors.set("local_edges", pv.PolyData(np.asarray(mesh.positions, dtype=np.float64), lines=cells))
 
     # ----------------------------------------------------------------------------------
@@ -422,7 +420,7 @@ class HalfedgeScene:
         """The rings of the mesh shown now: walked again only after the mesh changed
         (a stepper's next state), so a highlight moving on one mesh reuses its degrees."""
         if self._rings is None or not self._rings.is_for(self.mesh):
-            self._rings = Rings(self.mesh)
+            self._rings = Rings(self.mesh, self._origins.degree(self.mesh))
         return self._rings
 
     def _whole_mesh_points(self) -> np.ndarray:

@@ -8,7 +8,7 @@ import pytest
 
 from halfedge_edu.core.ops import OperationLog, collapse, flip, split
 from halfedge_edu.data import sample
-from halfedge_edu.viz.neighbourhood import Rings, ranges
+from halfedge_edu.viz.neighbourhood import Origins, Rings, ranges
 from halfedge_edu.viz.steppers import group_changes
 
 
@@ -57,6 +57,7 @@ def _states(mesh, operation, edge):
 ] + [("open_patch", 0, split), ("open_patch", 0, collapse)])       # a boundary edge
 def test_rings_agree_with_the_whole_mesh_adjacency_on_every_step(name, edge, operation):
     states, named = _states(sample(name), operation, edge)
+    origins = Origins(states[0])
     for state in states:
         rings = Rings(state)
         # Seeds that still exist, and the new vertex of a split once it does.
@@ -65,6 +66,7 @@ def test_rings_agree_with_the_whole_mesh_adjacency_on_every_step(name, edge, ope
         for depth in (1, 2, 3):
             assert np.array_equal(rings.mark(seeds, depth), _whole_mesh_mark(state, seeds, depth))
         inside, window = rings.window(seeds, 2)
+        assert np.array_equal(Rings(state, origins.degree(state)).mark(seeds, 2), rings.mark(seeds, 2))
         expected_inside, expected_window = _whole_mesh_window(state, seeds, 2)
         assert np.array_equal(inside, expected_inside) and np.array_equal(window, expected_window)
 
@@ -93,3 +95,30 @@ def test_a_vertex_flagged_deleted_has_no_ring_even_with_halfedges_still_leaving_
     seeds = np.array([int(mesh.halfedge_vertex[10001])])               # a neighbour of it
     for depth in (1, 2, 3):
         assert np.array_equal(Rings(mesh).mark(seeds, depth), _whole_mesh_mark(mesh, seeds, depth))
+
+
+@pytest.mark.parametrize("name, edge, operation", [
+    ("bunny", 5000, flip), ("bunny", 5000, split), ("bunny", 5000, collapse), ("cube", 0, collapse),
+    ("open_patch", 0, split), ("open_patch", 12, collapse),
+])
+def test_origins_answer_as_the_whole_arrays_do_on_every_step(name, edge, operation):
+    """The table made before the operation, with the halfedges changed since, gives each
+    state's degrees and the halfedges leaving any vertex, as a pass over the state would."""
+    states, named = _states(sample(name), operation, edge)
+    origins = Origins(states[0])
+    for state in states:
+        assert np.array_equal(origins.degree(state), state.vertex_degrees())
+        live = np.flatnonzero(~state.halfedge_deleted)
+        vertices = np.unique(np.concatenate([named, [0, 7]]))
+        vertices = vertices[vertices < state.n_vertex_slots]
+        expected = live[np.isin(state.halfedge_vertex[live], vertices)]
+        assert np.array_equal(origins.leaving(state, vertices), expected)
+    assert len(origins.changed(states[-1])) > 0
+
+
+def test_origins_start_again_on_a_mesh_with_fewer_slots():
+    mesh = sample("bunny")
+    origins = Origins(mesh)
+    small = sample("cube")
+    assert np.array_equal(origins.degree(small), small.vertex_degrees())
+    assert np.array_equal(origins.leaving(small, [0]), np.flatnonzero(small.halfedge_vertex == 0))
