@@ -54,6 +54,10 @@ class Rings:
         # (n_vertex_slots,) the walk length of each vertex: its live outgoing halfedges;
         # 0 for deleted vertices, whose rings the whole-mesh adjacency leaves empty.
         self.degree = np.where(mesh.vertex_deleted, 0, degree)
+        # The last breadth-first walk: (seeds as bytes, marks after 0, 1, ... rings,
+        # the last frontier). One update asks for one and two rings around the same focus
+        # (labels near it, the window, the dots), which are levels of one walk.
+        self._walk: tuple[bytes, list[np.ndarray], np.ndarray] | None = None
 
     def is_for(self, mesh) -> bool:
         """True when ``mesh`` is the mesh these rings were walked on, not edited since."""
@@ -74,16 +78,19 @@ class Rings:
     def mark(self, seeds: np.ndarray, rings: int) -> np.ndarray:
         """(n_vertex_slots,) bool: the vertices within ``rings`` edges of ``seeds``."""
         seeds = np.asarray(seeds, dtype=np.int64)
-        mark = np.zeros(self.mesh.n_vertex_slots, dtype=bool)
-        mark[seeds] = True
-        frontier = seeds
-        for _ in range(rings):
+        if self._walk is None or self._walk[0] != seeds.tobytes():
+            mark = np.zeros(self.mesh.n_vertex_slots, dtype=bool)
+            mark[seeds] = True
+            self._walk = (seeds.tobytes(), [mark], seeds)
+        key, levels, frontier = self._walk
+        while len(levels) <= rings and len(frontier):
+            mark = levels[-1].copy()
             reached = self.neighbours(frontier)
             frontier = np.unique(reached[~mark[reached]])
-            if len(frontier) == 0:
-                break
             mark[frontier] = True
-        return mark
+            levels.append(mark)
+            self._walk = (key, levels, frontier)
+        return levels[min(rings, len(levels) - 1)].copy()
 
     def window(self, seeds: np.ndarray, rings: int) -> tuple[np.ndarray, np.ndarray]:
         """The vertices within ``rings`` edges of ``seeds`` and the halfedges between them.

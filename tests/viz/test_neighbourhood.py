@@ -122,3 +122,12 @@ def test_origins_start_again_on_a_mesh_with_fewer_slots():
     small = sample("cube")
     assert np.array_equal(origins.degree(small), small.vertex_degrees())
     assert np.array_equal(origins.leaving(small, [0]), np.flatnonzero(small.halfedge_vertex == 0))
+
+
+def test_marks_asked_in_any_order_are_levels_of_one_walk_per_seeds():
+    mesh = sample("bunny")
+    rings, seeds, other = Rings(mesh), np.array([10, 11]), np.array([500])
+    for asked_seeds, depth in ((seeds, 2), (seeds, 1), (seeds, 3), (other, 1), (seeds, 0), (seeds, 2)):
+        assert np.array_equal(rings.mark(asked_seeds, depth), _whole_mesh_mark(mesh, asked_seeds, depth))
+    rings.mark(seeds, 2)[:] = True                        # an answer is the caller's to change
+    assert np.array_equal(rings.mark(seeds, 2), _whole_mesh_mark(mesh, seeds, 2))
