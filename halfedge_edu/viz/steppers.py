@@ -245,8 +245,13 @@ class OperationStepper(StepperWidget):
         # so the arrow keeps its length and its head.
         between = ~after_match & ~before_match
         key = np.stack([origin, tip, opposite], axis=1)                   # (k, 3)
-        _, group, count = np.unique(key, axis=0, return_inverse=True, return_counts=True)
-        hidden = (between & (count[group.ravel()] > 1) & (opposite >= 0))[:, None]
+        # Only the few arrows half way through are compared with every arrow (a row
+        # matches itself, so "hidden" is a second match).
+        hidden = np.zeros((len(halfedges), 1), dtype=bool)
+        changing = np.flatnonzero(between & (opposite >= 0))
+        if len(changing):
+            same = (key[changing][:, None, :] == key[None, :, :]).all(axis=2)   # (c, k)
+            hidden[changing, 0] = same.sum(axis=1) > 1
         along = unit(B - A)                                                # (k, 3)
         across = (third - A) - ((third - A) * along).sum(axis=1)[:, None] * along
         shift = np.where(hidden, OVERLAP_INSET * across, 0.0)              # (k, 3)
