@@ -54,6 +54,9 @@ LIST_ACTOR = "labels_without_room"
 LIST_MARGIN = 4.0
 #: Where a label may go around its anchor, in steps: (right, up) multiples.
 DIRECTIONS = ((1, 1), (-1, 1), (1, -1), (-1, -1), (1, 0), (-1, 0), (0, 1), (0, -1))
+#: Where a label that may sit on its anchor (a face's) goes next, in steps: above and
+#: below first, then beside, then the corners.
+AROUND = ((0, 1), (0, -1), (1, 0), (-1, 0), (1, 1), (-1, 1), (1, -1), (-1, -1))
 
 
 class Wanted(NamedTuple):
@@ -152,11 +155,11 @@ def candidate_offsets(sizes: np.ndarray, keep_clear: np.ndarray) -> tuple[np.nda
     """
     w, h = sizes[:, 0:1], sizes[:, 1:2]                                  # (k, 1) each
     clear = keep_clear[:, None]                                          # (k, 1)
+    # A vertex label has 24 places; a 25th, never usable, lets both kinds fill one array.
     beside = np.array([(reach, dx, dy) for reach in (1.0, 1.8, 2.8) for dx, dy in DIRECTIONS] + [(0.0, 0, 0)])
     reach, dx, dy = beside.T                                             # (25,) each
     beside_dot = np.stack([dx * (reach * clear + w / 2), dy * (reach * clear + h / 2)], axis=2)   # (k, 25, 2)
-    around = np.array([(0, 0, 0)] + [(ring, dx, dy) for ring in (1, 2, 3)
-                                     for dx, dy in ((0, 1), (0, -1), (1, 0), (-1, 0), (1, 1), (-1, 1), (1, -1), (-1, -1))])
+    around = np.array([(0, 0, 0)] + [(ring, dx, dy) for ring in (1, 2, 3) for dx, dy in AROUND])
     ring, dx, dy = around.T                                              # (25,) each
     step_x, step_y = np.maximum(0.4 * w, 6.0), 0.6 * h                   # (k, 1) each
     on_anchor = np.stack([(dx * ring) * step_x, (dy * ring) * step_y], axis=2)                   # (k, 25, 2)

@@ -35,7 +35,7 @@ class Rings:
     reaches, with the same walk (:func:`~halfedge_edu.core.rings.walk_rings`) and the same
     degrees, so the answers are exactly those of the whole-mesh adjacency, even on a half
     rewired mesh whose rings do not close. Only the degrees are counted over the whole
-    mesh, once (one ``bincount``).
+    mesh, once per state (one ``bincount``), unless :class:`Origins` gives them.
 
     Args:
         mesh: the mesh.
@@ -173,11 +173,6 @@ class Origins:
         changed = changed[~mesh.edge_deleted[changed >> 1]]
         moved = changed[np.isin(mesh.halfedge_vertex[changed], vertices)]
         return np.sort(np.concatenate([table, moved]))
-
-
-def ring_mark(mesh, seeds: np.ndarray, rings: int) -> np.ndarray:
-    """(n_vertex_slots,) bool: the vertices within ``rings`` edges of ``seeds`` (see :class:`Rings`)."""
-    return Rings(mesh).mark(seeds, rings)
 
 
 def ring_window(mesh, seeds: np.ndarray, rings: int) -> tuple[np.ndarray, np.ndarray]:

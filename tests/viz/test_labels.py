@@ -107,14 +107,15 @@ def _place_one_candidate_at_a_time(anchors, sizes, keep_clear, dots, obstacles, 
                       for reach in (1.0, 1.8, 2.8) for dx, dy in labels_module.DIRECTIONS]
         else:
             step_x, step_y = max(0.4 * w, 6.0), 0.6 * h
-            places = [anchor.copy()] + [anchor + np.array([dx * ring * step_x, dy * ring * step_y]) for ring in (1, 2, 3)
-                                        for dx, dy in ((0, 1), (0, -1), (1, 0), (-1, 0), (1, 1), (-1, 1), (1, -1), (-1, -1))]
+            places = [anchor.copy()] + [anchor + np.array([dx * ring * step_x, dy * ring * step_y])
+                                        for ring in (1, 2, 3) for dx, dy in labels_module.AROUND]
         for centre in places:
             box = np.array([centre[0] - w / 2, centre[1] - h / 2, centre[0] + w / 2, centre[1] + h / 2])
             if box[0] < 0 or box[1] < 0 or box[2] > width or box[3] > height:
                 continue
             near = [other for other in placed + list(obstacles)
-                    if box[0] < other[2] + 1 and other[0] < box[2] + 1 and box[1] < other[3] + 1 and other[1] < box[3] + 1]
+                    if box[0] < other[2] + 1 and other[0] < box[2] + 1
+                    and box[1] < other[3] + 1 and other[1] < box[3] + 1]
             nearest = np.clip(dots[:, :2], box[:2], box[2:])                # (d, 2)
             if near or (((nearest - dots[:, :2]) ** 2).sum(axis=1) < dots[:, 2] ** 2).any():
                 continue
