@@ -145,7 +145,10 @@ class ArrowLayer:
         self.corners = corners
         #: (k,) the halfedges that have an arrow, in arrow order.
         self.halfedges = np.zeros(0, dtype=np.int64)
-        self._slot_of = np.zeros(0, dtype=np.int64)
+        # The drawn halfedges sorted (stable), and where each sorted one sits in the arrow
+        # list: a lookup that costs the k drawn halfedges, not a table of the mesh's size.
+        self._sorted = np.zeros(0, dtype=np.int64)
+        self._slot_of_sorted = np.zeros(0, dtype=np.int64)
 
     def draw(self, mesh, halfedges: np.ndarray, scale: float) -> None:
         """Build the arrows of ``halfedges`` (in one numpy pass), uncoloured."""
@@ -161,9 +164,8 @@ class ArrowLayer:
         data = pv.PolyData.from_regular_faces(points, triangles)
         data.cell_data["rgb"] = np.zeros((len(triangles), 3), dtype=np.uint8)
         self.actors.set("arrows", data)
-        # Where each halfedge sits in the arrow list (-1 if it has no arrow).
-        self._slot_of = np.full(mesh.n_halfedge_slots, -1, dtype=np.int64)
-        self._slot_of[halfedges] = np.arange(len(halfedges))
+        self._slot_of_sorted = np.argsort(halfedges, kind="stable")
+        self._sorted = halfedges[self._slot_of_sorted]
 
     def color(self, mesh, members: list[tuple[str, np.ndarray]]) -> None:
         """Colour the arrows: plain or boundary, then each role's halfedges ``members``
@@ -174,9 +176,17 @@ class ArrowLayer:
         look = self.preset
         colors = np.where((mesh.halfedge_face[halfedges] < 0)[:, None], rgb(look.boundary_arrow), rgb(look.plain_arrow))
         for name, indices in reversed(members):
-            slots = self._slot_of[indices[(indices >= 0) & (indices < len(self._slot_of))]]
-            colors[slots[slots >= 0]] = rgb(ROLES[name].color)
+            colors[self.slots(indices)] = rgb(ROLES[name].color)
         self.actors.data("arrows").cell_data["rgb"] = np.repeat(colors.astype(np.uint8), TRIANGLES_PER_ARROW, axis=0)
+
+    def slots(self, indices: np.ndarray) -> np.ndarray:
+        """Where the arrows of the drawn ones among halfedges ``indices`` sit in the arrow
+        list (a halfedge drawn twice, on a broken mesh: its last arrow)."""
+        # The last equal one in the stable sort is the last in the arrow list.
+        place = np.searchsorted(self._sorted, indices, side="right") - 1
+        drawn = place >= 0
+        drawn[drawn] = self._sorted[place[drawn]] == indices[drawn]
+        return self._slot_of_sorted[place[drawn]]
 
     def colors(self) -> np.ndarray:
         """(k, 3) uint8 the colour of each arrow, in the order of :attr:`halfedges`."""

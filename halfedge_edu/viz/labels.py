@@ -25,7 +25,7 @@ from . import arrows
 from .actors import Actors
 from .geometry import SceneGeometry, facing
 from .highlights import Highlight
-from .neighbourhood import ring_mark
+from .neighbourhood import Rings
 from .palette import Preset
 from .screen import from_screen, to_screen
 
@@ -54,6 +54,9 @@ LIST_ACTOR = "labels_without_room"
 LIST_MARGIN = 4.0
 #: Where a label may go around its anchor, in steps: (right, up) multiples.
 DIRECTIONS = ((1, 1), (-1, 1), (1, -1), (-1, -1), (1, 0), (-1, 0), (0, 1), (0, -1))
+#: Where a label that may sit on its anchor (a face's) goes next, in steps: above and
+#: below first, then beside, then the corners.
+AROUND = ((0, 1), (0, -1), (1, 0), (-1, 0), (1, 1), (-1, 1), (1, -1), (-1, -1))
 
 
 class Wanted(NamedTuple):
@@ -76,20 +79,6 @@ def text_size(text: str, font_size: float, padding: float) -> tuple[float, float
     return width + 2 * padding, height + 2 * padding
 
 
-def overlaps(box: np.ndarray, boxes: np.ndarray, gap: float = 0.0) -> np.ndarray:
-    """(k,) bool: ``box`` (4,) ``(x0, y0, x1, y1)`` overlaps each of ``boxes`` (k, 4), or
-    comes closer to it than ``gap`` pixels."""
-    return ((box[0] < boxes[:, 2] + gap) & (boxes[:, 0] < box[2] + gap)
-            & (box[1] < boxes[:, 3] + gap) & (boxes[:, 1] < box[3] + gap))
-
-
-def covers_dot(box: np.ndarray, dots: np.ndarray) -> np.ndarray:
-    """(k,) bool: ``box`` (4,) covers part of each disc of ``dots`` (k, 3) ``(x, y, radius)``."""
-    nearest_x = np.clip(dots[:, 0], box[0], box[2])
-    nearest_y = np.clip(dots[:, 1], box[1], box[3])
-    return (nearest_x - dots[:, 0]) ** 2 + (nearest_y - dots[:, 1]) ** 2 < dots[:, 2] ** 2
-
-
 def place(anchors: np.ndarray, sizes: np.ndarray, keep_clear, dots: np.ndarray, obstacles: np.ndarray,
           window_size) -> np.ndarray:
     """Centres (k, 2) in pixels for k label boxes, in order, each where it overlaps none
@@ -102,40 +91,82 @@ def place(anchors: np.ndarray, sizes: np.ndarray, keep_clear, dots: np.ndarray, 
             beside its dot), 0 for a label that may sit on its anchor (a face's centre).
         dots: (d, 3) vertex dots ``(x, y, radius)`` no box may cover.
         obstacles: (o, 4) boxes ``(x0, y0, x1, y1)`` no label may overlap (a legend).
+
+    Each label takes the first of its :func:`candidate_offsets` that is free. Whether a
+    place is inside the picture, off the obstacles and off the dots does not depend on the
+    other labels, so that is decided for every place of every label at once; only the test
+    against the labels placed before is left to the loop, one numpy pass per label.
     """
     width, height = window_size
-    placed = np.zeros((0, 4))
+    anchors = np.asarray(anchors, dtype=float).reshape(-1, 2)
+    sizes = np.asarray(sizes, dtype=float).reshape(-1, 2)
     centres = np.full((len(anchors), 2), np.nan)
-    for i, (anchor, (w, h), clear) in enumerate(zip(anchors, sizes, keep_clear)):
-        for centre in _candidates(anchor, w, h, clear):
-            box = np.array([centre[0] - w / 2, centre[1] - h / 2, centre[0] + w / 2, centre[1] + h / 2])
-            if box[0] < 0 or box[1] < 0 or box[2] > width or box[3] > height:
-                continue
-            # A pixel apart, so that a box measured again after a round trip through
-            # world coordinates (a little rounding) still clears its neighbours.
-            if overlaps(box, placed, 1.0).any() or overlaps(box, obstacles, 1.0).any() or covers_dot(box, dots).any():
-                continue
-            centres[i] = centre
-            placed = np.vstack([placed, box])
-            break
+    if len(anchors) == 0:
+        return centres
+    offsets, usable = candidate_offsets(sizes, np.asarray(keep_clear, dtype=float))    # (k, c, 2), (k, c)
+    candidates = anchors[:, None, :] + offsets                                         # (k, c, 2)
+    half = sizes[:, None, :] / 2                                                       # (k, 1, 2)
+    boxes = np.concatenate([candidates - half, candidates + half], axis=2)            # (k, c, 4)
+    free = usable & (boxes[..., 0] >= 0) & (boxes[..., 1] >= 0) & (boxes[..., 2] <= width) & (boxes[..., 3] <= height)
+    # A pixel apart, so that a box measured again after a round trip through world
+    # coordinates (a little rounding) still clears its neighbours.
+    free &= ~overlaps(boxes, obstacles, 1.0).any(axis=2)
+    free &= ~covers_dot(boxes, dots).any(axis=2)
+    placed = np.zeros((len(anchors), 4))                   # the first n_placed rows are in use
+    n_placed = 0
+    for i in range(len(anchors)):
+        fits = free[i] & ~overlaps(boxes[i], placed[:n_placed], 1.0).any(axis=1)    # (c,)
+        if fits.any():
+            first = int(np.argmax(fits))
+            centres[i] = candidates[i, first]
+            placed[n_placed] = boxes[i, first]
+            n_placed += 1
     return centres
 
 
-def _candidates(anchor: np.ndarray, w: float, h: float, clear: float) -> list[np.ndarray]:
-    """Where a ``w`` by ``h`` box around ``anchor`` may go, nearest first."""
-    found = []
-    if clear > 0:
-        # Beside the dot: the box's nearest corner or side just off the dot, then farther.
-        for reach in (1.0, 1.8, 2.8):
-            for dx, dy in DIRECTIONS:
-                found.append(anchor + np.array([dx * (reach * clear + w / 2), dy * (reach * clear + h / 2)]))
-        return found
-    found.append(anchor.copy())
-    step_x, step_y = max(0.4 * w, 6.0), 0.6 * h
-    for ring in (1, 2, 3):
-        for dx, dy in ((0, 1), (0, -1), (1, 0), (-1, 0), (1, 1), (-1, 1), (1, -1), (-1, -1)):
-            found.append(anchor + np.array([dx * ring * step_x, dy * ring * step_y]))
-    return found
+def overlaps(boxes: np.ndarray, others: np.ndarray, gap: float = 0.0) -> np.ndarray:
+    """(..., o) bool: each of ``boxes`` (..., 4) ``(x0, y0, x1, y1)`` overlaps each of
+    ``others`` (o, 4), or comes closer to it than ``gap`` pixels."""
+    boxes = boxes[..., None, :]                                          # (..., 1, 4)
+    return ((boxes[..., 0] < others[:, 2] + gap) & (others[:, 0] < boxes[..., 2] + gap)
+            & (boxes[..., 1] < others[:, 3] + gap) & (others[:, 1] < boxes[..., 3] + gap))
+
+
+def covers_dot(boxes: np.ndarray, dots: np.ndarray) -> np.ndarray:
+    """(..., d) bool: each of ``boxes`` (..., 4) covers part of each disc of ``dots`` (d, 3)
+    ``(x, y, radius)``."""
+    boxes = boxes[..., None, :]                                          # (..., 1, 4)
+    nearest_x = np.clip(dots[:, 0], boxes[..., 0], boxes[..., 2])
+    nearest_y = np.clip(dots[:, 1], boxes[..., 1], boxes[..., 3])
+    return (nearest_x - dots[:, 0]) ** 2 + (nearest_y - dots[:, 1]) ** 2 < dots[:, 2] ** 2
+
+
+def candidate_offsets(sizes: np.ndarray, keep_clear: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Where each of k boxes of ``sizes`` (k, 2) may go around its anchor, nearest first.
+
+    A box with a ``keep_clear`` radius (a vertex label) goes beside its dot: its nearest
+    corner or side just off the dot, then farther (``reach`` 1, 1.8, 2.8 times the
+    radius), in each of the 8 :data:`DIRECTIONS`. A box without (a face's label) goes on
+    its anchor first, then 1, 2 and 3 steps away in 8 directions.
+
+    Returns:
+        ``(offsets, usable)``: (k, 25, 2) offsets from the anchor in pixels, and (k, 25)
+        bool, False for the 25th place of a vertex label (which has only 24).
+    """
+    w, h = sizes[:, 0:1], sizes[:, 1:2]                                  # (k, 1) each
+    clear = keep_clear[:, None]                                          # (k, 1)
+    # A vertex label has 24 places; a 25th, never usable, lets both kinds fill one array.
+    beside = np.array([(reach, dx, dy) for reach in (1.0, 1.8, 2.8) for dx, dy in DIRECTIONS] + [(0.0, 0, 0)])
+    reach, dx, dy = beside.T                                             # (25,) each
+    beside_dot = np.stack([dx * (reach * clear + w / 2), dy * (reach * clear + h / 2)], axis=2)   # (k, 25, 2)
+    around = np.array([(0, 0, 0)] + [(ring, dx, dy) for ring in (1, 2, 3) for dx, dy in AROUND])
+    ring, dx, dy = around.T                                              # (25,) each
+    step_x, step_y = np.maximum(0.4 * w, 6.0), 0.6 * h                   # (k, 1) each
+    on_anchor = np.stack([(dx * ring) * step_x, (dy * ring) * step_y], axis=2)                   # (k, 25, 2)
+    has_dot = clear > 0                                                  # (k, 1)
+    offsets = np.where(has_dot[..., None], beside_dot, on_anchor)
+    usable = ~has_dot | (np.arange(25) < 24)
+    return offsets, usable
 
 
 def legend_boxes(plotter, window_size) -> np.ndarray:
@@ -248,15 +279,16 @@ class Labels:
         reach = "all" if mesh.n_faces <= LABEL_ALL_FACES and not windowed else "near"
         return {kind: reach for kind in self.kinds}
 
-    def draw(self, mesh, geometry: SceneGeometry, highlight: Highlight, focus: np.ndarray, *,
+    def draw(self, mesh, geometry: SceneGeometry, highlight: Highlight, focus: np.ndarray, rings: Rings, *,
              windowed: bool, arrow_halfedges: np.ndarray, corners) -> None:
-        """Place the labels for the highlight around ``focus`` (k,) vertices.
+        """Place the labels for the highlight around ``focus`` (k,) vertices; ``rings``
+        are the mesh's (what "near" the focus means).
 
         ``arrow_halfedges`` are the halfedges drawn now, ``corners`` the arrows' placement
         (``(mesh, halfedges) -> (A, B, third)``): halfedge labels sit beside their arrows.
         """
         choice = self.choice(mesh, windowed)
-        near = ring_mark(mesh, focus, 1) if len(focus) and "near" in choice.values() else None
+        near = rings.mark(focus, 1) if len(focus) and "near" in choice.values() else None
         eye = np.array(self.actors.plotter.camera.position)
         positions = mesh.positions
         wanted: list[Wanted] = []
@@ -288,15 +320,15 @@ class Labels:
             points = middle + 0.6 * ((A + B + third) / 3.0 - middle)
             keep = facing(eye, points, np.cross(B - A, third - A))
             add("halfedge", halfedges[keep], points[keep])
-        self._show(wanted, self._dots(mesh, geometry, highlight, focus, eye, windowed))
+        self._show(wanted, self._dots(mesh, geometry, highlight, focus, rings, eye, windowed))
 
-    def _dots(self, mesh, geometry: SceneGeometry, highlight: Highlight, focus: np.ndarray, eye: np.ndarray,
-              windowed: bool) -> np.ndarray:
+    def _dots(self, mesh, geometry: SceneGeometry, highlight: Highlight, focus: np.ndarray, rings: Rings,
+              eye: np.ndarray, windowed: bool) -> np.ndarray:
         """(k, 3) the vertex dots in sight as screen discs ``(x, y, radius)`` in pixels:
         labels keep off them. On a large mesh only the dots near ``focus`` count."""
         live = np.flatnonzero(~mesh.vertex_deleted)
         if windowed:
-            live = np.flatnonzero(ring_mark(mesh, focus, 2) & ~mesh.vertex_deleted) if len(focus) else live[:0]
+            live = np.flatnonzero(rings.mark(focus, 2) & ~mesh.vertex_deleted) if len(focus) else live[:0]
         live = live[geometry.vertex_in_sight(mesh, eye, live)]
         radius = np.full(len(live), 0.5 * self.preset.vertex_size)
         highlighted = np.concatenate([m for _, m in highlight.members("vertex")] + [np.zeros(0, np.int64)])

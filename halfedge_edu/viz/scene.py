@@ -35,7 +35,7 @@ from .geometry import SceneGeometry
 from .highlights import Highlight
 from .labels import LABEL_ALL_FACES, Labels, label_kinds
 from .legend import Legend, legend_entries
-from .neighbourhood import ring_mark, ring_window
+from .neighbourhood import Origins, Rings
 from .palette import Preset, preset as _preset, rgb
 from .pictures import plotter_png
 from .renderer import prepare_plotter
@@ -101,6 +101,7 @@ class HalfedgeScene:
         self._local_faces = np.unique(np.asarray([] if local_faces is None else local_faces, dtype=np.int64))
         self._face_corners = face_corners
         self._window = None if window is None else np.asarray(window, dtype=np.int64)
+        self._rings: Rings | None = None
         self._actors = Actors(self.plotter)
         self._arrows = ArrowLayer(self._actors, self.preset, corners)
         self._highlight = Highlight()
@@ -237,7 +238,7 @@ class HalfedgeScene:
             self._camera.fit(self._geometry, self._whole_mesh_points(),
                              self._camera.direction_toward(self._geometry, vertices))
         else:
-            around = np.flatnonzero(ring_mark(self.mesh, vertices, rings)) if rings else vertices
+            around = np.flatnonzero(self._mesh_rings().mark(vertices, rings)) if rings else vertices
             self._camera.look_at(self.mesh, self._geometry, vertices, around)
         self._draw_labels(self._highlight.focus_vertices(self.mesh, self._geometry))
 
@@ -285,6 +286,8 @@ class HalfedgeScene:
         static = ~np.isin(live_faces, self._local_faces)
         self._static_faces = corners[static]                                 # (S, 3) drawn with outlines
         self._window_edge_ends = np.zeros((0, 2), dtype=np.int64)
+        # Who leaves which vertex, for the edited versions set_mesh draws (see Origins).
+        self._origins = Origins(mesh)
         surface = pv.PolyData.from_regular_faces(np.array(mesh.positions), corners[static])
         add = self._actors.add
         add("surface", surface, color=look.surface, show_edges=not self.windowed,
@@ -362,13 +365,15 @@ class HalfedgeScene:
         if len(corners) == 0:
             self._actors.set("local_edges", None)
             return
-        ends = mesh.edge_vertices()                                        # (E, 2)
-        near = np.isin(ends, corners).any(axis=1) & ~mesh.edge_deleted & (ends >= 0).all(axis=1)
-        self._local_edge_ends = ends[near]
-        if not near.any():
+        # An edge has an end in ``corners`` when one of its halfedges leaves one of them:
+        # the table of origins answers that from the few halfedges that changed (Origins).
+        edges = np.unique(self._origins.leaving(mesh, corners) >> 1)
+        ends = mesh.edge_vertices()[edges]                                 # (k, 2)
+        self._local_edge_ends = ends[(ends >= 0).all(axis=1)]
+        if len(self._local_edge_ends) == 0:
             self._actors.set("local_edges", None)
             return
-        cells = np.hstack([np.full((int(near.sum()), 1), 2), self._local_edge_ends]).ravel()
+        cells = np.hstack([np.full((len(self._local_edge_ends), 1), 2), self._local_edge_ends]).ravel()
         self._actors.set("local_edges", pv.PolyData(np.asarray(mesh.positions, dtype=np.float64), lines=cells))
 
     # ----------------------------------------------------------------------------------
@@ -389,7 +394,7 @@ class HalfedgeScene:
                 inside = np.unique(np.concatenate([mesh.halfedge_vertex[window], mesh.halfedge_vertex[window ^ 1]]))
             else:
                 seeds = focus if len(focus) else np.array([int(np.flatnonzero(~mesh.vertex_deleted)[0])])
-                inside, window = ring_window(mesh, seeds, self.rings)
+                inside, window = self._mesh_rings().window(seeds, self.rings)
             self._arrows.draw(mesh, window, self._geometry.scale)
             ends = mesh.edge_vertices()[np.unique(window >> 1)]             # (k, 2)
             self._window_edge_ends = ends
@@ -408,8 +413,15 @@ class HalfedgeScene:
         if self.legend:
             self._legend.show(self.legend_entries())
         self._camera.follow(mesh, self._geometry, focus, self._highlight.faces(), mode=self.follow,
-                            windowed=self.windowed, rings=self.rings, whole_mesh_points=self._whole_mesh_points())
+                            windowed=self.windowed, rings=self.rings, whole_mesh_points=self._whole_mesh_points)
         self._draw_labels(focus)
+
+    def _mesh_rings(self) -> Rings:
+        """The rings of the mesh shown now: walked again only after the mesh changed
+        (a stepper's next state), so a highlight moving on one mesh reuses its degrees."""
+        if self._rings is None or not self._rings.is_for(self.mesh):
+            self._rings = Rings(self.mesh, self._origins.degree(self.mesh))
+        return self._rings
 
     def _whole_mesh_points(self) -> np.ndarray:
         """What a view of the whole mesh must fit: the vertices and the arrows (boundary
@@ -417,8 +429,9 @@ class HalfedgeScene:
         return np.concatenate([self.mesh.positions[~self.mesh.vertex_deleted], self._arrows.points()])
 
     def _draw_labels(self, focus: np.ndarray) -> None:
-        self._labels.draw(self.mesh, self._geometry, self._highlight, focus, windowed=self.windowed,
-                          arrow_halfedges=self._arrows.halfedges, corners=self._arrows.corners)
+        self._labels.draw(self.mesh, self._geometry, self._highlight, focus, self._mesh_rings(),
+                          windowed=self.windowed, arrow_halfedges=self._arrows.halfedges,
+                          corners=self._arrows.corners)
 
 
 def scene_picture(mesh, show: "Callable[[HalfedgeScene], None] | None" = None, **options) -> bytes:

@@ -111,6 +111,7 @@ class OperationStepper(StepperWidget):
         self.groups = group_changes(self.log.changes)
         self._step = 0
         self._names = self._element_names()
+        self._shown = (None, 0)              # the state shown last and its count of changes
         super().__init__(self.before.copy(), mode=mode, preset=preset, labels=None, rings=rings,
                          window_size=window_size)
 
@@ -245,8 +246,13 @@ class OperationStepper(StepperWidget):
         # so the arrow keeps its length and its head.
         between = ~after_match & ~before_match
         key = np.stack([origin, tip, opposite], axis=1)                   # (k, 3)
-        _, group, count = np.unique(key, axis=0, return_inverse=True, return_counts=True)
-        hidden = (between & (count[group.ravel()] > 1) & (opposite >= 0))[:, None]
+        # Only the few arrows half way through are compared with every arrow (a row
+        # matches itself, so "hidden" is a second match).
+        hidden = np.zeros((len(halfedges), 1), dtype=bool)
+        changing = np.flatnonzero(between & (opposite >= 0))
+        if len(changing):
+            same = (key[changing][:, None, :] == key[None, :, :]).all(axis=2)   # (c, k)
+            hidden[changing, 0] = same.sum(axis=1) > 1
         along = unit(B - A)                                                # (k, 3)
         across = (third - A) - ((third - A) * along).sum(axis=1)[:, None] * along
         shift = np.where(hidden, OVERLAP_INSET * across, 0.0)              # (k, 3)
@@ -289,10 +295,37 @@ class OperationStepper(StepperWidget):
         return scene
 
     def _show(self) -> None:
-        state = self.before.copy()
-        if self._step:
-            self.log.replay(state, self.groups[self._step - 1][1])
-        self.scene.set_mesh(state, self._roles(), names=self._names)
+        stop = self.groups[self._step - 1][1] if self._step else 0
+        self.scene.set_mesh(self._state_after(stop), self._roles(), names=self._names)
+
+    def _state_after(self, stop: int):
+        """A new mesh: the mesh before the operation with its first ``stop`` changes applied.
+
+        Replaying from the start copies the mesh before and grows every array an element
+        is created in (about 3 ms on the bunny). From the state shown last it is cheaper:
+        a step forward copies that state (with the room its arrays have grown) and applies
+        only the changes since; a step back writes the old values of the changes in
+        between, newest first, unless one of them created or deleted an element (an
+        index cannot be taken back: then it replays from the start).
+        """
+        from ..core.ops.log import OperationLog, Writer
+
+        shown, shown_stop = self._shown
+        between = self.log.changes[min(stop, shown_stop):max(stop, shown_stop)]
+        if shown is None or (stop < shown_stop and any(c.field in ("created", "deleted") for c in between)):
+            state = self.before.copy()
+            self.log.replay(state, stop)
+        elif stop >= shown_stop:
+            state = shown.copy()
+            OperationLog(changes=between).replay(state)
+        else:
+            state = shown.copy()
+            write = Writer(state)
+            for change in reversed(between):
+                write.set(change.kind, change.index, change.field, change.old)
+            write.touch()
+        self._shown = (state, stop)
+        return state
 
     def _roles(self) -> dict[str, list[int]]:
         roles: dict[str, list[int]] = defaultdict(list)

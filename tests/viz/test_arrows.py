@@ -5,8 +5,9 @@ from __future__ import annotations
 import numpy as np
 
 from halfedge_edu.data import sample
-from halfedge_edu.viz.arrows import (POINTS_PER_ARROW, TRIANGLES_PER_ARROW, arrow_geometry,
+from halfedge_edu.viz.arrows import (POINTS_PER_ARROW, TRIANGLES_PER_ARROW, ArrowLayer, arrow_geometry,
                                      halfedge_corners, typical_edge_length)
+from halfedge_edu.viz.palette import preset
 
 
 def _arrows(mesh, halfedges):
@@ -66,3 +67,24 @@ def test_arrow_points_from_origin_to_tip():
     tail, head = points[0, 0], points[0, 5]
     assert np.dot(head - tail, tip - origin) > 0
     assert np.linalg.norm(head - tip) < np.linalg.norm(tail - tip)
+
+
+class _NoActors:
+    """Stands in for a scene's parts: the arrow layer's lookup needs no drawing."""
+
+    def set(self, name, data) -> None:
+        pass
+
+
+def test_an_arrow_layer_finds_each_drawn_halfedge_in_its_arrow_list():
+    """``slots`` answers as a table over every halfedge slot filled in arrow order would
+    (a halfedge drawn twice, on a broken mesh, answers with its last arrow)."""
+    mesh = sample("open_patch")
+    drawn = np.array([30, 4, 17, 4, 9, 0, 51])
+    layer = ArrowLayer(_NoActors(), preset("default"))
+    layer.draw(mesh, drawn, 1.0)
+    table = np.full(mesh.n_halfedge_slots, -1)
+    table[drawn] = np.arange(len(drawn))                                 # the last write wins
+    asked = np.array([-1, 0, 4, 5, 9, 17, 30, 51, 52, mesh.n_halfedge_slots + 3])
+    expected = table[asked[(asked >= 0) & (asked < len(table))]]
+    assert layer.slots(asked).tolist() == expected[expected >= 0].tolist() == [5, 3, 4, 2, 0, 6]

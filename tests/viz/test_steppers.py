@@ -308,3 +308,43 @@ def test_the_arrow_that_changes_at_flip_step_1_is_drawn_apart_and_in_full(closin
     at_step_1 = _changed_pixels(widget)
     widget.go(2)
     assert at_step_1 >= 0.6 * _changed_pixels(widget)
+
+
+STATE_ARRAYS = ARRAYS + ("positions", "vertex_deleted", "edge_deleted", "face_deleted")
+
+
+@pytest.mark.parametrize("make", [
+    lambda: SplitStepper(sample("open_patch"), 12, mode="static"),
+    lambda: CollapseStepper(sample("cube"), 0, mode="static"),
+    lambda: FlipStepper(sample("open_patch"), 12, mode="static"),
+], ids=["split", "collapse", "flip"])
+def test_a_state_reached_from_the_one_shown_before_is_the_replay_from_the_start(closing, make):
+    """Steps forward apply the changes since the state shown; steps back undo them (or
+    replay from the start across a created or deleted element): in any order of moves,
+    each state equals the mesh before with the step's changes replayed."""
+    widget = make()
+    closing(widget)
+    n = widget.n_steps
+    moves = [1, 2, 3, 2, 1, 0, n, n - 1, 2, 5, 4, n, 0, 3, n - 2, n - 3, 1]
+    for step in moves:
+        widget.go(min(step, n))
+        expected = widget.before.copy()
+        widget.log.replay(expected, widget.groups[widget.step_index - 1][1] if widget.step_index else 0)
+        state = widget.state
+        assert all(np.array_equal(getattr(state, name), getattr(expected, name)) for name in STATE_ARRAYS)
+        assert (state.n_vertices, state.n_edges, state.n_faces) == (expected.n_vertices, expected.n_edges,
+                                                                    expected.n_faces)
+
+
+def test_every_step_back_from_every_later_step_gives_the_replayed_state(closing):
+    """The cube's collapse writes halfedge 2's prev twice: undoing must go newest first."""
+    widget = CollapseStepper(sample("cube"), 0, mode="static")
+    closing(widget)
+    for later in range(1, widget.n_steps + 1):
+        for earlier in range(later):
+            widget.go(later)
+            widget.go(earlier)
+            expected = widget.before.copy()
+            widget.log.replay(expected, widget.groups[earlier - 1][1] if earlier else 0)
+            assert all(np.array_equal(getattr(widget.state, name), getattr(expected, name))
+                       for name in STATE_ARRAYS), (later, earlier)
