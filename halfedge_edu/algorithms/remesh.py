@@ -65,7 +65,7 @@ from ..core.mesh import HalfedgeMesh
 from ._progress import progress_range
 from ..core.arrays import EdgeTable, compact, cross_rows, edge_table, expand, key_ends, vertex_faces
 from .arguments import check_mesh, check_remesh, real_number, whole_number
-from .collapse_rounds import choose_round, collapse_topology_ok, no_turned_faces, round_tables
+from .collapse_rounds import COST_CLASSES, choose_round, collapse_topology_ok, no_turned_faces, round_tables, spread_ties
 from .features import DEFAULT_FEATURE_ANGLE, Features, feature_arrays
 from .normals import area_weighted_vertex_normals
 
@@ -83,6 +83,13 @@ MIN_FLIP_FRACTION = 0.001
 #: count: the last few short edges are then left to the next iteration, where smoothing
 #: has given them room, instead of paying a whole round each.
 MIN_COLLAPSE_FRACTION = 0.0005
+#: They also stop once a round collapses at most this share of the busiest round so far.
+#: What is left then are chains, where one collapse makes the next possible: collapsing a
+#: vertex of degree 4 into its neighbour takes an edge from the vertex opposite, which
+#: then has degree 4 and short edges itself. A chain moves one edge per round, along a
+#: whole ring on a torus: on a 10k-face torus six chains ran until the cap of 30 rounds.
+#: The next iteration takes up what is left, after the flips have raised those degrees.
+MIN_COLLAPSE_SHARE = 0.1
 #: A collapse may not swing any face normal by more than this (degrees).
 MAX_COLLAPSE_NORMAL_ANGLE = 30.0
 #: An edge whose two faces meet at a sharper angle than this is a crease: never flipped.
@@ -283,6 +290,38 @@ class _Refused:
         self.dirty[expand(*neighbours, merged)[1]] = True
 
 
+#: A round ranks its short edges by length only between this many classes of equal width
+#: over [0, 4/5 L), shortest class first; inside a class, in a fixed shuffle (see
+#: :func:`_collapse_order`), as ``simplify`` ranks by cost.
+COLLAPSE_LENGTH_CLASSES = COST_CLASSES
+
+
+def _collapse_order(length: np.ndarray, keys: np.ndarray, target_length: float) -> np.ndarray:
+    """(k,) the order in which a round prefers its k short edges, given their ``length``
+    (k,) and ``keys`` (k,) ``low * n + high``: by class of length (:data:`COLLAPSE_LENGTH_CLASSES`
+    classes over [0, 4/5 L)), shortest first, and inside a class in a shuffle fixed by the
+    keys (:func:`~halfedge_edu.algorithms.collapse_rounds.spread_ties`), the same on
+    every run and in a round on part of the mesh as on all of it.
+
+    Why not strictly shortest first: a round takes an edge only where it comes first
+    among the short edges within one ring of its ends (see
+    :func:`~halfedge_edu.algorithms.collapse_rounds.choose_round`). Where lengths change
+    smoothly, few edges are first in their neighbourhood: on a torus the edge lengths
+    rise ring by ring across the tube, so strict order let each round take little more
+    than the shortest ring left, and the rounds grew with the mesh (7 at 10k faces, 16
+    at 100k, 24 at 1M, the cap of 30 at 5M). Edges of about the same length are about
+    as good to collapse first, and a shuffle among them makes first places as common as
+    random ones do: 9, 8 and 8 rounds at 100k, 1M and 5M faces.
+    """
+    width = COLLAPSE_BELOW * target_length / COLLAPSE_LENGTH_CLASSES
+    # Clipped: a length just under 4/5 L may round up to the class past the last.
+    length_class = np.minimum((length / width).astype(np.int64), COLLAPSE_LENGTH_CLASSES - 1)
+    rank = spread_ties(length_class, keys)                             # (k,) each edge's place in the order
+    order = np.empty_like(rank)
+    order[rank] = np.arange(len(rank))                                 # the edges in that order
+    return order
+
+
 def _collapse_round(vertices, faces, region: np.ndarray | None, target_length, max_normal_cos, refused: _Refused,
                     features: Features | None):
     """One round of collapses of short edges among ``faces[region]`` (None: all faces).
@@ -326,7 +365,7 @@ def _collapse_round(vertices, faces, region: np.ndarray | None, target_length, m
     candidates = short[~stale]
     if len(candidates) == 0:
         return whole, features, 0, np.zeros(n, dtype=bool)
-    candidates = candidates[np.argsort(length[candidates], kind="stable")]   # shortest first
+    candidates = candidates[_collapse_order(length[candidates], keys[candidates], target_length)]
     a, b = edges[candidates, 0], edges[candidates, 1]
     along = line_edge[candidates]
     free = ~on_line[a] & ~on_line[b]
@@ -458,15 +497,21 @@ def _faces_near(faces: np.ndarray, marked: np.ndarray) -> np.ndarray:
 def _collapse_short_edges(vertices, faces, target_length, features: Features | None = None):
     """Collapse rounds until (almost) no short edge can go (at most ``MAX_COLLAPSE_ROUNDS``).
 
+    The rounds stop early once one collapses little: at most :data:`MIN_COLLAPSE_FRACTION`
+    of the faces' count, or at most :data:`MIN_COLLAPSE_SHARE` of the busiest round's.
+
     Returns ``(vertices, faces, features)``, compacted (unused vertices dropped)."""
     max_normal_cos = math.cos(math.radians(MAX_COLLAPSE_NORMAL_ANGLE))
     refused = _Refused(len(vertices))
     vertices = vertices.copy()                      # the rounds move vertices in place
     region = None                                   # the first round looks at every face
+    busiest = 0                                     # the most collapses one round has made
     for _ in range(MAX_COLLAPSE_ROUNDS):
         faces, features, n_collapsed, live = _collapse_round(
             vertices, faces, region, target_length, max_normal_cos, refused, features)
-        if n_collapsed <= MIN_COLLAPSE_FRACTION * len(faces) or not live.any():
+        busiest = max(busiest, n_collapsed)
+        if (n_collapsed <= MIN_COLLAPSE_FRACTION * len(faces) or n_collapsed <= MIN_COLLAPSE_SHARE * busiest
+                or not live.any()):
             break
         region = _faces_near(faces, live)
     vertices, faces, kept = compact(vertices, faces)
