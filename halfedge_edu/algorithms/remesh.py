@@ -226,19 +226,76 @@ def _line_turning(vertices, line_edges: np.ndarray, n: int) -> np.ndarray:
     return np.linalg.norm(total, axis=1)
 
 
-def _farthest_neighbour(vertices: np.ndarray, neighbours: tuple[np.ndarray, np.ndarray], ends: np.ndarray,
-                        places: np.ndarray) -> np.ndarray:
-    """(k,) the largest distance from ``places[i]`` (k, 3) to a neighbour of vertex ``ends[i]``.
+#: How many short edges :func:`_collapse_places` measures at a time. Each edge gathers the
+#: neighbours of both ends (about 13 points); in blocks of 8192 edges every temporary is a
+#: few MiB, where one block for the million short edges of a first round on a 1M-face
+#: torus makes hundreds of MiB, which the system maps afresh for every array.
+PLACE_CHECK_BLOCK = 8192
 
-    The neighbours of all ends are gathered at once (:func:`expand`, one row after the
-    other), so the largest per row is one ``np.maximum.reduceat`` at the rows' starts
-    (every vertex of an edge has at least one neighbour, so no row is empty).
+
+def _farthest_from_places(vertices: np.ndarray, neighbours: tuple[np.ndarray, np.ndarray], a: np.ndarray,
+                          b: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """For k edges ``a-b`` (k,): (k,) each, the largest distance to a neighbour of ``a`` or
+    ``b`` from the edge's midpoint; to a neighbour of ``b`` from ``a``; to a neighbour of
+    ``a`` from ``b``.
+
+    A collapse to that place makes those edges, so this is how long its longest new
+    edge would be (from ``a``, the neighbours of ``a`` itself are its own edges, known
+    already). Each end's neighbours are gathered once (:func:`expand`, one row after the
+    other) for all the places, and the largest per row is one ``np.maximum.reduceat``
+    at the rows' starts (every end of an edge has a neighbour, so no row is empty).
     """
     offsets, _ = neighbours
-    counts = offsets[ends + 1] - offsets[ends]
-    owner, around = expand(*neighbours, ends)
-    gap = np.take(vertices, around, axis=0) - np.take(places, owner, axis=0)
-    return np.sqrt(np.maximum.reduceat(np.einsum("ij,ij->i", gap, gap), np.cumsum(counts) - counts))
+    midpoint = 0.5 * (np.take(vertices, a, axis=0) + np.take(vertices, b, axis=0))   # (k, 3)
+    farthest = {}
+    for end, other in ((a, b), (b, a)):
+        counts = offsets[end + 1] - offsets[end]
+        owner, around = expand(*neighbours, end)
+        at = np.take(vertices, around, axis=0)                          # (r, 3) the neighbours of every end
+        for name, place in (("midpoint", midpoint), ("other end", np.take(vertices, other, axis=0))):
+            gap = at - np.take(place, owner, axis=0)
+            farthest[name, end is a] = np.sqrt(np.maximum.reduceat(np.einsum("ij,ij->i", gap, gap),
+                                                                   np.cumsum(counts) - counts))
+    return (np.maximum(farthest["midpoint", True], farthest["midpoint", False]),
+            farthest["other end", False], farthest["other end", True])
+
+
+def _collapse_places(vertices: np.ndarray, neighbours: tuple[np.ndarray, np.ndarray], reach: np.ndarray,
+                     a: np.ndarray, b: np.ndarray, first: np.ndarray, span: np.ndarray, allowed: np.ndarray,
+                     limit: float) -> np.ndarray:
+    """(k,) where each of k edges ``a-b`` may collapse: 0 to its midpoint, 1 to its end
+    ``first`` (``a`` or ``b``), 2 to its other end, -1 nowhere. Each edge takes the first
+    place ``allowed`` (k, 3 in that order) that makes no edge longer than ``limit``.
+
+    ``reach`` (n,) is the longest edge at each vertex, ``span`` (k,) each edge's length.
+    A neighbour q of an end x is at most ``reach[x] + |x - place|`` from a place
+    (triangle inequality): where that bound already fits for an edge's first allowed
+    place, that place is taken without gathering any neighbours (about half the short
+    edges of the first round on subdivided Spot). The others are measured,
+    :data:`PLACE_CHECK_BLOCK` at a time.
+    """
+    second_reach = np.where(first == a, reach[b], reach[a])
+    bound = np.stack([np.maximum(reach[a], reach[b]) + 0.5 * span,          # (k, 3) midpoint, first, second
+                      np.maximum(reach[first], second_reach + span),
+                      np.maximum(second_reach, reach[first] + span)], axis=1)
+    # The bound is computed with rounding too: a margin of 1e-9 keeps "surely fits" true
+    # of the exact measure, so the choice is the same as measuring every edge.
+    fits = bound <= limit * (1.0 - 1e-9)
+    preferred = np.argmax(allowed, axis=1)                                   # (k,) the first allowed place
+    rows = np.arange(len(a))
+    unsure = np.flatnonzero(allowed[rows, preferred] & ~fits[rows, preferred])
+    for start in range(0, len(unsure), PLACE_CHECK_BLOCK):
+        block = unsure[start:start + PLACE_CHECK_BLOCK]
+        ea, eb = a[block], b[block]
+        from_midpoint, from_a, from_b = _farthest_from_places(vertices, neighbours, ea, eb)
+        # Kept at one end, the longest edge is that end's own longest or one from it to
+        # a neighbour of the other end.
+        at_a, at_b = np.maximum(reach[ea], from_a), np.maximum(reach[eb], from_b)
+        a_first = first[block] == ea
+        fits[block] = np.stack([from_midpoint, np.where(a_first, at_a, at_b), np.where(a_first, at_b, at_a)],
+                               axis=1) <= limit
+    possible = allowed & fits
+    return np.where(possible.any(axis=1), np.argmax(possible, axis=1), -1)
 
 
 def _longest_edge_at(n: int, edges: np.ndarray, length: np.ndarray) -> np.ndarray:
@@ -380,39 +437,15 @@ def _collapse_round(vertices, faces, region: np.ndarray | None, target_length, m
     # Never across from one line to another (or to the same one further on), nor between two corners.
     valid = ~(on_line[a] & on_line[b] & ~along) & ~(corner[a] & corner[b])
 
-    # Try the places in turn; the first one that makes no edge longer than 4/3 L wins.
-    # A neighbour q of an end x is at most reach[x] + |x - place| from the place
-    # (triangle inequality), so where that bound already fits, the neighbours need not
-    # be gathered (about half the short edges of the first round on subdivided Spot).
-    limit = SPLIT_ABOVE * target_length
-    reach = _longest_edge_at(n, edges, length)                         # (n,)
-    span = length[candidates]                                          # (k,) |a - b|
-    keep, remove = first.copy(), second.copy()
-    points = np.full((len(candidates), 3), np.nan)
-    options = (  # (which place, the end kept, allowed, a bound on its farthest neighbour)
-        ("midpoint", first, free, np.maximum(reach[a], reach[b]) + 0.5 * span),
-        ("kept", first, ~free, np.maximum(reach[first], reach[second] + span)),
-        ("kept", first, free, np.maximum(reach[first], reach[second] + span)),
-        ("kept", second, free | (along & ~corner[first]), np.maximum(reach[second], reach[first] + span)),
-    )
-    for where, kept, allowed, bound in options:
-        todo = np.flatnonzero(valid & allowed & np.isnan(points[:, 0]))
-        if len(todo) == 0:
-            continue
-        place = (0.5 * (vertices[a[todo]] + vertices[b[todo]]) if where == "midpoint"
-                 else vertices[kept[todo]])                            # (t, 3)
-        # The bound is computed with rounding too: a margin of 1e-9 keeps "surely fits"
-        # true of the exact check below, so the choice is the same as checking all.
-        surely = bound[todo] <= limit * (1.0 - 1e-9)
-        check = np.flatnonzero(~surely)
-        longest = np.maximum(_farthest_neighbour(vertices, neighbours, a[todo[check]], place[check]),
-                             _farthest_neighbour(vertices, neighbours, b[todo[check]], place[check]))
-        surely[check[longest <= limit]] = True
-        fits = todo[surely]
-        points[fits] = place[surely]
-        keep[fits] = kept[fits]
-        remove[fits] = np.where(kept[fits] == first[fits], second[fits], first[fits])
-    valid &= ~np.isnan(points[:, 0])
+    # The places in order of preference: the midpoint (between two vertices off the
+    # lines), the end ``first`` (always allowed), the end ``second``. The first allowed
+    # one that makes no edge longer than 4/3 L wins.
+    allowed = np.stack([free, np.ones(len(candidates), dtype=bool), free | (along & ~corner[first])], axis=1)
+    choice = _collapse_places(vertices, neighbours, _longest_edge_at(n, edges, length), a, b, first,
+                              length[candidates], allowed & valid[:, None], SPLIT_ABOVE * target_length)
+    valid &= choice >= 0
+    keep, remove = np.where(choice == 2, second, first), np.where(choice == 2, first, second)
+    points = np.where((choice == 0)[:, None], 0.5 * (vertices[a] + vertices[b]), vertices[keep])   # (k, 3)
     # The topology last: its sort costs more per edge than the places, and most short
     # edges have no place that fits.
     placed = np.flatnonzero(valid)

@@ -219,3 +219,44 @@ def test_collapse_rounds_stop_when_only_chains_of_single_collapses_are_left(monk
     counts = collapse_round_counts(monkeypatch, vertices, faces, target_length)
     assert len(counts) <= 12, counts                                  # 30 (the cap) without the share rule
     assert counts[-1] <= remesh_module.MIN_COLLAPSE_SHARE * max(counts)
+
+
+def collapse_places_one_edge_at_a_time(vertices, edges, a, b, first, allowed, limit) -> np.ndarray:
+    """The reference for ``_collapse_places``: for each edge, try the midpoint, the end
+    ``first``, the other end, in turn, measuring every edge the collapse would make."""
+    neighbours_of = {}
+    for x, y in edges.tolist():
+        neighbours_of.setdefault(x, set()).add(y)
+        neighbours_of.setdefault(y, set()).add(x)
+    choices = []
+    for i in range(len(a)):
+        around = sorted(neighbours_of[a[i]] | neighbours_of[b[i]])
+        second = b[i] if first[i] == a[i] else a[i]
+        places = (0.5 * (vertices[a[i]] + vertices[b[i]]), vertices[first[i]], vertices[second])
+        fitting = [k for k, place in enumerate(places)
+                   if allowed[i, k] and np.linalg.norm(vertices[around] - place, axis=1).max() <= limit]
+        choices.append(fitting[0] if fitting else -1)
+    return np.array(choices)
+
+
+@pytest.mark.parametrize("block", [1, 3, 8192])
+def test_collapse_places_measured_a_block_at_a_time_equal_one_edge_at_a_time(monkeypatch, block):
+    monkeypatch.setattr(remesh_module, "PLACE_CHECK_BLOCK", block)
+    mesh = bumpy_sheet(12)
+    vertices, faces = mesh.to_arrays()
+    length = 1.3 * mean_edge_length(mesh)
+    vertices, faces, _ = remesh_module._split_long_edges(vertices, faces, length, None)
+    tables = remesh_module.round_tables(faces, len(vertices))
+    edge_length = remesh_module._edge_lengths(vertices, tables.edges)
+    short = np.flatnonzero(edge_length < remesh_module.COLLAPSE_BELOW * length)
+    a, b = tables.edges[short, 0], tables.edges[short, 1]
+    rng = np.random.default_rng(2)
+    first = np.where(rng.random(len(short)) < 0.5, a, b)
+    allowed = rng.random((len(short), 3)) < 0.7                          # every mix of allowed places
+    limit = remesh_module.SPLIT_ABOVE * length
+    reach = remesh_module._longest_edge_at(len(vertices), tables.edges, edge_length)
+    choice = remesh_module._collapse_places(vertices, tables.neighbours, reach, a, b, first, edge_length[short],
+                                            allowed, limit)
+    expected = collapse_places_one_edge_at_a_time(vertices, tables.edges, a, b, first, allowed, limit)
+    assert np.array_equal(choice, expected)
+    assert len(set(choice.tolist())) == 4                                # each place, and none, occurs
