@@ -184,6 +184,19 @@ def test_collapse_order_puts_shorter_classes_first_and_shuffles_inside_a_class()
     assert np.array_equal(last, [0, 1])
 
 
+def test_collapse_order_puts_the_smaller_key_first_where_two_shuffled_numbers_agree():
+    # spread_ties_keys keeps the top 59 bits of a 64-bit hash: distinct for keys below
+    # 2**30, not always above. This key hashes to 14 (key * hash factor = 14 mod 2**64),
+    # so its number equals key 0's.
+    colliding = 4191503622821399894
+    keys = np.array([colliding, 0], dtype=np.int64)
+    length = np.array([0.5, 0.5])
+    priority = remesh_module.spread_ties_keys(np.zeros(2, dtype=np.int64), keys)
+    assert priority[0] == priority[1]
+    assert np.array_equal(remesh_module._collapse_order(length, keys, 1.0), [1, 0])
+    assert np.array_equal(remesh_module._collapse_order(length, keys[::-1].copy(), 1.0), [0, 1])
+
+
 def test_a_round_takes_many_more_edges_than_shortest_first_where_lengths_rise_gradually(monkeypatch):
     vertices, faces = graded_strip()
     ranked = first_round_collapses(vertices, faces, 1.0)
