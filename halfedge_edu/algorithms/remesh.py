@@ -40,8 +40,10 @@ on whole face arrays, with numpy:
 * the collapses run in *rounds*, as ``simplify``'s do (:mod:`.collapse_rounds`): each
   round checks every short edge (link condition, boundary rules, degrees, the 4/3 L
   rule, no face turned over) and collapses a set of them far enough apart to be done
-  together. After the first round, a round looks only at the faces within two rings
-  of the short edges still worth trying: nothing farther away can change its choice;
+  together, preferring shorter edges by class of length (a fixed shuffle inside a
+  class, so that a round finds many edges to take where lengths change smoothly).
+  After the first round, a round looks only at the faces within two rings of the
+  short edges still worth trying: nothing farther away can change its choice;
 * the flips run in passes: every interior edge's degree gain is computed at once, and
   a set of improving flips that share no vertex is flipped together. The edge list is
   sorted once per phase and then updated by each pass (a flip changes five edges).
