@@ -250,17 +250,21 @@ def _farthest_from_places(vertices: np.ndarray, neighbours: tuple[np.ndarray, np
     """
     offsets, _ = neighbours
     midpoint = 0.5 * (np.take(vertices, a, axis=0) + np.take(vertices, b, axis=0))   # (k, 3)
-    farthest = {}
+    measured = []
     for end, other in ((a, b), (b, a)):
         counts = offsets[end + 1] - offsets[end]
+        starts = np.cumsum(counts) - counts
         owner, around = expand(*neighbours, end)
         at = np.take(vertices, around, axis=0)                          # (r, 3) the neighbours of every end
-        for name, place in (("midpoint", midpoint), ("other end", np.take(vertices, other, axis=0))):
-            gap = at - np.take(place, owner, axis=0)
-            farthest[name, end is a] = np.sqrt(np.maximum.reduceat(np.einsum("ij,ij->i", gap, gap),
-                                                                   np.cumsum(counts) - counts))
-    return (np.maximum(farthest["midpoint", True], farthest["midpoint", False]),
-            farthest["other end", False], farthest["other end", True])
+
+        def farthest_from(places: np.ndarray) -> np.ndarray:
+            """(k,) the largest distance from ``places[i]`` (k, 3) to a neighbour of ``end[i]``."""
+            gap = at - np.take(places, owner, axis=0)
+            return np.sqrt(np.maximum.reduceat(np.einsum("ij,ij->i", gap, gap), starts))
+
+        measured.append((farthest_from(midpoint), farthest_from(np.take(vertices, other, axis=0))))
+    (a_from_midpoint, a_from_b), (b_from_midpoint, b_from_a) = measured
+    return np.maximum(a_from_midpoint, b_from_midpoint), b_from_a, a_from_b
 
 
 def _collapse_places(vertices: np.ndarray, neighbours: tuple[np.ndarray, np.ndarray], reach: np.ndarray,
