@@ -90,7 +90,7 @@ MIN_COLLAPSE_FRACTION = 0.0005
 #: What is left then are chains, where one collapse makes the next possible: collapsing a
 #: vertex of degree 4 into its neighbour takes an edge from the vertex opposite, which
 #: then has degree 4 and short edges itself. A chain moves one edge per round, along a
-#: whole ring on a torus: on a 10k-face torus six chains ran until the cap of 30 rounds.
+#: whole ring on a torus: on a 10k-face torus 6-8 chains ran until the cap of 30 rounds.
 #: The next iteration takes up what is left, after the flips have raised those degrees.
 MIN_COLLAPSE_SHARE = 0.1
 #: A collapse may not swing any face normal by more than this (degrees).
@@ -381,7 +381,7 @@ def _collapse_order(length: np.ndarray, keys: np.ndarray, target_length: float) 
     than the shortest ring left, and the rounds grew with the mesh (7 at 10k faces, 16
     at 100k, 24 at 1M, the cap of 30 at 5M). Edges of about the same length are about
     as good to collapse first, and a shuffle among them makes first places as common as
-    random ones do: 9, 8 and 8 rounds at 100k, 1M and 5M faces.
+    random ones do: 8, 7 and 8 rounds at 100k, 1M and 5M faces.
     """
     width = COLLAPSE_BELOW * target_length / COLLAPSE_LENGTH_CLASSES
     # Clipped: a length just under 4/5 L may round up to the class past the last.
