@@ -40,8 +40,10 @@ on whole face arrays, with numpy:
 * the collapses run in *rounds*, as ``simplify``'s do (:mod:`.collapse_rounds`): each
   round checks every short edge (link condition, boundary rules, degrees, the 4/3 L
   rule, no face turned over) and collapses a set of them far enough apart to be done
-  together. After the first round, a round looks only at the faces within two rings
-  of the short edges still worth trying: nothing farther away can change its choice;
+  together, preferring shorter edges by class of length (a fixed shuffle inside a
+  class, so that a round finds many edges to take where lengths change smoothly).
+  After the first round, a round looks only at the faces within two rings of the
+  short edges still worth trying: nothing farther away can change its choice;
 * the flips run in passes: every interior edge's degree gain is computed at once, and
   a set of improving flips that share no vertex is flipped together. The edge list is
   sorted once per phase and then updated by each pass (a flip changes five edges).
@@ -65,7 +67,8 @@ from ..core.mesh import HalfedgeMesh
 from ._progress import progress_range
 from ..core.arrays import EdgeTable, compact, cross_rows, edge_table, expand, key_ends, vertex_faces
 from .arguments import check_mesh, check_remesh, real_number, whole_number
-from .collapse_rounds import choose_round, collapse_topology_ok, no_turned_faces, round_tables
+from .collapse_rounds import (COST_CLASSES, choose_round, collapse_topology_ok, no_turned_faces, round_tables,
+                              spread_ties_keys)
 from .features import DEFAULT_FEATURE_ANGLE, Features, feature_arrays
 from .normals import area_weighted_vertex_normals
 
@@ -83,6 +86,13 @@ MIN_FLIP_FRACTION = 0.001
 #: count: the last few short edges are then left to the next iteration, where smoothing
 #: has given them room, instead of paying a whole round each.
 MIN_COLLAPSE_FRACTION = 0.0005
+#: They also stop once a round collapses at most this share of the busiest round so far.
+#: What is left then are chains, where one collapse makes the next possible: collapsing a
+#: vertex of degree 4 into its neighbour takes an edge from the vertex opposite, which
+#: then has degree 4 and short edges itself. A chain moves one edge per round, along a
+#: whole ring on a torus: on a 10k-face torus 6-8 chains ran until the cap of 30 rounds.
+#: The next iteration takes up what is left, after the flips have raised those degrees.
+MIN_COLLAPSE_SHARE = 0.1
 #: A collapse may not swing any face normal by more than this (degrees).
 MAX_COLLAPSE_NORMAL_ANGLE = 30.0
 #: An edge whose two faces meet at a sharper angle than this is a crease: never flipped.
@@ -219,19 +229,80 @@ def _line_turning(vertices, line_edges: np.ndarray, n: int) -> np.ndarray:
     return np.linalg.norm(total, axis=1)
 
 
-def _farthest_neighbour(vertices: np.ndarray, neighbours: tuple[np.ndarray, np.ndarray], ends: np.ndarray,
-                        places: np.ndarray) -> np.ndarray:
-    """(k,) the largest distance from ``places[i]`` (k, 3) to a neighbour of vertex ``ends[i]``.
+#: How many short edges :func:`_collapse_places` measures at a time. Each edge gathers the
+#: neighbours of both ends (about 13 points); in blocks of 8192 edges every temporary is a
+#: few MiB, where one block for the million short edges of a first round on a 1M-face
+#: torus makes hundreds of MiB, which the system maps afresh for every array.
+PLACE_CHECK_BLOCK = 8192
 
-    The neighbours of all ends are gathered at once (:func:`expand`, one row after the
-    other), so the largest per row is one ``np.maximum.reduceat`` at the rows' starts
-    (every vertex of an edge has at least one neighbour, so no row is empty).
+
+def _farthest_from_places(vertices: np.ndarray, neighbours: tuple[np.ndarray, np.ndarray], a: np.ndarray,
+                          b: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """For k edges ``a-b`` (k,): (k,) each, the largest distance to a neighbour of ``a`` or
+    ``b`` from the edge's midpoint; to a neighbour of ``b`` from ``a``; to a neighbour of
+    ``a`` from ``b``.
+
+    A collapse to that place makes those edges, so this is how long its longest new
+    edge would be (from ``a``, the neighbours of ``a`` itself are its own edges, known
+    already). Each end's neighbours are gathered once (:func:`expand`, one row after the
+    other) for all the places, and the largest per row is one ``np.maximum.reduceat``
+    at the rows' starts (every end of an edge has a neighbour, so no row is empty).
     """
     offsets, _ = neighbours
-    counts = offsets[ends + 1] - offsets[ends]
-    owner, around = expand(*neighbours, ends)
-    gap = np.take(vertices, around, axis=0) - np.take(places, owner, axis=0)
-    return np.sqrt(np.maximum.reduceat(np.einsum("ij,ij->i", gap, gap), np.cumsum(counts) - counts))
+    midpoint = 0.5 * (np.take(vertices, a, axis=0) + np.take(vertices, b, axis=0))   # (k, 3)
+    measured = []
+    for end, other in ((a, b), (b, a)):
+        counts = offsets[end + 1] - offsets[end]
+        starts = np.cumsum(counts) - counts
+        owner, around = expand(*neighbours, end)
+        at = np.take(vertices, around, axis=0)                          # (r, 3) the neighbours of every end
+
+        def farthest_from(places: np.ndarray) -> np.ndarray:
+            """(k,) the largest distance from ``places[i]`` (k, 3) to a neighbour of ``end[i]``."""
+            gap = at - np.take(places, owner, axis=0)
+            return np.sqrt(np.maximum.reduceat(np.einsum("ij,ij->i", gap, gap), starts))
+
+        measured.append((farthest_from(midpoint), farthest_from(np.take(vertices, other, axis=0))))
+    (a_from_midpoint, a_from_b), (b_from_midpoint, b_from_a) = measured
+    return np.maximum(a_from_midpoint, b_from_midpoint), b_from_a, a_from_b
+
+
+def _collapse_places(vertices: np.ndarray, neighbours: tuple[np.ndarray, np.ndarray], reach: np.ndarray,
+                     a: np.ndarray, b: np.ndarray, first: np.ndarray, span: np.ndarray, allowed: np.ndarray,
+                     limit: float) -> np.ndarray:
+    """(k,) where each of k edges ``a-b`` may collapse: 0 to its midpoint, 1 to its end
+    ``first`` (``a`` or ``b``), 2 to its other end, -1 nowhere. Each edge takes the first
+    place ``allowed`` (k, 3 in that order) that makes no edge longer than ``limit``.
+
+    ``reach`` (n,) is the longest edge at each vertex, ``span`` (k,) each edge's length.
+    A neighbour q of an end x is at most ``reach[x] + |x - place|`` from a place
+    (triangle inequality): where that bound already fits for an edge's first allowed
+    place, that place is taken without gathering any neighbours (about half the short
+    edges of the first round on subdivided Spot). The others are measured,
+    :data:`PLACE_CHECK_BLOCK` at a time.
+    """
+    second_reach = np.where(first == a, reach[b], reach[a])
+    bound = np.stack([np.maximum(reach[a], reach[b]) + 0.5 * span,          # (k, 3) midpoint, first, second
+                      np.maximum(reach[first], second_reach + span),
+                      np.maximum(second_reach, reach[first] + span)], axis=1)
+    # The bound is computed with rounding too: a margin of 1e-9 keeps "surely fits" true
+    # of the exact measure, so the choice is the same as measuring every edge.
+    fits = bound <= limit * (1.0 - 1e-9)
+    preferred = np.argmax(allowed, axis=1)                                   # (k,) the first allowed place
+    rows = np.arange(len(a))
+    unsure = np.flatnonzero(allowed[rows, preferred] & ~fits[rows, preferred])
+    for start in range(0, len(unsure), PLACE_CHECK_BLOCK):
+        block = unsure[start:start + PLACE_CHECK_BLOCK]
+        ea, eb = a[block], b[block]
+        from_midpoint, from_a, from_b = _farthest_from_places(vertices, neighbours, ea, eb)
+        # Kept at one end, the longest edge is that end's own longest or one from it to
+        # a neighbour of the other end.
+        at_a, at_b = np.maximum(reach[ea], from_a), np.maximum(reach[eb], from_b)
+        a_first = first[block] == ea
+        fits[block] = np.stack([from_midpoint, np.where(a_first, at_a, at_b), np.where(a_first, at_b, at_a)],
+                               axis=1) <= limit
+    possible = allowed & fits
+    return np.where(possible.any(axis=1), np.argmax(possible, axis=1), -1)
 
 
 def _longest_edge_at(n: int, edges: np.ndarray, length: np.ndarray) -> np.ndarray:
@@ -283,6 +354,46 @@ class _Refused:
         self.dirty[expand(*neighbours, merged)[1]] = True
 
 
+#: A round ranks its short edges by length only between this many classes of equal width
+#: over [0, 4/5 L), shortest class first; inside a class, in a fixed shuffle (see
+#: :func:`_collapse_order`), as ``simplify`` ranks by cost.
+COLLAPSE_LENGTH_CLASSES = COST_CLASSES
+
+
+def _collapse_order(length: np.ndarray, keys: np.ndarray, target_length: float) -> np.ndarray:
+    """(k,) the order in which a round prefers its k short edges, given their ``length``
+    (k,) and ``keys`` (k,) ``low * n + high``: by class of length (:data:`COLLAPSE_LENGTH_CLASSES`
+    classes over [0, 4/5 L)), shortest first, and inside a class in a shuffle fixed by the
+    keys (:func:`~halfedge_edu.algorithms.collapse_rounds.spread_ties`), the same on
+    every run and in a round on part of the mesh as on all of it.
+
+    The order is one sort of one number per edge,
+    :func:`~halfedge_edu.algorithms.collapse_rounds.spread_ties_keys` (class, then the top
+    bits of the shuffle): a ninth of the time of sorting by two keys (0.04 s against
+    0.36 s for a million edges). Those numbers are distinct for keys below 2**30; a
+    large mesh's keys are bigger, so where two numbers agree (rare) both keys decide.
+
+    Why not strictly shortest first: a round takes an edge only where it comes first
+    among the short edges within one ring of its ends (see
+    :func:`~halfedge_edu.algorithms.collapse_rounds.choose_round`). Where lengths change
+    smoothly, few edges are first in their neighbourhood: on a torus the edge lengths
+    rise ring by ring across the tube, so strict order let each round take little more
+    than the shortest ring left, and the rounds grew with the mesh (7 at 10k faces, 16
+    at 100k, 24 at 1M, the cap of 30 at 5M). Edges of about the same length are about
+    as good to collapse first, and a shuffle among them makes first places as common as
+    random ones do: 8, 7 and 8 rounds at 100k, 1M and 5M faces.
+    """
+    width = COLLAPSE_BELOW * target_length / COLLAPSE_LENGTH_CLASSES
+    # Clipped: a length just under 4/5 L may round up to the class past the last.
+    length_class = np.minimum((length / width).astype(np.int64), COLLAPSE_LENGTH_CLASSES - 1)
+    priority = spread_ties_keys(length_class, keys)                    # (k,) int64, lowest first
+    order = np.argsort(priority)
+    in_order = priority[order]
+    if (in_order[1:] == in_order[:-1]).any():
+        order = np.lexsort((keys, priority))
+    return order
+
+
 def _collapse_round(vertices, faces, region: np.ndarray | None, target_length, max_normal_cos, refused: _Refused,
                     features: Features | None):
     """One round of collapses of short edges among ``faces[region]`` (None: all faces).
@@ -326,7 +437,7 @@ def _collapse_round(vertices, faces, region: np.ndarray | None, target_length, m
     candidates = short[~stale]
     if len(candidates) == 0:
         return whole, features, 0, np.zeros(n, dtype=bool)
-    candidates = candidates[np.argsort(length[candidates], kind="stable")]   # shortest first
+    candidates = candidates[_collapse_order(length[candidates], keys[candidates], target_length)]
     a, b = edges[candidates, 0], edges[candidates, 1]
     along = line_edge[candidates]
     free = ~on_line[a] & ~on_line[b]
@@ -341,39 +452,15 @@ def _collapse_round(vertices, faces, region: np.ndarray | None, target_length, m
     # Never across from one line to another (or to the same one further on), nor between two corners.
     valid = ~(on_line[a] & on_line[b] & ~along) & ~(corner[a] & corner[b])
 
-    # Try the places in turn; the first one that makes no edge longer than 4/3 L wins.
-    # A neighbour q of an end x is at most reach[x] + |x - place| from the place
-    # (triangle inequality), so where that bound already fits, the neighbours need not
-    # be gathered (about half the short edges of the first round on subdivided Spot).
-    limit = SPLIT_ABOVE * target_length
-    reach = _longest_edge_at(n, edges, length)                         # (n,)
-    span = length[candidates]                                          # (k,) |a - b|
-    keep, remove = first.copy(), second.copy()
-    points = np.full((len(candidates), 3), np.nan)
-    options = (  # (which place, the end kept, allowed, a bound on its farthest neighbour)
-        ("midpoint", first, free, np.maximum(reach[a], reach[b]) + 0.5 * span),
-        ("kept", first, ~free, np.maximum(reach[first], reach[second] + span)),
-        ("kept", first, free, np.maximum(reach[first], reach[second] + span)),
-        ("kept", second, free | (along & ~corner[first]), np.maximum(reach[second], reach[first] + span)),
-    )
-    for where, kept, allowed, bound in options:
-        todo = np.flatnonzero(valid & allowed & np.isnan(points[:, 0]))
-        if len(todo) == 0:
-            continue
-        place = (0.5 * (vertices[a[todo]] + vertices[b[todo]]) if where == "midpoint"
-                 else vertices[kept[todo]])                            # (t, 3)
-        # The bound is computed with rounding too: a margin of 1e-9 keeps "surely fits"
-        # true of the exact check below, so the choice is the same as checking all.
-        surely = bound[todo] <= limit * (1.0 - 1e-9)
-        check = np.flatnonzero(~surely)
-        longest = np.maximum(_farthest_neighbour(vertices, neighbours, a[todo[check]], place[check]),
-                             _farthest_neighbour(vertices, neighbours, b[todo[check]], place[check]))
-        surely[check[longest <= limit]] = True
-        fits = todo[surely]
-        points[fits] = place[surely]
-        keep[fits] = kept[fits]
-        remove[fits] = np.where(kept[fits] == first[fits], second[fits], first[fits])
-    valid &= ~np.isnan(points[:, 0])
+    # The places in order of preference: the midpoint (between two vertices off the
+    # lines), the end ``first`` (always allowed), the end ``second``. The first allowed
+    # one that makes no edge longer than 4/3 L wins.
+    allowed = np.stack([free, np.ones(len(candidates), dtype=bool), free | (along & ~corner[first])], axis=1)
+    choice = _collapse_places(vertices, neighbours, _longest_edge_at(n, edges, length), a, b, first,
+                              length[candidates], allowed & valid[:, None], SPLIT_ABOVE * target_length)
+    valid &= choice >= 0
+    keep, remove = np.where(choice == 2, second, first), np.where(choice == 2, first, second)
+    points = np.where((choice == 0)[:, None], 0.5 * (vertices[a] + vertices[b]), vertices[keep])   # (k, 3)
     # The topology last: its sort costs more per edge than the places, and most short
     # edges have no place that fits.
     placed = np.flatnonzero(valid)
@@ -458,15 +545,21 @@ def _faces_near(faces: np.ndarray, marked: np.ndarray) -> np.ndarray:
 def _collapse_short_edges(vertices, faces, target_length, features: Features | None = None):
     """Collapse rounds until (almost) no short edge can go (at most ``MAX_COLLAPSE_ROUNDS``).
 
+    The rounds stop early once one collapses little: at most :data:`MIN_COLLAPSE_FRACTION`
+    of the faces' count, or at most :data:`MIN_COLLAPSE_SHARE` of the busiest round's.
+
     Returns ``(vertices, faces, features)``, compacted (unused vertices dropped)."""
     max_normal_cos = math.cos(math.radians(MAX_COLLAPSE_NORMAL_ANGLE))
     refused = _Refused(len(vertices))
     vertices = vertices.copy()                      # the rounds move vertices in place
     region = None                                   # the first round looks at every face
+    busiest = 0                                     # the most collapses one round has made
     for _ in range(MAX_COLLAPSE_ROUNDS):
         faces, features, n_collapsed, live = _collapse_round(
             vertices, faces, region, target_length, max_normal_cos, refused, features)
-        if n_collapsed <= MIN_COLLAPSE_FRACTION * len(faces) or not live.any():
+        busiest = max(busiest, n_collapsed)
+        if (n_collapsed <= MIN_COLLAPSE_FRACTION * len(faces) or n_collapsed <= MIN_COLLAPSE_SHARE * busiest
+                or not live.any()):
             break
         region = _faces_near(faces, live)
     vertices, faces, kept = compact(vertices, faces)

@@ -3,6 +3,11 @@
 * A collapse round after the first looks only at the faces near the short edges still
   to try (``_faces_near``); it must choose exactly what a round on the whole mesh
   chooses, on closed and open meshes, with and without feature lines.
+* A round ranks its short edges by class of length, with a fixed shuffle inside a
+  class (``_collapse_order``): where lengths rise gradually across the mesh it takes
+  many more edges than strict shortest-first order, so the rounds stay few.
+* The rounds stop once one collapses at most ``MIN_COLLAPSE_SHARE`` of the busiest
+  round: chains of collapses that make the next one possible go on to the next iteration.
 * ``Features.edge_mask`` takes the keys of part of a mesh and leaves out the feature
   edges that are not among them.
 * The projection's candidates (the triangle with the nearest centroid and the three
@@ -138,3 +143,133 @@ def test_edge_uses_kept_up_to_date_through_flip_passes_equal_a_fresh_table(name)
             assert np.array_equal(getattr(table, field), getattr(fresh, field)), field
         assert np.array_equal(table.boundary_vertices(len(vertices)), fresh.boundary_vertices(len(vertices)))
     assert flipped > 0
+
+
+def graded_strip(columns: int = 40, rows: int = 30) -> tuple[np.ndarray, np.ndarray]:
+    """A flat grid whose columns widen gradually, from 0.55 to 0.75 (rows 0.8 apart):
+    every edge across a column is short for L = 1, each column a little longer than the
+    one before, and no edge is longer than 4/3 L."""
+    vertices, faces = shapes.grid(columns, rows)
+    edges_x = np.concatenate([[0.0], np.cumsum(np.linspace(0.55, 0.75, columns))])   # (columns + 1,)
+    column, row = np.rint(vertices[:, 0]).astype(int), np.rint(vertices[:, 1]).astype(int)
+    return np.stack([edges_x[column], 0.8 * row, np.zeros(len(vertices))], axis=1), faces
+
+
+def first_round_collapses(vertices: np.ndarray, faces: np.ndarray, target_length: float) -> int:
+    """How many edges the first collapse round (on the whole mesh) collapses."""
+    refused = remesh_module._Refused(len(vertices))
+    max_normal_cos = np.cos(np.radians(remesh_module.MAX_COLLAPSE_NORMAL_ANGLE))
+    _, _, n_collapsed, _ = remesh_module._collapse_round(vertices.copy(), faces, None, target_length, max_normal_cos,
+                                                          refused, None)
+    return n_collapsed
+
+
+def test_collapse_order_puts_shorter_classes_first_and_shuffles_inside_a_class():
+    target_length = 1.0
+    width = remesh_module.COLLAPSE_BELOW * target_length / remesh_module.COLLAPSE_LENGTH_CLASSES
+    # Two classes, each with lengths rising with the key (strict order would keep the keys in order).
+    length = np.concatenate([np.linspace(0.1, 0.9, 50), np.linspace(3.1, 3.9, 50)]) * width
+    keys = np.arange(100, dtype=np.int64) * 1001
+    order = remesh_module._collapse_order(length, keys, target_length)
+    assert np.array_equal(np.sort(order), np.arange(100))
+    assert set(order[:50].tolist()) == set(range(50))                  # the shorter class first
+    assert not np.array_equal(order[:50], np.arange(50))               # ... not shortest first inside it
+    # The order follows the keys, not where an edge stands in the arrays: a round on
+    # part of the mesh ranks its edges as a round on all of it does.
+    shuffle = np.random.default_rng(1).permutation(100)
+    reordered = remesh_module._collapse_order(length[shuffle], keys[shuffle], target_length)
+    assert np.array_equal(keys[shuffle][reordered], keys[order])
+    # A length just under 4/5 L stays in the last class.
+    last = remesh_module._collapse_order(np.array([0.0, np.nextafter(0.8, 0.0)]), np.array([7, 3]), target_length)
+    assert np.array_equal(last, [0, 1])
+
+
+def test_collapse_order_puts_the_smaller_key_first_where_two_shuffled_numbers_agree():
+    # spread_ties_keys keeps the top 59 bits of a 64-bit hash: distinct for keys below
+    # 2**30, not always above. This key hashes to 14 (key * hash factor = 14 mod 2**64),
+    # so its number equals key 0's.
+    colliding = 4191503622821399894
+    keys = np.array([colliding, 0], dtype=np.int64)
+    length = np.array([0.5, 0.5])
+    priority = remesh_module.spread_ties_keys(np.zeros(2, dtype=np.int64), keys)
+    assert priority[0] == priority[1]
+    assert np.array_equal(remesh_module._collapse_order(length, keys, 1.0), [1, 0])
+    assert np.array_equal(remesh_module._collapse_order(length, keys[::-1].copy(), 1.0), [0, 1])
+
+
+def test_a_round_takes_many_more_edges_than_shortest_first_where_lengths_rise_gradually(monkeypatch):
+    vertices, faces = graded_strip()
+    ranked = first_round_collapses(vertices, faces, 1.0)
+    monkeypatch.setattr(remesh_module, "_collapse_order",
+                        lambda length, keys, target_length: np.argsort(length, kind="stable"))
+    shortest_first = first_round_collapses(vertices, faces, 1.0)
+    # Shortest first takes little more than the narrowest column (18 edges); by class, 136.
+    assert ranked >= 4 * shortest_first
+
+
+def collapse_round_counts(monkeypatch, vertices: np.ndarray, faces: np.ndarray, target_length: float) -> list[int]:
+    """The collapses of every round of one split and one collapse phase."""
+    counts = []
+    collapse_round = remesh_module._collapse_round
+
+    def counting(*args, **kwargs):
+        result = collapse_round(*args, **kwargs)
+        counts.append(result[2])
+        return result
+
+    monkeypatch.setattr(remesh_module, "_collapse_round", counting)
+    vertices, faces, _ = remesh_module._split_long_edges(vertices, faces, target_length, None)
+    remesh_module._collapse_short_edges(vertices, faces, target_length, None)
+    return counts
+
+
+def test_collapse_rounds_stop_when_only_chains_of_single_collapses_are_left(monkeypatch):
+    # A torus of 6,020 faces at its mean edge length: once the bulk is done, a few
+    # chains go on collapsing one edge per round each (a collapsed vertex of degree 4
+    # leaves its neighbour with degree 4), around the tube.
+    vertices, faces = shapes.torus(86, 35, radii=(1.0, 0.4))
+    target_length = float(remesh_module._edge_lengths(vertices, edge_table(faces, len(vertices)).edges).mean())
+    counts = collapse_round_counts(monkeypatch, vertices, faces, target_length)
+    assert len(counts) <= 12, counts                                  # 30 (the cap) without the share rule
+    assert counts[-1] <= remesh_module.MIN_COLLAPSE_SHARE * max(counts)
+
+
+def collapse_places_one_edge_at_a_time(vertices, edges, a, b, first, allowed, limit) -> np.ndarray:
+    """The reference for ``_collapse_places``: for each edge, try the midpoint, the end
+    ``first``, the other end, in turn, measuring every edge the collapse would make."""
+    neighbours_of = {}
+    for x, y in edges.tolist():
+        neighbours_of.setdefault(x, set()).add(y)
+        neighbours_of.setdefault(y, set()).add(x)
+    choices = []
+    for i in range(len(a)):
+        around = sorted(neighbours_of[a[i]] | neighbours_of[b[i]])
+        second = b[i] if first[i] == a[i] else a[i]
+        places = (0.5 * (vertices[a[i]] + vertices[b[i]]), vertices[first[i]], vertices[second])
+        fitting = [k for k, place in enumerate(places)
+                   if allowed[i, k] and np.linalg.norm(vertices[around] - place, axis=1).max() <= limit]
+        choices.append(fitting[0] if fitting else -1)
+    return np.array(choices)
+
+
+@pytest.mark.parametrize("block", [1, 3, 8192])
+def test_collapse_places_measured_a_block_at_a_time_equal_one_edge_at_a_time(monkeypatch, block):
+    monkeypatch.setattr(remesh_module, "PLACE_CHECK_BLOCK", block)
+    mesh = bumpy_sheet(12)
+    vertices, faces = mesh.to_arrays()
+    length = 1.3 * mean_edge_length(mesh)
+    vertices, faces, _ = remesh_module._split_long_edges(vertices, faces, length, None)
+    tables = remesh_module.round_tables(faces, len(vertices))
+    edge_length = remesh_module._edge_lengths(vertices, tables.edges)
+    short = np.flatnonzero(edge_length < remesh_module.COLLAPSE_BELOW * length)
+    a, b = tables.edges[short, 0], tables.edges[short, 1]
+    rng = np.random.default_rng(2)
+    first = np.where(rng.random(len(short)) < 0.5, a, b)
+    allowed = rng.random((len(short), 3)) < 0.7                          # every mix of allowed places
+    limit = remesh_module.SPLIT_ABOVE * length
+    reach = remesh_module._longest_edge_at(len(vertices), tables.edges, edge_length)
+    choice = remesh_module._collapse_places(vertices, tables.neighbours, reach, a, b, first, edge_length[short],
+                                            allowed, limit)
+    expected = collapse_places_one_edge_at_a_time(vertices, tables.edges, a, b, first, allowed, limit)
+    assert np.array_equal(choice, expected)
+    assert len(set(choice.tolist())) == 4                                # each place, and none, occurs
