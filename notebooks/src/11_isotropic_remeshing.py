@@ -114,7 +114,7 @@ for l in (1.2, 4 / 3, 1.5, 2.0):
 # An edge longer than 8/3 L leaves halves that are still too long; the library simply
 # splits again until no edge is long. A split adds one vertex, and three edges and two
 # faces for an interior edge (chapter 06), so the table's first split phase took Spot
-# from 1,500 to over 3,600 faces.
+# from 1,500 to 3,550 faces.
 
 # %% [markdown]
 # ## 3. Collapse below 4/5 L, but never create a long edge

@@ -397,11 +397,10 @@ Image(histograms(list(answers.values()), list(answers), L_B))
 # The triangles are what the game engine asked for, so the remeshed versions win.
 #
 # They are not free: their mean distance to Spot is about three times that of A, and
-# the largest (at the tips of the horns and ears, rounded off by the smoothing) is
-# about half of L. Between B and C there is little to choose. B projects onto the
-# original Spot, C onto the simplified one, whose error it inherits; here C comes out
-# no farther, because simplification has already put its vertices where the shape
-# needs them. On a huge input C is the practical order: simplification is cheap and
+# the largest (at the tip of a horn or an ear, rounded off by the smoothing) is a good
+# part of L: about 0.8 L for B, 0.3 L for C. B projects onto the original Spot, C onto
+# the simplified one, whose error it inherits; here C still comes out nearer, because
+# simplification has already put its vertices where the shape needs them. On a huge input C is the practical order: simplification is cheap and
 # gets the size right, and a few remeshing iterations then fix the triangles. If the horns mattered more than the triangles, you would now try a
 # smaller L near them, which is where this course hands over to the research papers.
 
