@@ -40,6 +40,7 @@ import numpy as np
 import pytest
 
 from tests.browser.lab_page import (
+    FRAME_TIMEOUT,
     as_array,
     changed_share,
     click_in_place,
@@ -129,6 +130,13 @@ ROWS_OUT_OF_VIEW = """(output) => {
 }""" % MARKED_ROW
 
 
+def is_drawn(picture: np.ndarray) -> bool:
+    """Whether ``picture`` passes :meth:`WidgetInLab.check`'s picture rules: not blank,
+    not stripes."""
+    std, colours = drawn(picture)
+    return std >= MIN_STD and colours >= MIN_COLOURS and not striped(picture)
+
+
 def striped(picture: np.ndarray) -> bool:
     """Full-frame vertical stripes, the broken-context picture: every column nearly one
     colour from top to bottom, while the columns differ from each other."""
@@ -207,8 +215,8 @@ class WidgetInLab:
     def settle(self, before, what: str, timeout: float = SETTLE_TIMEOUT):
         """Wait until the text and the pictures stop changing; if a table changed since
         ``before`` (a :meth:`state`), the pictures must change too: a step whose picture
-        does not follow its table fails. With ``before`` None, only wait for them to stop
-        changing."""
+        does not follow its table fails. With ``before`` None, wait for them to stop
+        changing and for every picture to be drawn (a live view's first frame)."""
         text0, tables0, pictures0 = before if before is not None else self.state()
         deadline = time.monotonic() + timeout
         started = time.monotonic()
@@ -223,7 +231,12 @@ class WidgetInLab:
                 changed_share(a, b) < SAME_PICTURE for a, b in zip(previous[2], pictures))
             quiet = time.monotonic() - started > QUIET
             if stable and (before is None or picture_moved or (not table_moved and quiet)):
-                return now
+                # A live view draws its first frame a while after it appears, and a blank
+                # frame can stand still for a moment: as left by the notebook, wait for
+                # drawn pictures too (past the deadline, hand back what there is, and
+                # :meth:`check` says it is blank).
+                if before is not None or all(is_drawn(p) for p in pictures) or time.monotonic() > deadline:
+                    return now
             if time.monotonic() > deadline:
                 if table_moved and not picture_moved:
                     pytest.fail(f"{self.name}, {what}: the table changed but the picture did not "
@@ -400,7 +413,8 @@ def test_every_widget_survives_a_students_clicks(notebook, lab, browser_context,
             for k, output in enumerate(outputs):
                 widget = WidgetInLab(page, output, f"w{k}", shots)
                 output.scroll_into_view_if_needed(timeout=30_000)
-                widget.check("as the notebook left it", widget.settle(None, "as the notebook left it"))
+                widget.check("as the notebook left it",
+                             widget.settle(None, "as the notebook left it", timeout=FRAME_TIMEOUT))
                 widget.save("0-as-left")
                 if notebook.startswith("08"):
                     widget.drive_dropdowns(record, changes=DROPDOWN_CHANGES)
