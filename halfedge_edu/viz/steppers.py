@@ -308,22 +308,16 @@ class OperationStepper(StepperWidget):
         between, newest first, unless one of them created or deleted an element (an
         index cannot be taken back: then it replays from the start).
         """
-        from ..core.ops.log import OperationLog, Writer
-
         shown, shown_stop = self._shown
-        between = self.log.changes[min(stop, shown_stop):max(stop, shown_stop)]
-        if shown is None or (stop < shown_stop and any(c.field in ("created", "deleted") for c in between)):
+        if shown is None or (stop < shown_stop and not self.log.can_take_back(stop, shown_stop)):
             state = self.before.copy()
             self.log.replay(state, stop)
         elif stop >= shown_stop:
             state = shown.copy()
-            OperationLog(changes=between).replay(state)
+            self.log.replay(state, stop, start=shown_stop)
         else:
             state = shown.copy()
-            write = Writer(state)
-            for change in reversed(between):
-                write.set(change.kind, change.index, change.field, change.old)
-            write.touch()
+            self.log.take_back(state, stop, shown_stop)
         self._shown = (state, stop)
         return state
 

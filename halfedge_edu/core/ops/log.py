@@ -132,17 +132,18 @@ class OperationLog:
             lines.append("deleted: " + ", ".join(f"{k} {i}" for k, i in self.deleted))
         return "\n".join(lines)
 
-    def replay(self, mesh: "HalfedgeMesh", steps: int | None = None) -> None:
-        """Apply the first ``steps`` changes (all by default) to ``mesh``.
+    def replay(self, mesh: "HalfedgeMesh", steps: int | None = None, start: int = 0) -> None:
+        """Apply the first ``steps`` changes (all by default) to ``mesh``, from change ``start``.
 
         ``mesh`` must be the mesh as it was before the operation (e.g. a ``copy()``
-        taken then). Replaying every change gives exactly the mesh after it; replaying
+        taken then), or with ``start`` the mesh after the first ``start`` changes.
+        Replaying every change gives exactly the mesh after it; replaying
         fewer gives the in-between states a stepper shows, which are usually not
         valid meshes. The changes go through the same plain :class:`Writer` as the
         operation itself, so only the writer knows where each field is stored.
         """
         write = Writer(mesh)
-        for change in self.changes[:steps]:
+        for change in self.changes[start:steps]:
             if change.field == "created":
                 if change.kind != "halfedge":  # a halfedge comes with its edge
                     made = write.create(change.kind)
@@ -154,6 +155,28 @@ class OperationLog:
                     write.delete(change.kind, change.index)
             else:
                 write.set(change.kind, change.index, change.field, change.new)
+        write.touch()
+
+    def can_take_back(self, stop: int, start: int) -> bool:
+        """Whether :meth:`take_back` can undo changes ``stop`` to ``start``: none of them
+        created or deleted an element (an index cannot be given back)."""
+        return not any(c.field in ("created", "deleted") for c in self.changes[stop:start])
+
+    def take_back(self, mesh: "HalfedgeMesh", stop: int, start: int) -> None:
+        """Undo changes ``stop`` to ``start`` of ``mesh``, the mesh after the first ``start``
+        changes, newest first, leaving the mesh after the first ``stop`` (the way back
+        of :meth:`replay`, for a stepper stepping back).
+
+        Raises:
+            ValueError: one of those changes created or deleted an element
+                (see :meth:`can_take_back`); replay from the mesh before instead.
+        """
+        if not self.can_take_back(stop, start):
+            raise ValueError(f"take_back: changes {stop} to {start} create or delete an element; "
+                             f"replay from the mesh before the operation instead")
+        write = Writer(mesh)
+        for change in reversed(self.changes[stop:start]):
+            write.set(change.kind, change.index, change.field, change.old)
         write.touch()
 
 

@@ -68,6 +68,43 @@ def test_replaying_part_of_the_log_gives_the_in_between_state():
     assert halfway.halfedge_next[2] == before.halfedge_next[2]
 
 
+def _arrays(mesh):
+    return [mesh.halfedge_next.copy(), mesh.halfedge_prev.copy(), mesh.halfedge_vertex.copy(),
+            mesh.halfedge_face.copy(), mesh.vertex_halfedge.copy(), mesh.face_halfedge.copy()]
+
+
+def test_replay_from_a_later_start_and_taking_back_give_the_in_between_states():
+    mesh = sample("strip")
+    before = mesh.copy()
+    log = OperationLog()
+    flip(mesh, 1, log=log)
+    n = len(log.changes)
+    for start in range(n + 1):
+        for stop in range(start, n + 1):
+            direct, stepped = before.copy(), before.copy()
+            log.replay(direct, stop)
+            log.replay(stepped, start)
+            log.replay(stepped, stop, start=start)
+            for a, b in zip(_arrays(direct), _arrays(stepped)):
+                assert (a == b).all(), (start, stop)
+            back = direct.copy()
+            assert log.can_take_back(start, stop)
+            log.take_back(back, start, stop)                 # from stop back to start
+            at_start = before.copy()
+            log.replay(at_start, start)
+            for a, b in zip(_arrays(at_start), _arrays(back)):
+                assert (a == b).all(), (stop, start)
+
+
+def test_taking_back_a_created_element_is_refused():
+    mesh = sample("strip")
+    log = OperationLog()
+    split(mesh, 1, log=log)
+    assert not log.can_take_back(0, len(log.changes))
+    with pytest.raises(ValueError, match="create or delete"):
+        log.take_back(mesh, 0, len(log.changes))
+
+
 def test_without_a_log_no_log_object_is_built(monkeypatch):
     def forbidden(*args, **kwargs):
         raise AssertionError("the plain operation built a log object")
