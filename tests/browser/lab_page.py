@@ -221,8 +221,15 @@ class LiveViewInLab:
         png = self.frame.screenshot(animations="disabled", timeout=30_000)
         return png, as_array(png)
 
-    def settled_picture(self, unlike: np.ndarray | None, what: str) -> tuple[bytes, np.ndarray]:
-        """A drawn picture (that differs from ``unlike``), once two frames in a row agree."""
+    def settled_picture(self, unlike: np.ndarray | None, what: str,
+                        shows: Callable[[np.ndarray], bool] | None = None) -> tuple[bytes, np.ndarray]:
+        """A drawn picture (that differs from ``unlike``, and of which ``shows`` is true,
+        if given), once two frames in a row agree.
+
+        ``shows`` says what the picture must show before a test reads it: a live view
+        under load can stand still for a moment on a frame sent at low quality while the
+        full one is on its way (seen once: a blurred, magnified still of part of the
+        scene, which the drawn-picture test alone passes)."""
         previous = None
 
         def ready():
@@ -234,6 +241,8 @@ class LiveViewInLab:
                 ok = ok and changed_share(unlike, picture) >= MIN_CHANGED_SHARE
             stable = previous is not None and changed_share(previous, picture) < MIN_CHANGED_SHARE / 4
             previous = picture
+            if ok and stable and shows is not None:
+                ok = shows(picture)
             return (png, picture) if ok and stable else None
 
         return wait_for(ready, FRAME_TIMEOUT, what, interval=1.0)

@@ -83,7 +83,8 @@ def _drive(page, lab, shots: Path) -> None:
     wait_for(lambda: viewer.curve_point() is not None, 30, "the viewer's panel")
     assert viewer.control_points() == ARCH, "the chapter's cells should leave the arch as it started"
     t, start_point = viewer.curve_point()
-    png, before = viewer.settled_picture(None, "the live view's first frame")
+    png, before = viewer.settled_picture(None, "the live view's first frame with its four balls",
+                                         shows=lambda picture: find_balls(picture) is not None)
     (shots / "bezier-0-start.png").write_bytes(png)
     ran = time.monotonic()
 
@@ -129,16 +130,24 @@ def _drive(page, lab, shots: Path) -> None:
           f"reset {reset_at - dragged_at:.1f}; screenshots in {shots}")
 
 
-def ball_centres(picture: np.ndarray) -> list[tuple[int, int]]:
-    """(x, y) of the drag balls (``HANDLE``, #555555, shaded), ordered P_0 .. P_3 for the arch:
-    the two low ones are P_0 (left) and P_3, the two high ones P_1 (left) and P_2."""
+def find_balls(picture: np.ndarray) -> list[tuple[float, float]] | None:
+    """(row, column) centres of the four largest grey blobs: the drag balls (``HANDLE``,
+    #555555, shaded), or None if the picture does not show four of at least 12 pixels."""
     red, green, blue = picture[..., 0], picture[..., 1], picture[..., 2]
     grey = (np.abs(red - green) < 14) & (np.abs(green - blue) < 14) & (red > 35) & (red < 118)
     solid = ndimage.binary_erosion(grey, iterations=2)          # the thin grey lines drop out
     labels, count = ndimage.label(solid)
     sizes = ndimage.sum(solid, labels, range(1, count + 1))
-    blobs = [ndimage.center_of_mass(solid, labels, k + 1) for k in np.argsort(sizes)[::-1][:4]]
-    assert count >= 4 and sorted(sizes)[-4] >= 12, f"expected four balls, found blobs of {sorted(sizes)[-6:]} px"
+    if count < 4 or sorted(sizes)[-4] < 12:
+        return None
+    return [ndimage.center_of_mass(solid, labels, k + 1) for k in np.argsort(sizes)[::-1][:4]]
+
+
+def ball_centres(picture: np.ndarray) -> list[tuple[int, int]]:
+    """(x, y) of the drag balls, ordered P_0 .. P_3 for the arch:
+    the two low ones are P_0 (left) and P_3, the two high ones P_1 (left) and P_2."""
+    blobs = find_balls(picture)
+    assert blobs is not None, "expected four balls in the picture"
     low, high = sorted(blobs, key=lambda c: -c[0])[:2], sorted(blobs, key=lambda c: -c[0])[2:]
     p0, p3 = sorted(low, key=lambda c: c[1])
     p1, p2 = sorted(high, key=lambda c: c[1])
