@@ -575,20 +575,32 @@ def independent_edges(edges: np.ndarray, priority: np.ndarray, all_edges: np.nda
     both ends is at least two edges away from every other taken edge, so the collapses
     of one round touch disjoint neighbourhoods and can be applied together.
     """
+    return _independent_edges(edges, priority, np.ascontiguousarray(all_edges.T), n)[0]
+
+
+def _independent_edges(edges: np.ndarray, priority: np.ndarray, ring: np.ndarray,
+                       n: int) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`independent_edges` with the mesh edges ``ring`` by column, (2, R); also the ring edges it used.
+
+    ``m2`` is read only at the ends of the given edges, and only neighbours with an
+    ``m1`` can lower it: so only the mesh edges between two such vertices take part.
+    Those are returned, (2, R'), for the caller to pass back next time when its edges
+    are a subset of these (as in :func:`choose_round`'s passes, where the open candidates
+    only get fewer): the next call then scans R' edges instead of R.
+    """
     big = np.iinfo(np.int64).max
     m1 = np.full(n, big)
     np.minimum.at(m1, edges[:, 0], priority)
     np.minimum.at(m1, edges[:, 1], priority)
-    # m2 is read only at the ends of the given edges, and only neighbours with an m1
-    # can lower it: so only the mesh edges between two such vertices take part.
     has = m1 < big
-    x, y = all_edges[:, 0], all_edges[:, 1]
-    near = np.flatnonzero(has[x] & has[y])          # indices and np.take: a 2-D boolean mask is slower
-    x, y = np.take(x, near), np.take(y, near)
+    x, y = ring
+    near = np.flatnonzero(np.take(has, x) & np.take(has, y))     # indices and np.take: a 2-D boolean mask is slower
+    ring = np.take(ring, near, axis=1)                            # (2, R') contiguous rows again
+    x, y = ring
     m2 = m1.copy()
-    np.minimum.at(m2, x, m1[y])
-    np.minimum.at(m2, y, m1[x])
-    return (m2[edges[:, 0]] == priority) & (m2[edges[:, 1]] == priority)
+    np.minimum.at(m2, x, np.take(m1, y))
+    np.minimum.at(m2, y, np.take(m1, x))
+    return (m2[edges[:, 0]] == priority) & (m2[edges[:, 1]] == priority), ring
 
 
 #: How many classes of about equal cost ``simplify`` cuts a round's candidates into
@@ -700,7 +712,7 @@ def choose_round(
     # to those once, instead of scanning all of them in every pass.
     open_end = np.zeros(n, dtype=bool)
     open_end[cand_edges[open_].reshape(-1)] = True
-    ring_edges = np.take(edges, np.flatnonzero(open_end[edges[:, 0]] & open_end[edges[:, 1]]), axis=0)
+    ring = np.take(edges, np.flatnonzero(open_end[edges[:, 0]] & open_end[edges[:, 1]]), axis=0).T.copy()  # (2, R)
     # The open candidates' indices, kept from pass to pass: each pass only shortens the
     # list, instead of sweeping every candidate's flags again.
     still_open = np.flatnonzero(open_)
@@ -710,8 +722,10 @@ def choose_round(
         still_open = still_open[open_[still_open] & ~blocked[ends[:, 0]] & ~blocked[ends[:, 1]]]
         if len(still_open) == 0:
             break
-        picked = still_open[independent_edges(np.take(cand_edges, still_open, axis=0), priority[still_open],
-                                              ring_edges, n)]
+        # Each pass hands back the ring edges it still needed: the next pass's open
+        # candidates are fewer, so it needs at most those.
+        independent, ring = _independent_edges(np.take(cand_edges, still_open, axis=0), priority[still_open], ring, n)
+        picked = still_open[independent]
         ok, opposite_owner, opposite_vertex = check_topology(picked)
         known_owner = np.concatenate([known_owner, opposite_owner])     # repeats do no harm
         known_vertex = np.concatenate([known_vertex, opposite_vertex])

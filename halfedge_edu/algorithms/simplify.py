@@ -574,6 +574,9 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
     rounds = 0
     priced = _EdgePrices()
     changed = np.ones(n, dtype=bool)           # vertices moved or merged away: their edges need new prices
+    # The checks read the vertices by coordinate, (3, n): kept up to date beside them
+    # (a round moves a few thousand) rather than transposed anew every round.
+    positions = np.ascontiguousarray(vertices.T)
     while len(faces) > target_faces:
         rounds += 1
         edges, boundary_edge, face_across = this_round.edges, this_round.boundary, this_round.face_across
@@ -581,7 +584,6 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         boundary_vertex[edges[boundary_edge].reshape(-1)] = True
         degree = np.diff(this_round.neighbours[0])                     # (n,) a row lists each neighbour once
         cost = priced.update(edges, boundary_edge, boundary_vertex, vertices, quadrics, changed)   # (E,)
-        positions = np.ascontiguousarray(vertices.T)          # (3, n): one copy for every check of the round
 
         # Consider the cheapest edges only, and not many more than the faces still to go.
         faces_to_remove = len(faces) - target_faces
@@ -662,6 +664,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
 
         keep_c, remove_c = priced.keep(chosen), priced.remove(chosen)
         vertices[keep_c] = priced.points(chosen)
+        positions[:, keep_c] = vertices[keep_c].T
         quadrics[keep_c] = np.take(quadrics, keep_c, axis=0) + np.take(quadrics, remove_c, axis=0)
         changed[:] = False
         changed[keep_c] = True

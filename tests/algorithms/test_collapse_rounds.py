@@ -104,6 +104,40 @@ def test_independent_edges_are_at_least_two_edges_apart():
             assert i == j or not ring[i, taken[j]].any()
 
 
+@settings(max_examples=30)
+@given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1))
+def test_the_ring_edges_one_pass_hands_on_leave_the_next_pass_its_choice(case, seed):
+    # choose_round hands each pass the ring edges the pass before still needed, instead
+    # of every edge near an open candidate: the passes must pick exactly what they pick
+    # when each one scans the round's whole ring.
+    vertices, faces = case.vertices, case.faces
+    n = len(vertices)
+    tables = round_tables(faces, n)
+    edges = tables.edges
+    rng = np.random.default_rng(seed)
+    candidates = rng.permutation(len(edges))[: max(1, len(edges) // 2)]
+    priority = rng.permutation(len(candidates)).astype(np.int64)
+    accept_some = rng.random(len(candidates)) < 0.8            # stand-in verdicts, fixed per candidate
+
+    def check_topology(indices):
+        return accept_some[indices], np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
+
+    def check_turned_faces(indices):
+        return accept_some[(indices + 1) % len(candidates)]
+
+    def choose():
+        return choose_round(edges, candidates, np.ones(len(candidates), dtype=bool), n, check_topology,
+                            check_turned_faces, neighbours=tables.neighbours, priority=priority)
+
+    handed_on = choose()
+    module = sys.modules["halfedge_edu.algorithms.collapse_rounds"]
+    cut = module._independent_edges
+    with mock.patch.object(module, "_independent_edges",
+                           lambda edges, priority, ring, n: (cut(edges, priority, ring, n)[0], ring)):
+        whole_ring = choose()
+    assert np.array_equal(handed_on, whole_ring)
+
+
 @settings(max_examples=60)
 @given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1), block=st.integers(1, 4))
 def test_the_checks_give_the_same_verdicts_in_blocks_of_any_size(case, seed, block):
