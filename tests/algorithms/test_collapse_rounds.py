@@ -288,6 +288,33 @@ def test_drop_folding_neighbours_finds_the_same_pairs_with_the_face_across_table
     assert np.array_equal(sorted_pairs, looked_across)
 
 
+@settings(max_examples=40)
+@given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1), block=st.integers(1, 4))
+def test_normals_after_for_chosen_rows_are_the_moved_faces_normals_bit_for_bit(case, seed, block):
+    # drop_folding_neighbours works out the normals after the move only for the faces in
+    # a pair (_normals_after); they must be exactly the numbers _moved_faces gives every
+    # moved face, also when the rows come from blocks of collapses (owners renumbered).
+    vertices, faces = case.vertices, case.faces
+    n, edges, *_ = topology_inputs(vertices, faces)
+    rng = np.random.default_rng(seed)
+    picked = edges[independent_edges(edges, rng.permutation(len(edges)), edges, n)]
+    keep, remove = picked[:, 0], picked[:, 1]
+    points = vertices[keep] + rng.normal(size=(len(keep), 3))
+    positions = np.ascontiguousarray(vertices.T)
+    module = sys.modules["halfedge_edu.algorithms.collapse_rounds"]
+    around = vertex_faces(faces, n)
+    with mock.patch.object(module, "TURN_CHECK_BLOCK", block):
+        moved = module._moved_faces_in_blocks(positions, faces, around, points, keep, remove)
+    whole = module._moved_faces(positions, faces, around, points, keep, remove, before=False)
+    # The blocks list the same rows in another order: match them by (owner, face).
+    by_block = np.lexsort((moved.face, moved.owner))
+    by_whole = np.lexsort((whole.face, whole.owner))
+    assert np.array_equal(moved.face[by_block], whole.face[by_whole])
+    rows = rng.permutation(len(moved.face))[: len(moved.face) // 2 + 1] if len(moved.face) else by_block[:0]
+    expected = whole.normal_after[:, by_whole[np.argsort(by_block)][rows]]
+    assert np.array_equal(module._normals_after(positions, points, moved, rows), expected)
+
+
 @settings(max_examples=60)
 @given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1), n_collapses=st.integers(0, 25))
 def test_the_checks_give_the_same_verdicts_reading_corners_instead_of_faces(case, seed, n_collapses):
