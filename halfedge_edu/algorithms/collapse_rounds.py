@@ -131,7 +131,7 @@ class _MovedFaces(NamedTuple):
     u: np.ndarray              # (j,) the corner after the moving one
     w: np.ndarray              # (j,) the corner after u
     normal_before: np.ndarray | None  # (3, j) cross products, length twice the area
-    normal_after: np.ndarray   # (3, j)
+    normal_after: np.ndarray | None   # (3, j)
 
 
 # The checks below keep their vectors by coordinate, (3, j): three contiguous rows of j
@@ -190,13 +190,14 @@ _NEXT_BUT_ONE_CORNER = np.array([2, 0, 1])
 
 
 def _moved_faces(positions, faces, faces_around, points, keep, remove, *, before: bool = True,
-                 corners_around=None) -> _MovedFaces:
+                 after: bool = True, corners_around=None) -> _MovedFaces:
     """Every face around ``keep[i]`` or ``remove[i]`` that survives collapse i, moved to ``points[i]``.
 
     ``positions`` (3, n) are the vertex positions by coordinate (:func:`_columns`),
     ``points`` (k, 3) the new points. The two faces holding both ends vanish and are
     left out. Rows come in the order of ``keep``'s faces, then ``remove``'s. With
-    ``before=False`` the normals before the move are not computed (``None``).
+    ``before=False`` the normals before the move are not computed (``None``), with
+    ``after=False`` neither are those after (:func:`_normals_after` gives them for chosen rows).
     ``corners_around`` (from :func:`round_tables`), if given, is read instead of
     ``faces_around``: see :func:`no_turned_faces`.
     """
@@ -232,6 +233,8 @@ def _moved_faces(positions, faces, faces_around, points, keep, remove, *, before
         row, face, position, u, w = (np.take(array, survives) for array in (row, face, position, u, w))
         mover = np.take(end, row)
     owner = np.where(row < k, row, row - k)
+    if not after:
+        return _MovedFaces(owner, face, position, u, w, None, None)
     # (mover, u, w) is a rotation of the face's corners, so (u - x) x (w - x) is its
     # cross product for x at the mover's old place and at the new point.
     at_u, at_w = np.take(positions, u, axis=1), np.take(positions, w, axis=1)        # (3, j)
@@ -251,7 +254,7 @@ TURN_CHECK_BLOCK = 1024
 
 
 def _moved_faces_in_blocks(positions, faces, faces_around, points, keep, remove, corners_around=None) -> _MovedFaces:
-    """:func:`_moved_faces` without the normals before, worked out :data:`TURN_CHECK_BLOCK` collapses at a time.
+    """:func:`_moved_faces` without any normals, worked out :data:`TURN_CHECK_BLOCK` collapses at a time.
 
     A collapse's rows depend only on that collapse, so the blocks' rows, one after the
     other (owners renumbered back), are the rows of all of them, in another order. Each
@@ -259,16 +262,27 @@ def _moved_faces_in_blocks(positions, faces, faces_around, points, keep, remove,
     """
     starts = range(0, len(keep), TURN_CHECK_BLOCK)
     if len(starts) <= 1:
-        return _moved_faces(positions, faces, faces_around, points, keep, remove, before=False,
+        return _moved_faces(positions, faces, faces_around, points, keep, remove, before=False, after=False,
                             corners_around=corners_around)
     blocks = [_moved_faces(positions, faces, faces_around, points[start:start + TURN_CHECK_BLOCK],
                            keep[start:start + TURN_CHECK_BLOCK], remove[start:start + TURN_CHECK_BLOCK], before=False,
-                           corners_around=corners_around)
+                           after=False, corners_around=corners_around)
               for start in starts]
     joined = {field: np.concatenate([getattr(block, field) for block in blocks], axis=-1)
-              for field in ("face", "position", "u", "w", "normal_after")}
+              for field in ("face", "position", "u", "w")}
     owner = np.concatenate([block.owner + start for block, start in zip(blocks, starts)])
-    return _MovedFaces(owner=owner, normal_before=None, **joined)
+    return _MovedFaces(owner=owner, normal_before=None, normal_after=None, **joined)
+
+
+def _normals_after(positions: np.ndarray, points: np.ndarray, moved: _MovedFaces, rows: np.ndarray) -> np.ndarray:
+    """(3, r) the normals after the move of the moved faces ``rows`` (r,): :func:`_moved_faces`' ``normal_after``.
+
+    The same numbers, computed the same way, for only the rows asked for.
+    """
+    u, w, owner = np.take(moved.u, rows), np.take(moved.w, rows), np.take(moved.owner, rows)
+    at_u, at_w = np.take(positions, u, axis=1), np.take(positions, w, axis=1)        # (3, r)
+    after = np.take(_columns(points), owner, axis=1)
+    return _cross(at_u - after, at_w - after)
 
 
 def no_turned_faces(
@@ -532,8 +546,9 @@ def drop_folding_neighbours(vertices: np.ndarray, faces: np.ndarray, faces_aroun
         second = other[first]
     apart = moved.owner[first] != moved.owner[second]
     first, second = first[apart], second[apart]
-    unit_after = _unit(moved.normal_after)                                # (3, j)
-    folded = (_dot(np.take(unit_after, first, axis=1), np.take(unit_after, second, axis=1))
+    # Normals only for the faces in a pair: about a quarter of the moved faces.
+    folded = (_dot(_unit(_normals_after(positions, points, moved, first)),
+                   _unit(_normals_after(positions, points, moved, second)))
               < float(np.cos(np.radians(FOLD_ANGLE))))
     ok = np.ones(len(keep), dtype=bool)
     ok[moved.owner[first[folded]]] = False
@@ -575,20 +590,32 @@ def independent_edges(edges: np.ndarray, priority: np.ndarray, all_edges: np.nda
     both ends is at least two edges away from every other taken edge, so the collapses
     of one round touch disjoint neighbourhoods and can be applied together.
     """
+    return _independent_edges(edges, priority, np.ascontiguousarray(all_edges.T), n)[0]
+
+
+def _independent_edges(edges: np.ndarray, priority: np.ndarray, ring: np.ndarray,
+                       n: int) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`independent_edges` with the mesh edges ``ring`` by column, (2, R); also the ring edges it used.
+
+    ``m2`` is read only at the ends of the given edges, and only neighbours with an
+    ``m1`` can lower it: so only the mesh edges between two such vertices take part.
+    Those are returned, (2, R'), for the caller to pass back next time when its edges
+    are a subset of these (as in :func:`choose_round`'s passes, where the open candidates
+    only get fewer): the next call then scans R' edges instead of R.
+    """
     big = np.iinfo(np.int64).max
     m1 = np.full(n, big)
     np.minimum.at(m1, edges[:, 0], priority)
     np.minimum.at(m1, edges[:, 1], priority)
-    # m2 is read only at the ends of the given edges, and only neighbours with an m1
-    # can lower it: so only the mesh edges between two such vertices take part.
     has = m1 < big
-    x, y = all_edges[:, 0], all_edges[:, 1]
-    near = np.flatnonzero(has[x] & has[y])          # indices and np.take: a 2-D boolean mask is slower
-    x, y = np.take(x, near), np.take(y, near)
+    x, y = ring
+    near = np.flatnonzero(np.take(has, x) & np.take(has, y))     # indices and np.take: a 2-D boolean mask is slower
+    ring = np.take(ring, near, axis=1)                            # (2, R') contiguous rows again
+    x, y = ring
     m2 = m1.copy()
-    np.minimum.at(m2, x, m1[y])
-    np.minimum.at(m2, y, m1[x])
-    return (m2[edges[:, 0]] == priority) & (m2[edges[:, 1]] == priority)
+    np.minimum.at(m2, x, np.take(m1, y))
+    np.minimum.at(m2, y, np.take(m1, x))
+    return (m2[edges[:, 0]] == priority) & (m2[edges[:, 1]] == priority), ring
 
 
 #: How many classes of about equal cost ``simplify`` cuts a round's candidates into
@@ -700,7 +727,7 @@ def choose_round(
     # to those once, instead of scanning all of them in every pass.
     open_end = np.zeros(n, dtype=bool)
     open_end[cand_edges[open_].reshape(-1)] = True
-    ring_edges = np.take(edges, np.flatnonzero(open_end[edges[:, 0]] & open_end[edges[:, 1]]), axis=0)
+    ring = np.take(edges, np.flatnonzero(open_end[edges[:, 0]] & open_end[edges[:, 1]]), axis=0).T.copy()  # (2, R)
     # The open candidates' indices, kept from pass to pass: each pass only shortens the
     # list, instead of sweeping every candidate's flags again.
     still_open = np.flatnonzero(open_)
@@ -710,8 +737,10 @@ def choose_round(
         still_open = still_open[open_[still_open] & ~blocked[ends[:, 0]] & ~blocked[ends[:, 1]]]
         if len(still_open) == 0:
             break
-        picked = still_open[independent_edges(np.take(cand_edges, still_open, axis=0), priority[still_open],
-                                              ring_edges, n)]
+        # Each pass hands back the ring edges it still needed: the next pass's open
+        # candidates are fewer, so it needs at most those.
+        independent, ring = _independent_edges(np.take(cand_edges, still_open, axis=0), priority[still_open], ring, n)
+        picked = still_open[independent]
         ok, opposite_owner, opposite_vertex = check_topology(picked)
         known_owner = np.concatenate([known_owner, opposite_owner])     # repeats do no harm
         known_vertex = np.concatenate([known_vertex, opposite_vertex])

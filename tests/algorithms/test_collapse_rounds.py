@@ -104,6 +104,40 @@ def test_independent_edges_are_at_least_two_edges_apart():
             assert i == j or not ring[i, taken[j]].any()
 
 
+@settings(max_examples=30)
+@given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1))
+def test_the_ring_edges_one_pass_hands_on_leave_the_next_pass_its_choice(case, seed):
+    # choose_round hands each pass the ring edges the pass before still needed, instead
+    # of every edge near an open candidate: the passes must pick exactly what they pick
+    # when each one scans the round's whole ring.
+    vertices, faces = case.vertices, case.faces
+    n = len(vertices)
+    tables = round_tables(faces, n)
+    edges = tables.edges
+    rng = np.random.default_rng(seed)
+    candidates = rng.permutation(len(edges))[: max(1, len(edges) // 2)]
+    priority = rng.permutation(len(candidates)).astype(np.int64)
+    accept_some = rng.random(len(candidates)) < 0.8            # stand-in verdicts, fixed per candidate
+
+    def check_topology(indices):
+        return accept_some[indices], np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
+
+    def check_turned_faces(indices):
+        return accept_some[(indices + 1) % len(candidates)]
+
+    def choose():
+        return choose_round(edges, candidates, np.ones(len(candidates), dtype=bool), n, check_topology,
+                            check_turned_faces, neighbours=tables.neighbours, priority=priority)
+
+    handed_on = choose()
+    module = sys.modules["halfedge_edu.algorithms.collapse_rounds"]
+    cut = module._independent_edges
+    with mock.patch.object(module, "_independent_edges",
+                           lambda edges, priority, ring, n: (cut(edges, priority, ring, n)[0], ring)):
+        whole_ring = choose()
+    assert np.array_equal(handed_on, whole_ring)
+
+
 @settings(max_examples=60)
 @given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1), block=st.integers(1, 4))
 def test_the_checks_give_the_same_verdicts_in_blocks_of_any_size(case, seed, block):
@@ -252,6 +286,33 @@ def test_drop_folding_neighbours_finds_the_same_pairs_with_the_face_across_table
     looked_across = drop_folding_neighbours(vertices, faces, around, points, keep, remove,
                                             face_across=round_tables(faces, n).face_across)
     assert np.array_equal(sorted_pairs, looked_across)
+
+
+@settings(max_examples=40)
+@given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1), block=st.integers(1, 4))
+def test_normals_after_for_chosen_rows_are_the_moved_faces_normals_bit_for_bit(case, seed, block):
+    # drop_folding_neighbours works out the normals after the move only for the faces in
+    # a pair (_normals_after); they must be exactly the numbers _moved_faces gives every
+    # moved face, also when the rows come from blocks of collapses (owners renumbered).
+    vertices, faces = case.vertices, case.faces
+    n, edges, *_ = topology_inputs(vertices, faces)
+    rng = np.random.default_rng(seed)
+    picked = edges[independent_edges(edges, rng.permutation(len(edges)), edges, n)]
+    keep, remove = picked[:, 0], picked[:, 1]
+    points = vertices[keep] + rng.normal(size=(len(keep), 3))
+    positions = np.ascontiguousarray(vertices.T)
+    module = sys.modules["halfedge_edu.algorithms.collapse_rounds"]
+    around = vertex_faces(faces, n)
+    with mock.patch.object(module, "TURN_CHECK_BLOCK", block):
+        moved = module._moved_faces_in_blocks(positions, faces, around, points, keep, remove)
+    whole = module._moved_faces(positions, faces, around, points, keep, remove, before=False)
+    # The blocks list the same rows in another order: match them by (owner, face).
+    by_block = np.lexsort((moved.face, moved.owner))
+    by_whole = np.lexsort((whole.face, whole.owner))
+    assert np.array_equal(moved.face[by_block], whole.face[by_whole])
+    rows = rng.permutation(len(moved.face))[: len(moved.face) // 2 + 1] if len(moved.face) else by_block[:0]
+    expected = whole.normal_after[:, by_whole[np.argsort(by_block)][rows]]
+    assert np.array_equal(module._normals_after(positions, points, moved, rows), expected)
 
 
 @settings(max_examples=60)

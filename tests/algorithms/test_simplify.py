@@ -13,7 +13,11 @@ from hypothesis import strategies as st
 
 import halfedge_edu as hx
 from halfedge_edu.algorithms.simplify import (
+    _EdgePrices,
+    _accumulate_rows,
+    _face_quadric_rows,
     accumulate,
+    cheapest_first,
     face_quadrics,
     optimal_points,
     quadric_cost,
@@ -21,7 +25,7 @@ from halfedge_edu.algorithms.simplify import (
     simplify_with_report,
     solve_symmetric_3x3,
 )
-from halfedge_edu.algorithms.collapse_rounds import FOLD_ANGLE
+from halfedge_edu.algorithms.collapse_rounds import FOLD_ANGLE, round_tables
 from halfedge_edu.algorithms.simplify_queue import _best_point
 from tests import strategies as shapes
 
@@ -208,6 +212,75 @@ def test_pricing_in_small_blocks_gives_the_same_mesh(name):
     with mock.patch.object(sys.modules["halfedge_edu.algorithms.simplify"], "PRICING_BLOCK", 7):
         in_blocks = simplify(mesh, target).to_arrays()
     assert all(np.array_equal(a, b) for a, b in zip(whole, in_blocks))
+
+
+# Costs drawn from a few values so that ties are common, with neighbours one unit in the
+# last place apart (they differ only in the low bits cheapest_first overwrites), negative
+# costs, minus zero and NaN.
+_TIED_COSTS = st.lists(
+    st.sampled_from([0.0, -0.0, 1.0, np.nextafter(1.0, 2.0), np.nextafter(1.0, 0.0), 2.5, -3.0,
+                     1e-300, 7e12, np.nextafter(7e12, 8e12), float("nan"), float("inf")]),
+    min_size=0, max_size=300,
+)
+
+
+@given(costs=_TIED_COSTS, noise=st.booleans())
+def test_cheapest_first_is_the_stable_argsort(costs, noise):
+    cost = np.array(costs, dtype=float)
+    if noise:                                   # many distinct costs as well
+        cost = np.concatenate([cost, np.random.default_rng(len(costs)).normal(size=len(costs))])
+    assert np.array_equal(cheapest_first(cost), np.argsort(cost, kind="stable"))
+
+
+def test_edge_prices_read_through_slots_match_a_fresh_pricing_after_compaction():
+    # Round after round, a third of the vertices move: every edge's cost, point and kept
+    # end, carried forward through its slot (and moved to the front when the store fills
+    # up), must equal a pricing of the same state from scratch.
+    vertices, faces = hx.sample("spot").to_arrays()
+    vertices = vertices.copy()
+    n = len(vertices)
+    quadrics = _accumulate_rows(_face_quadric_rows(vertices, faces), faces, n)
+    tables = round_tables(faces, n)
+    boundary_vertex = np.zeros(n, dtype=bool)
+    rng = np.random.default_rng(5)
+    kept_forward = _EdgePrices()
+    changed = np.ones(n, dtype=bool)
+    rows_used = []                               # rows of the store in use after each round
+    for _ in range(8):
+        cost = kept_forward.update(tables.edges, tables.boundary, boundary_vertex, vertices, quadrics, changed)
+        rows_used.append(kept_forward._used)
+        fresh = _EdgePrices()
+        fresh_cost = fresh.update(tables.edges, tables.boundary, boundary_vertex, vertices, quadrics,
+                                  np.ones(n, dtype=bool))
+        every = np.arange(len(tables.edges))
+        assert np.array_equal(cost, fresh_cost)
+        assert np.array_equal(kept_forward.points(every), fresh.points(every))
+        assert np.array_equal(kept_forward.keep(every), fresh.keep(every))
+        assert np.array_equal(kept_forward.remove(every), fresh.remove(every))
+        changed = rng.random(n) < 0.3
+        vertices[changed] += rng.normal(scale=1e-3, size=(int(changed.sum()), 3))
+        quadrics[changed] *= 1.5
+    # A compaction moves the live rows to the front: the rows in use drop.
+    assert any(later < earlier for earlier, later in zip(rows_used, rows_used[1:])), "never compacted"
+
+
+def test_a_moved_point_is_kept_while_its_edge_stays_unchanged():
+    # simplify moves an edge's point to an endpoint when the best point turns a face
+    # over; the edge keeps that point in the next round if neither end changed.
+    vertices, faces = hx.sample("spot").to_arrays()
+    n = len(vertices)
+    quadrics = _accumulate_rows(_face_quadric_rows(vertices, faces), faces, n)
+    tables = round_tables(faces, n)
+    no_boundary = np.zeros(n, dtype=bool)
+    prices = _EdgePrices()
+    prices.update(tables.edges, tables.boundary, no_boundary, vertices, quadrics, np.ones(n, dtype=bool))
+    edge = np.array([3])
+    prices.move(edge, vertices[prices.keep(edge)])
+    changed = np.zeros(n, dtype=bool)
+    changed[tables.edges[10]] = True                     # another edge's ends, not edge 3's
+    assert not np.isin(tables.edges[3], tables.edges[10]).any()
+    prices.update(tables.edges, tables.boundary, no_boundary, vertices, quadrics, changed)
+    assert np.array_equal(prices.points(edge), vertices[prices.keep(edge)])
 
 
 def test_a_flat_patch_stays_flat_and_keeps_its_outline():
