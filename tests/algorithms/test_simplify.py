@@ -8,7 +8,7 @@ from unittest import mock
 
 import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import example, given
 from hypothesis import strategies as st
 
 import halfedge_edu as hx
@@ -104,14 +104,18 @@ def test_planes_that_meet_far_away_keep_the_point_near_the_edge():
     assert cost[0] <= quadric_cost(quadric[None], midpoint[None])[0]
 
 
-@st.composite
-def quadrics_and_edges(draw):
-    """A sum of 1-5 random plane quadrics (area weights 0.1-10) and an edge near them."""
-    rng = np.random.default_rng(draw(st.integers(0, 2**32 - 1)))
-    n_planes = draw(st.integers(1, 5))
+def quadric_and_edge(seed: int, n_planes: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A sum of ``n_planes`` random plane quadrics (area weights 0.1-10) and an edge near them."""
+    rng = np.random.default_rng(seed)
     quadric = sum(rng.uniform(0.1, 10) * plane_quadric(rng.normal(size=3), rng.normal(size=3))
                   for _ in range(n_planes))
     return quadric, rng.normal(size=3), rng.normal(size=3)
+
+
+@st.composite
+def quadrics_and_edges(draw):
+    """A sum of 1-5 random plane quadrics (area weights 0.1-10) and an edge near them."""
+    return quadric_and_edge(draw(st.integers(0, 2**32 - 1)), draw(st.integers(1, 5)))
 
 
 @given(quadrics_and_edges())
@@ -124,10 +128,21 @@ def test_the_point_never_costs_more_than_the_midpoint(drawn):
 
 
 @given(quadrics_and_edges())
+# One plane: its quadric is singular, the point is pulled towards the edge, and the two
+# ways of computing it round differently. Coordinate by coordinate (np.allclose) these two
+# were 7.8e-9 apart at a coordinate of 0.0019, over its tolerance there; measured against
+# the size of the scene they are 6.7e-9 apart. Of 200,000 one-plane seeds, 611 failed the
+# coordinate-wise test and the largest gap was 1.2e-8 of the scene's size.
+@example(drawn=quadric_and_edge(1209, 1))
 def test_the_queue_prices_an_edge_like_the_rounds(drawn):
     quadric, a, b = drawn
-    assert np.allclose(_best_point(quadric, a, b), optimal_points(quadric[None], a[None], b[None])[0][0],
-                       rtol=1e-7, atol=1e-9)
+    by_queue = _best_point(quadric, a, b)
+    by_rounds = optimal_points(quadric[None], a[None], b[None])[0][0]
+    # The gap as a length, against the scene's size (the edge's ends are about 1 from
+    # the origin): a relative tolerance per coordinate gives a coordinate near 0 none at
+    # all, and which coordinate is near 0 depends only on where the axes happen to be.
+    scale = max(1.0, float(np.abs(a).max()), float(np.abs(b).max()))
+    assert np.linalg.norm(by_queue - by_rounds) <= 1e-7 * scale
 
 
 def test_solve_symmetric_3x3_matches_numpy():
