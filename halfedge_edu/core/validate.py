@@ -188,8 +188,11 @@ def _every_rule_holds(mesh: "HalfedgeMesh") -> bool:
 
     The same conditions as the rule-by-rule checks, in fewer passes over memory:
 
-    * deleted-reference is a range check: one reduction per pointer array (two for
-      ``face``, which may be -1).
+    * deleted-reference is a range check, made on as little as the other rules leave
+      open: one reduction over the faces' and the vertices' halfedges, one per block of
+      ``face`` (while the block is in the cache), two look-ups for ``next``; ``prev``
+      and ``origin`` are in range because other checks pass (the proofs are where
+      those checks are made).
     * The rules that look one step ahead (next-prev-inverse, next-origin, next-cycle)
       gather each value they need at ``next(h)`` once, and all of them read it while a
       block of halfedges is still in the cache, with no index array per rule; an
@@ -208,14 +211,11 @@ def _every_rule_holds(mesh: "HalfedgeMesh") -> bool:
     nxt, prv, origin, face = mesh.halfedge_next, mesh.halfedge_prev, mesh.halfedge_vertex, mesh.halfedge_face
     vertex_he, face_he = mesh.vertex_halfedge, mesh.face_halfedge
 
-    # ---- deleted-reference: every pointer in range -----------------------------------
-    for values, size in ((nxt, n_h), (prv, n_h), (origin, n_v), (face_he, n_h), (vertex_he, n_h)):
-        if not _all_below(values, size):
-            return False
-    lowest_face = int(face.min()) if len(face) else 0
-    if lowest_face < -1 or (len(face) and face.max() >= n_f):
+    unsigned = np.dtype(f"u{face.itemsize}")                  # see _all_below
+
+    # ---- deleted-reference of the faces' and the vertices' halfedges ----------------------
+    if not (_all_below(face_he, n_h) and _all_below(vertex_he, n_h)):
         return False
-    closed = lowest_face >= 0                                 # no boundary halfedge at all
 
     # When next pointers jump far (faces in random order), each of the four values read
     # at next(h) is a cache miss of its own; copied side by side into rows of four, they
@@ -224,11 +224,20 @@ def _every_rule_holds(mesh: "HalfedgeMesh") -> bool:
     boundary = []                                             # boundary halfedges, block by block
 
     # ---- next-prev-inverse, twin-involution, next-origin, next-cycle, edge-halfedge -------
-    # Every index is in range by now, so the gathers use mode="clip" (which then never
-    # clips): numpy skips the bounds check it would otherwise make for each value.
+    # The gathers at next(h) use mode="clip": an index out of range reads the first or
+    # the last value instead (numpy then skips the bounds check it would otherwise make
+    # for each value), so they are safe before next is known to be in range, and the
+    # look-ups after the loop show that it is (deleted-reference of next).
     for start in range(0, n_h, _BLOCK):                       # start and block length are even
         block = slice(start, start + _BLOCK)
         h_next, h_prev, h_face, h_origin = nxt[block], prv[block], face[block], origin[block]
+        # deleted-reference of face, on the block while it is in the cache. Read as
+        # unsigned, -1 is the largest value (_all_below), so one reduction says both
+        # "every face in range" and "no boundary halfedge here"; only a block with
+        # boundary halfedges needs its smallest and largest value apart.
+        closed = h_face.view(unsigned).max() < n_f
+        if not closed and (h_face.min() < -1 or h_face.max() >= n_f):
+            return False
         at_next = h_next.astype(np.intp)                      # numpy indexes with intp: convert once, not per gather
         if rows is None:
             next_prev, next_origin, next_face, next_next = (
@@ -265,6 +274,16 @@ def _every_rule_holds(mesh: "HalfedgeMesh") -> bool:
         if not ok.all():
             return False
 
+    # ---- deleted-reference of next and prev -----------------------------------------------
+    # The loop has checked prev(clip(next(h))) == h for every h, with clip() moving an
+    # index out of range to 0 or n_h - 1. So clip(next()) is one-to-one, a permutation
+    # of the halfedges, and prev its inverse: every prev is one of 0 .. n_h - 1. A next
+    # out of range would have been clipped to 0 or n_h - 1, and the one halfedge whose
+    # clipped next is 0 is prev(0) (likewise for n_h - 1): two look-ups check both.
+    for end in {0, n_h - 1} if n_h else ():
+        if int(nxt[prv[end]]) != end:
+            return False
+
     # ---- face-halfedge ------------------------------------------------------------------
     for start in range(0, n_f, _BLOCK):                       # in blocks: no temporaries as long as the mesh
         f_he = face_he[start:start + _BLOCK]
@@ -278,7 +297,8 @@ def _every_rule_holds(mesh: "HalfedgeMesh") -> bool:
         # Each boundary halfedge is its origin's halfedge: boundary-vertex-halfedge, and
         # (a vertex has one halfedge) at most one boundary halfedge leaves a vertex,
         # the part of vertex-manifold that the walk cannot see (_one_piece_of_boundary).
-        if not np.array_equal(vertex_he[boundary_origin], boundary_he):
+        # (origin is shown to be in range only by the walk below: until then, clip.)
+        if not np.array_equal(np.take(vertex_he, boundary_origin, mode="clip"), boundary_he):
             return False
         # A boundary that runs u -> v -> u runs along two edges between u and v (the
         # twin of a boundary halfedge has a face, so the way back is another edge): a
@@ -341,8 +361,9 @@ def _jumps_far(nxt: np.ndarray) -> bool:
 def _fans_hold(mesh: "HalfedgeMesh", rows: np.ndarray | None) -> bool:
     """vertex-halfedge-origin, vertex-manifold and duplicate-edge, in one walk round every vertex.
 
-    Call it only once the pointer rules hold (in range, next-prev-inverse, next-origin,
-    next-cycle, twin-involution, edge-halfedge, and no boundary turning back).
+    Call it only once the pointer rules hold (next-prev-inverse, next-origin, next-cycle,
+    twin-involution, edge-halfedge, no boundary turning back, and all pointers in range
+    but ``origin``, which the walk itself shows to be in range: see the end).
     ``rows`` (n_h, 4), if given, holds prev, origin, face and next of each halfedge side
     by side (one cache line per halfedge read, see :func:`_every_rule_holds`).
 
@@ -375,12 +396,25 @@ def _fans_hold(mesh: "HalfedgeMesh", rows: np.ndarray | None) -> bool:
         row = np.take(rows, twin, axis=0, mode="clip")        # (k, 4) prev, origin, face, next
         return row[:, 1], row[:, 3]
 
+    # The walks start at the vertices' halfedges taken in ascending order, not in the
+    # order of the vertices: a vertex's number says nothing about where its halfedges
+    # are stored, and walks taken vertex by vertex would jump about the halfedge arrays
+    # (at 1.3M faces as generated the walk then takes 0.9x the time, sort included).
+    starts = np.sort(vertex_he).astype(np.intp)               # (n_v,)
+    # vertex-halfedge-origin, in that order: no two vertices share a halfedge, and each
+    # start's origin u has it as its halfedge. Then origin(halfedge(v)) == v for every
+    # v: v's halfedge is a start s, whose origin u has halfedge(u) == s == halfedge(v),
+    # so u == v.
+    if (starts[1:] == starts[:-1]).any():
+        return False
+    owner = np.take(origin, starts, mode="clip")              # (n_v,) the vertex each start leaves
+    if not (_all_below(owner, n_v) and np.array_equal(np.take(vertex_he, owner, mode="clip"), starts)):
+        return False
+    del owner
+
     met = 0                                                   # halfedges the walks have met so far
     for first in range(0, n_v, _VERTEX_BLOCK):
-        start = vertex_he[first:first + _VERTEX_BLOCK].astype(np.intp)   # (k,)
-        # vertex-halfedge-origin: each vertex's halfedge leaves it.
-        if not np.array_equal(np.take(origin, start, mode="clip"), np.arange(first, first + len(start))):
-            return False
+        start = starts[first:first + _VERTEX_BLOCK]           # (k,)
         current, walking, n_walking = start, np.ones(len(start), dtype=bool), len(start)
         neighbours = np.empty((_PAIRWISE_STEPS, len(start)), dtype=origin.dtype)   # row = step: the neighbour met
         for step in range(_PAIRWISE_STEPS):
@@ -403,6 +437,11 @@ def _fans_hold(mesh: "HalfedgeMesh", rows: np.ndarray | None) -> bool:
             if steps is None:
                 return False
             met += steps
+    # deleted-reference of origin: every halfedge has a vertex in range. The rotation
+    # keeps each halfedge's origin (next-origin and twin-involution), so a walk meets
+    # only halfedges with its start's origin, which is its own vertex v (checked before
+    # the walks, with v in range); two vertices' walks therefore never meet the same
+    # halfedge, and walks that meet n_h halfedges between them have met every one.
     return met == n_h
 
 
