@@ -208,10 +208,16 @@ def _every_rule_holds(mesh: "HalfedgeMesh") -> bool:
     say which. A mesh with deleted or isolated elements never comes here.
     """
     n_v, n_h, n_f = mesh.n_vertex_slots, mesh.n_halfedge_slots, mesh.n_face_slots
-    nxt, prv, origin, face = mesh.halfedge_next, mesh.halfedge_prev, mesh.halfedge_vertex, mesh.halfedge_face
+    # The loop below reads pairs of int32 as 64-bit words (_edge_words), which needs
+    # contiguous memory: arrays given as strided views are copied once, here
+    # (np.ascontiguousarray hands back an array that is contiguous already as it is).
+    nxt, prv, origin, face = (np.ascontiguousarray(values) for values in (
+        mesh.halfedge_next, mesh.halfedge_prev, mesh.halfedge_vertex, mesh.halfedge_face))
     vertex_he, face_he = mesh.vertex_halfedge, mesh.face_halfedge
-
     unsigned = np.dtype(f"u{face.itemsize}")                  # see _all_below
+    # Gathers call the arrays' own take(): np.take(a, ...) reaches the same method
+    # through two Python wrappers, a microsecond a call, and this function makes about
+    # 2,000 of them at 1.3M faces.
 
     # ---- deleted-reference of the faces' and the vertices' halfedges ----------------------
     if not (_all_below(face_he, n_h) and _all_below(vertex_he, n_h)):
@@ -240,11 +246,13 @@ def _every_rule_holds(mesh: "HalfedgeMesh") -> bool:
             return False
         at_next = h_next.astype(np.intp)                      # numpy indexes with intp: convert once, not per gather
         if rows is None:
-            next_prev, next_origin, next_face, next_next = (
-                np.take(values, at_next, mode="clip") for values in (prv, origin, face, nxt))
+            next_prev = prv.take(at_next, mode="clip")
+            next_origin = origin.take(at_next, mode="clip")
+            next_face = face.take(at_next, mode="clip")
+            next_next = nxt.take(at_next, mode="clip")
         else:
             next_prev, next_origin, next_face, next_next = (
-                np.ascontiguousarray(column) for column in np.take(rows, at_next, axis=0, mode="clip").T)
+                np.ascontiguousarray(column) for column in rows.take(at_next, axis=0, mode="clip").T)
         # An edge's two halfedges 2e and 2e + 1 sit side by side, so their two int32
         # values read as one 64-bit word (_edge_words): one comparison checks both, and
         # swapping the word's halves swaps the two, giving each halfedge its twin's value.
@@ -289,7 +297,7 @@ def _every_rule_holds(mesh: "HalfedgeMesh") -> bool:
     # with int64 would convert every value first, 1.3x the time of the loop.)
     for start in range(0, n_f, _BLOCK):                       # in blocks: no temporaries as long as the mesh
         f_he = face_he[start:start + _BLOCK]
-        if not np.array_equal(np.take(face, f_he, mode="clip"), np.arange(start, start + len(f_he), dtype=face.dtype)):
+        if not np.array_equal(face.take(f_he, mode="clip"), np.arange(start, start + len(f_he), dtype=face.dtype)):
             return False
 
     # ---- boundary-vertex-halfedge, and no boundary that turns back ------------------------
@@ -347,10 +355,11 @@ def _edge_words(values: np.ndarray) -> np.ndarray:
     """(k/2,) the int32 ``values`` (k,) of halfedges ``2i, 2i + 1, ...`` read in pairs as 64-bit words.
 
     Word ``i`` holds the values of halfedges 2i and 2i + 1 (which half is which depends
-    on the machine's byte order, but equal words mean equal pairs either way). Reading
-    needs contiguous memory: an array the mesh was given as a strided view is copied.
+    on the machine's byte order, but equal words mean equal pairs either way).
+    Attention: ``values`` must be contiguous in memory (:func:`_every_rule_holds` makes
+    sure of it), which a view as another type needs.
     """
-    return np.ascontiguousarray(values).view(np.uint64)
+    return values.view(np.uint64)
 
 
 def _jumps_far(nxt: np.ndarray) -> bool:
@@ -394,8 +403,8 @@ def _fans_hold(mesh: "HalfedgeMesh", rows: np.ndarray | None) -> bool:
         """For halfedges ``h`` leaving some vertices: where each ends, and the next one round its vertex."""
         twin = h ^ 1
         if rows is None:
-            return np.take(origin, twin, mode="clip"), np.take(nxt, twin, mode="clip")   # in range: see above
-        row = np.take(rows, twin, axis=0, mode="clip")        # (k, 4) prev, origin, face, next
+            return origin.take(twin, mode="clip"), nxt.take(twin, mode="clip")   # in range: see above
+        row = rows.take(twin, axis=0, mode="clip")            # (k, 4) prev, origin, face, next
         return row[:, 1], row[:, 3]
 
     # vertex-halfedge-origin: each vertex's halfedge leaves it (so no two vertices share one).
