@@ -201,8 +201,10 @@ def _every_rule_holds(mesh: "HalfedgeMesh") -> bool:
       of four (:func:`_jumps_far`): one cache miss instead of four.
     * twin-involution compares each halfedge's origin with its twin's, which sits next
       to it in memory (``h ^ 1``): no gather at all.
-    * vertex-halfedge-origin, vertex-manifold and duplicate-edge come from one walk
-      around every vertex (:func:`_fans_hold`), without the sort of all edges.
+    * vertex-halfedge-origin is one gather over the vertices; vertex-manifold and
+      duplicate-edge come from one walk around every vertex (:func:`_fans_hold`),
+      without the sort of all edges, the walks taken in the order of the vertices'
+      halfedges, so that they read the halfedge arrays from start to end.
 
     False means some rule is broken; :func:`validate` then runs the rules one by one to
     say which. A mesh with deleted or isolated elements never comes here.
@@ -215,9 +217,9 @@ def _every_rule_holds(mesh: "HalfedgeMesh") -> bool:
         mesh.halfedge_next, mesh.halfedge_prev, mesh.halfedge_vertex, mesh.halfedge_face))
     vertex_he, face_he = mesh.vertex_halfedge, mesh.face_halfedge
     unsigned = np.dtype(f"u{face.itemsize}")                  # see _all_below
-    # Gathers call the arrays' own take(): np.take(a, ...) reaches the same method
-    # through two Python wrappers, a microsecond a call, and this function makes about
-    # 2,000 of them at 1.3M faces.
+    # The loops' gathers call the arrays' own take(): np.take(a, ...) reaches the same
+    # method through two Python wrappers, a microsecond a call, and the loops make about
+    # 2,000 gathers at 1.3M faces.
 
     # ---- deleted-reference of the faces' and the vertices' halfedges ----------------------
     if not (_all_below(face_he, n_h) and _all_below(vertex_he, n_h)):
@@ -370,7 +372,7 @@ def _jumps_far(nxt: np.ndarray) -> bool:
 
 
 def _fans_hold(mesh: "HalfedgeMesh", rows: np.ndarray | None) -> bool:
-    """vertex-halfedge-origin, vertex-manifold and duplicate-edge, in one walk round every vertex.
+    """vertex-halfedge-origin, then vertex-manifold and duplicate-edge in one walk round every vertex.
 
     Call it only once the pointer rules hold (next-prev-inverse, next-origin, next-cycle,
     twin-involution, edge-halfedge, no boundary turning back, and all pointers in range
