@@ -513,6 +513,130 @@ def test_the_fast_path_checks_every_block_of_halfedges(block):
     assert caught.value.rule == "next-cycle"
 
 
+OUT_OF_RANGE = {
+    "next past the end": ("halfedge_next", lambda mesh: mesh.n_halfedge_slots + 7),
+    "prev -1": ("halfedge_prev", lambda mesh: -1),
+    "prev past the end": ("halfedge_prev", lambda mesh: mesh.n_halfedge_slots),
+    "vertex -1": ("halfedge_vertex", lambda mesh: -1),
+    "vertex past the end": ("halfedge_vertex", lambda mesh: mesh.n_vertex_slots),
+    "face -2": ("halfedge_face", lambda mesh: -2),
+    "face past the end": ("halfedge_face", lambda mesh: mesh.n_face_slots),
+}
+
+
+@pytest.mark.parametrize("shape", ["closed", "open"])
+@pytest.mark.parametrize("case", sorted(OUT_OF_RANGE))
+def test_a_halfedge_pointer_out_of_range_in_a_middle_block_is_found(case, shape):
+    # The fast path makes no pass of its own over next, prev, origin or face: face is
+    # range-checked block by block, next by two look-ups, and prev and origin are in
+    # range because other rules hold. One value out of range, on an interior halfedge
+    # in a middle block (one with boundary halfedges on the open mesh), is still named.
+    mesh = _mesh(shapes.torus(120, 80) if shape == "closed" else shapes.grid(150, 100))
+    size = validate_module._BLOCK
+    n_blocks = _several_blocks(mesh.n_halfedge_slots, size)
+    middle = np.arange((n_blocks // 2) * size, (n_blocks // 2 + 1) * size)
+    assert (mesh.halfedge_face[middle] < 0).any() == (shape == "open")
+    h = int(middle[len(middle) // 2:][np.argmax(mesh.halfedge_face[middle[len(middle) // 2:]] >= 0)])
+    field, value = OUT_OF_RANGE[case]
+    getattr(mesh, field)[h] = value(mesh)
+    assert not validate_module._every_rule_holds(mesh)
+    with pytest.raises(hx.MeshInvariantError) as caught:
+        mesh.validate()
+    assert (caught.value.rule, caught.value.element) == ("deleted-reference", ("halfedge", h))
+
+
+@pytest.mark.parametrize("shape", ["closed", "open"])
+@pytest.mark.parametrize("end", ["first", "last"])
+def test_a_next_that_a_clipped_gather_reads_as_in_range_is_found(end, shape):
+    # The gathers at next(h) clip: next = -1 reads halfedge 0, next = n_h reads n_h - 1.
+    # Given to the halfedge whose next really is that one, such a value passes every
+    # rule read at next(h). Inside a face, next(next()) of the halfedge before it reads
+    # the bad value and sees it; on the boundary, where next(next()) is not compared
+    # (the open mesh's last halfedge is a boundary one), only the look-ups after the
+    # loop do.
+    mesh = _mesh(shapes.torus(120, 80) if shape == "closed" else shapes.grid(150, 100))
+    n_h = mesh.n_halfedge_slots
+    h = int(mesh.halfedge_prev[0 if end == "first" else n_h - 1])
+    assert (mesh.halfedge_face[h] < 0) == (shape == "open" and end == "last")
+    mesh.halfedge_next[h] = -1 if end == "first" else n_h
+    assert not validate_module._every_rule_holds(mesh)
+    with pytest.raises(hx.MeshInvariantError) as caught:
+        mesh.validate()
+    assert (caught.value.rule, caught.value.element) == ("deleted-reference", ("halfedge", h))
+
+
+@pytest.mark.parametrize("kind", ["face", "vertex"])
+def test_an_element_halfedge_that_a_clipped_gather_reads_as_in_range_is_found(kind):
+    # A face's (vertex's) halfedge n_h reads, clipped, as halfedge n_h - 1; given to the
+    # face of n_h - 1 (the vertex it leaves), it passes face-halfedge
+    # (vertex-halfedge-origin). Only the range check before them sees it (the walk,
+    # which starts from the vertices' halfedges, is switched off as above).
+    mesh = _mesh(shapes.torus(120, 80))
+    last = mesh.n_halfedge_slots - 1
+    owner = int((mesh.halfedge_face if kind == "face" else mesh.halfedge_vertex)[last])
+    (mesh.face_halfedge if kind == "face" else mesh.vertex_halfedge)[owner] = last + 1
+    with mock.patch.object(validate_module, "_fans_hold", lambda *args: True):
+        assert not validate_module._every_rule_holds(mesh)
+    with pytest.raises(hx.MeshInvariantError) as caught:
+        mesh.validate()
+    assert (caught.value.rule, caught.value.element) == ("deleted-reference", (kind, owner))
+
+
+def _face_dropped(mesh: hx.HalfedgeMesh, g: int, label: int) -> hx.HalfedgeMesh:
+    """``mesh`` without face ``g``: the last face takes its number, and g's halfedges get
+    face ``label`` (-1 makes a hole, whose corners then point at its boundary halfedges)."""
+    last = mesh.n_face_slots - 1
+    face = mesh.halfedge_face.copy()
+    dropped = np.flatnonzero(face == g)
+    face[face == last] = g
+    face[dropped] = label
+    face_halfedge = mesh.face_halfedge.copy()
+    face_halfedge[g] = face_halfedge[last]
+    vertex_halfedge = mesh.vertex_halfedge.copy()
+    vertex_halfedge[mesh.halfedge_vertex[dropped]] = dropped
+    return hx.HalfedgeMesh(HalfedgeArrays(
+        positions=mesh.positions, vertex_halfedge=vertex_halfedge, halfedge_next=mesh.halfedge_next,
+        halfedge_prev=mesh.halfedge_prev, halfedge_vertex=mesh.halfedge_vertex, halfedge_face=face,
+        face_halfedge=face_halfedge[:last]))
+
+
+@pytest.mark.parametrize("label", ["past the end", "-2"])
+def test_a_triangle_whose_face_is_out_of_range_is_found_in_a_middle_block(label):
+    # A triangle loop whose three halfedges carry face n_f (or -2) and no face points
+    # at it: every rule but deleted-reference holds (with face -1 the mesh is a sound
+    # torus with one hole). Its halfedges lie in a middle block, the rest of which is
+    # closed: only the block's own range check sees it.
+    torus = _mesh(shapes.torus(120, 80))
+    size = validate_module._BLOCK
+    n_blocks = _several_blocks(torus.n_halfedge_slots, size)
+    g = int(torus.halfedge_face[(n_blocks // 2) * size + size // 2])
+    _face_dropped(torus, g, -1).validate()
+    out_of_range = {"past the end": torus.n_face_slots - 1, "-2": -2}[label]   # n_f of the mesh with a face fewer
+    mesh = _face_dropped(torus, g, out_of_range)
+    h = int(np.argmax(mesh.halfedge_face == out_of_range))
+    assert h // size == n_blocks // 2
+    assert not validate_module._every_rule_holds(mesh)
+    with pytest.raises(hx.MeshInvariantError) as caught:
+        mesh.validate()
+    assert (caught.value.rule, caught.value.element) == ("deleted-reference", ("halfedge", h))
+
+
+@pytest.mark.parametrize("end", ["first", "last"])
+def test_a_vertex_renumbered_out_of_range_everywhere_is_found(end):
+    # Every halfedge of the first (last) vertex gets vertex -1 (n_v): all rules between
+    # halfedges still hold, and there is no range pass over origin. vertex-halfedge-origin
+    # sees it (the vertex's halfedge no longer leaves it), before the walks, which
+    # show every other origin to be in range.
+    mesh = _mesh(shapes.torus(120, 80))
+    v, renumbered = (0, -1) if end == "first" else (mesh.n_vertex_slots - 1, mesh.n_vertex_slots)
+    leaving = np.flatnonzero(mesh.halfedge_vertex == v)
+    mesh.halfedge_vertex[leaving] = renumbered
+    assert not validate_module._every_rule_holds(mesh)
+    with pytest.raises(hx.MeshInvariantError) as caught:
+        mesh.validate()
+    assert (caught.value.rule, caught.value.element) == ("deleted-reference", ("halfedge", int(leaving[0])))
+
+
 # ---- the fast path's fan walk and packed rows --------------------------------------------
 # Faces cannot describe two edges between the same two vertices, so these meshes are
 # written as faces whose edges carry names: two edges with different names are different
@@ -722,8 +846,10 @@ def test_meshes_in_random_order_take_the_packed_rows():
 
 
 @pytest.mark.parametrize("block", ["first", "middle", "last"])
-def test_the_fan_walk_checks_every_block_of_vertices(block):
-    mesh = _mesh(shapes.torus(200, 120))                     # 24,000 vertices: several blocks
+def test_a_vertex_sharing_a_neighbours_halfedge_is_found_anywhere(block):
+    # A vertex at the start, in the middle or at the end of the numbering points at its
+    # neighbour's halfedge; the fast path checks every vertex before the fan walks.
+    mesh = _mesh(shapes.torus(200, 120))                     # 24,000 vertices
     size = validate_module._VERTEX_BLOCK
     n_blocks = _several_blocks(mesh.n_vertex_slots, size)
     v = {"first": 0, "middle": (n_blocks // 2) * size + 7, "last": mesh.n_vertex_slots - 1}[block]
@@ -733,6 +859,46 @@ def test_the_fan_walk_checks_every_block_of_vertices(block):
     with pytest.raises(hx.MeshInvariantError) as caught:
         mesh.validate()
     assert (caught.value.rule, caught.value.element) == ("vertex-halfedge-origin", ("vertex", v))
+
+
+def _joined(*meshes: hx.HalfedgeMesh) -> hx.HalfedgeMesh:
+    """One mesh holding ``meshes`` side by side, in that order: each one's elements come
+    after the previous ones' (its indices shifted by their counts)."""
+    parts: dict[str, list] = {field: [] for field in (
+        "positions", "vertex_halfedge", "halfedge_next", "halfedge_prev", "halfedge_vertex", "halfedge_face",
+        "face_halfedge")}
+    n_v = n_h = n_f = 0
+    for mesh in meshes:
+        parts["positions"].append(mesh.positions)
+        for field in ("vertex_halfedge", "halfedge_next", "halfedge_prev", "face_halfedge"):
+            parts[field].append(getattr(mesh, field) + n_h)
+        parts["halfedge_vertex"].append(mesh.halfedge_vertex + n_v)
+        parts["halfedge_face"].append(np.where(mesh.halfedge_face >= 0, mesh.halfedge_face + n_f, -1))
+        n_v, n_h, n_f = n_v + mesh.n_vertex_slots, n_h + mesh.n_halfedge_slots, n_f + mesh.n_face_slots
+    return hx.HalfedgeMesh(HalfedgeArrays(**{field: np.concatenate(arrays) for field, arrays in parts.items()}))
+
+
+@pytest.mark.parametrize("poles", ["poles of degree 6", "poles of degree 20"])
+@pytest.mark.parametrize("block", ["first", "middle", "last"])
+def test_the_fan_walk_checks_every_block_of_walks(block, poles):
+    # The walks go _VERTEX_BLOCK at a time, in the order of the vertices' halfedges. A
+    # sphere whose poles are joined by parallel edges (which only the walk sees; its
+    # poles compared pairwise, or sorted) comes first, in the middle or last of a mesh
+    # of several blocks, so that its poles' walks fall in that block.
+    sphere = _lune_sphere(**LUNE_SPHERES[poles])
+    torus = _mesh(shapes.torus(12, 8))                       # 96 vertices
+    pieces = {"first": (sphere, torus, torus), "middle": (torus, sphere, torus), "last": (torus, torus, sphere)}
+    mesh = _joined(*pieces[block])
+    pole = pieces[block].index(sphere) * torus.n_vertex_slots  # the sphere's vertex 0
+    size = 48
+    with mock.patch.object(validate_module, "_VERTEX_BLOCK", size):
+        n_blocks = _several_blocks(mesh.n_vertex_slots, size)
+        walk = int(np.searchsorted(np.sort(mesh.vertex_halfedge), mesh.vertex_halfedge[pole]))
+        assert walk // size == {"first": 0, "middle": n_blocks // 2, "last": n_blocks - 1}[block]
+        assert not validate_module._every_rule_holds(mesh)
+        with pytest.raises(hx.MeshInvariantError) as caught:
+            mesh.validate()
+    assert (caught.value.rule, caught.value.element) == ("duplicate-edge", ("edge", (pole, pole + 1)))
 
 
 def test_a_face_of_one_halfedge_on_a_loop_edge_fails_the_fast_path():
