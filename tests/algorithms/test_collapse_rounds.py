@@ -138,17 +138,24 @@ def test_the_ring_edges_one_pass_hands_on_leave_the_next_pass_its_choice(case, s
     assert np.array_equal(handed_on, whole_ring)
 
 
+
+def independent_collapses(case, seed: int):
+    """A round of collapses on ``case`` whose edges are two apart (``independent_edges`` in
+    a random order): ``(vertices, faces, n, keep, remove, rng)``, ``keep``/``remove`` (k,)
+    the ends of the picked edges, ``rng`` seeded with ``seed`` for the points to move to."""
+    vertices, faces = case.vertices, case.faces
+    n, edges, *_ = topology_inputs(vertices, faces)
+    rng = np.random.default_rng(seed)
+    picked = edges[independent_edges(edges, rng.permutation(len(edges)), edges, n)]
+    return vertices, faces, n, picked[:, 0], picked[:, 1], rng
+
 @settings(max_examples=60)
 @given(case=shapes.cases(), seed=st.integers(0, 2**32 - 1), block=st.integers(1, 4))
 def test_the_checks_give_the_same_verdicts_in_blocks_of_any_size(case, seed, block):
     # TURN_CHECK_BLOCK only decides how many collapses are worked out at a time: blocks of
     # one to four collapses (so most meshes here are cut into many) give every collapse
     # the verdict one block gives, for the turn check and for folds between collapses.
-    vertices, faces = case.vertices, case.faces
-    n, edges, *_ = topology_inputs(vertices, faces)
-    rng = np.random.default_rng(seed)
-    picked = edges[independent_edges(edges, rng.permutation(len(edges)), edges, n)]
-    keep, remove = picked[:, 0], picked[:, 1]
+    vertices, faces, n, keep, remove, rng = independent_collapses(case, seed)
     size = float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0)))
     points = vertices[keep] + rng.normal(scale=0.5 * size, size=(len(keep), 3))
     around, across = vertex_faces(faces, n), round_tables(faces, n).face_across
@@ -274,11 +281,7 @@ def test_drop_folding_neighbours_finds_the_same_pairs_with_the_face_across_table
     # A round of collapses two edges apart, each moved to a random point: the pairs of
     # moved faces that meet across a far edge are the same whether found by sorting the
     # far edges or by looking across them.
-    vertices, faces = case.vertices, case.faces
-    n, edges, boundary_edge, boundary_vertex, degree, neighbours = topology_inputs(vertices, faces)
-    rng = np.random.default_rng(seed)
-    picked = edges[independent_edges(edges, rng.permutation(len(edges)), edges, n)]
-    keep, remove = picked[:, 0], picked[:, 1]
+    vertices, faces, n, keep, remove, rng = independent_collapses(case, seed)
     size = float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0)))
     points = vertices[keep] + rng.normal(scale=0.5 * size, size=(len(keep), 3))
     around = vertex_faces(faces, n)
@@ -294,11 +297,7 @@ def test_normals_after_for_chosen_rows_are_the_moved_faces_normals_bit_for_bit(c
     # drop_folding_neighbours works out the normals after the move only for the faces in
     # a pair (_normals_after); they must be exactly the numbers _moved_faces gives every
     # moved face, also when the rows come from blocks of collapses (owners renumbered).
-    vertices, faces = case.vertices, case.faces
-    n, edges, *_ = topology_inputs(vertices, faces)
-    rng = np.random.default_rng(seed)
-    picked = edges[independent_edges(edges, rng.permutation(len(edges)), edges, n)]
-    keep, remove = picked[:, 0], picked[:, 1]
+    vertices, faces, n, keep, remove, rng = independent_collapses(case, seed)
     points = vertices[keep] + rng.normal(size=(len(keep), 3))
     positions = np.ascontiguousarray(vertices.T)
     module = sys.modules["halfedge_edu.algorithms.collapse_rounds"]
