@@ -126,22 +126,30 @@ def test_edge_uses_kept_up_to_date_through_flip_passes_equal_a_fresh_table(name)
     mesh = bumpy_sheet() if name == "bumpy" else hx.sample(name)
     vertices, faces = mesh.to_arrays()
     vertices, faces, _ = remesh_module._split_long_edges(vertices, faces, 0.7 * mean_edge_length(mesh), None)
-    uses = remesh_module._EdgeUses.of(faces, len(vertices))
+    n = len(vertices)
+    uses = remesh_module._EdgeUses.of(faces, n)
     rng = np.random.default_rng(0)
     flipped = 0
     for _ in range(3):
         faces, n_flipped, uses = remesh_module._flip_pass(vertices, faces, rng, np.cos(np.radians(20.0)), uses=uses)
         flipped += n_flipped
-        fresh = edge_table(faces, len(vertices))
-        assert np.array_equal(uses.keys, fresh.keys)
-        # The same two directed edges per edge, in either order.
-        assert np.array_equal(np.sort(np.stack([uses.first, uses.second], axis=1), axis=1),
-                              np.sort(np.stack([fresh.first, fresh.second], axis=1), axis=1))
+        fresh = edge_table(faces, n)
         # The table made from the uses is the fresh one (up to which use of an edge is first).
-        table = uses.table(len(vertices))
+        table = uses.table()
         for field in ("edges", "corner_edge", "count", "keys"):
             assert np.array_equal(getattr(table, field), getattr(fresh, field)), field
-        assert np.array_equal(table.boundary_vertices(len(vertices)), fresh.boundary_vertices(len(vertices)))
+        # The same two directed edges per edge, in either order.
+        assert np.array_equal(np.sort(np.stack([table.first, table.second], axis=1), axis=1),
+                              np.sort(np.stack([fresh.first, fresh.second], axis=1), axis=1))
+        assert np.array_equal(table.boundary_vertices(n), fresh.boundary_vertices(n))
+        # Each slot's key is its edge's, the degrees are counted as the flips go, and the
+        # look-up of an edge by key knows the edges the flips made and forgets the ones they removed.
+        assert np.array_equal(np.sort(uses.keys), fresh.keys)
+        assert np.array_equal(uses.degree, np.bincount(fresh.edges.reshape(-1), minlength=n))
+        pairs = rng.integers(0, n, size=(2000, 2))
+        asked = np.concatenate([fresh.keys, uses.start_keys,
+                                np.minimum(pairs[:, 0], pairs[:, 1]) * n + np.maximum(pairs[:, 0], pairs[:, 1])])
+        assert np.array_equal(uses.contains(asked), np.isin(asked, fresh.keys))
     assert flipped > 0
 
 
