@@ -121,6 +121,27 @@ def click_in_place(control, timeout: float = FRAME_TIMEOUT) -> None:
     control.click(timeout=timeout * 1000)
 
 
+def drag_by_hand(page, x: float, y: float, dx: float, dy: float, steps: int = 8) -> None:
+    """Press the left button at page point (x, y), move it by (dx, dy) and let go, at a
+    hand's pace: a short rest after pressing, ``steps`` moves 60 ms apart, a rest before
+    letting go (about 0.9 s in all, as a student's drag).
+
+    Playwright's own ``mouse.move(..., steps=8)`` sends every event within a few
+    milliseconds. A live view passes them to the kernel's VTK interactor over the
+    websocket; under CI's load the release was once lost that way (the ball stayed
+    selected where it was dragged to, and its callback never ran), which no hand can do.
+    """
+    page.mouse.move(x, y)
+    time.sleep(0.2)
+    page.mouse.down()
+    time.sleep(0.2)
+    for k in range(1, steps + 1):
+        page.mouse.move(x + dx * k / steps, y + dy * k / steps)
+        time.sleep(0.06)
+    time.sleep(0.3)
+    page.mouse.up()
+
+
 def hover_in_place(control, timeout: float = FRAME_TIMEOUT) -> None:
     """Move the mouse pointer over ``control`` once it is in view and has stopped moving:
     a hover sends the pointer to where the control is, so it races the layout shift

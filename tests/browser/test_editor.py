@@ -25,6 +25,7 @@ from tests.browser.lab_page import (
     LiveViewInLab,
     changed_share,
     click_in_place,
+    drag_by_hand,
     drawn,
     open_and_run_all,
     reported_page,
@@ -146,10 +147,7 @@ def _drive(page, lab, shots: Path) -> None:
     (shots / "editor-6-picked-vertex.png").write_bytes(png)
     vertex = editor.selected()
     hx_, hy = handle_centre(handled)
-    page.mouse.move(box["x"] + hx_, box["y"] + hy)
-    page.mouse.down()
-    page.mouse.move(box["x"] + hx_ + 40, box["y"] + hy + 30, steps=8)
-    page.mouse.up()
+    drag_by_hand(page, box["x"] + hx_, box["y"] + hy, 40, 30)
     wait_for(lambda: f"{vertex} moved" in editor.output.inner_text(), 30, f"a drag to move {vertex}")
     png, dragged = editor.settled_picture(handled, "the live view to redraw the dragged vertex")
     (shots / "editor-7-dragged-vertex.png").write_bytes(png)

@@ -27,6 +27,7 @@ from tests.browser.lab_page import (
     LiveViewInLab,
     changed_share,
     click_in_place,
+    drag_by_hand,
     open_and_run_all,
     reported_page,
     wait_for,
@@ -91,10 +92,7 @@ def _drive(page, lab, shots: Path) -> None:
     # Drag the ball on P_1 (the upper left one) up and to the right.
     x, y = ball_centres(before)[1]
     box = viewer.frame.bounding_box()
-    page.mouse.move(box["x"] + x, box["y"] + y)
-    page.mouse.down()
-    page.mouse.move(box["x"] + x + DRAG[0], box["y"] + y + DRAG[1], steps=8)
-    page.mouse.up()
+    drag_by_hand(page, box["x"] + x, box["y"] + y, *DRAG)
     wait_for(lambda: viewer.control_points()[1] != ARCH[1], 30, "the panel to show P_1 moved after the drag")
     moved = viewer.control_points()
     assert moved[0] == ARCH[0] and moved[2:] == ARCH[2:], f"only P_1 should move, the panel shows {moved}"
