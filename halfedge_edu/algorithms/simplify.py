@@ -475,14 +475,13 @@ class _EdgePrices:
         """(k, 3) the collapse points of the edges with indices ``edges`` (k,)."""
         return np.take(self._points, np.take(self.slot, edges), axis=0)
 
-    def keep(self, edges: np.ndarray) -> np.ndarray:
-        """(k,) the end each edge keeps (the vertex that moves to the point)."""
-        return np.take(self._keep, np.take(self.slot, edges))
-
-    def remove(self, edges: np.ndarray) -> np.ndarray:
-        """(k,) the end each edge removes (merged into the kept one)."""
+    def ends(self, edges: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``(keep, remove)``, each (k,), of the edges with indices ``edges`` (k,): the end
+        each keeps (the vertex that moves to the point) and the one it removes (merged
+        into the kept one)."""
+        keep = np.take(self._keep, np.take(self.slot, edges))
         ends = np.take(self.edges, edges, axis=0)                         # (k, 2)
-        return np.where(self.keep(edges) == ends[:, 0], ends[:, 1], ends[:, 0])
+        return keep, np.where(keep == ends[:, 0], ends[:, 1], ends[:, 0])
 
     def move(self, edges: np.ndarray, points: np.ndarray) -> None:
         """Set the collapse points (k, 3) of the edges ``edges`` (k,): kept for later rounds while they stay unchanged."""
@@ -612,7 +611,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         def check_turned_faces(indices: np.ndarray) -> np.ndarray:
             chosen_edges = candidates[indices]
             ok = no_turned_faces(vertices, faces, faces_around, priced.points(chosen_edges),
-                                 priced.keep(chosen_edges), priced.remove(chosen_edges), max_normal_cos,
+                                 *priced.ends(chosen_edges), max_normal_cos,
                                  face_across=face_across, positions=positions, corners_around=corners_around)
             # Where the best point turns a face over, an endpoint may not: in a flat
             # region all three cost nothing, and moving onto a neighbour folds less
@@ -623,7 +622,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
                 return ok
             # Both endpoints in one check, the kept end's rows first; the kept end wins where both pass.
             twice = np.concatenate([retry, retry])                     # (2r,)
-            keep_twice, remove_twice = priced.keep(twice), priced.remove(twice)
+            keep_twice, remove_twice = priced.ends(twice)
             option = vertices[np.concatenate([keep_twice[:len(retry)], remove_twice[:len(retry)]])]
             quadric = (np.take(quadrics, keep_twice, axis=0) + np.take(quadrics, remove_twice, axis=0)).T
             option_cost = _packed_cost(quadric, option.T)
@@ -650,7 +649,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         removes_faces = np.where(boundary_edge[chosen], 1, 2)
         chosen = chosen[np.cumsum(removes_faces) <= faces_to_remove]
         chosen = chosen[drop_folding_neighbours(vertices, faces, faces_around, priced.points(chosen),
-                                                priced.keep(chosen), priced.remove(chosen), face_across=face_across,
+                                                *priced.ends(chosen), face_across=face_across,
                                                 positions=positions, corners_around=corners_around)]
         if len(chosen) == 0:
             # Nothing passed the geometric check, or only interior collapses are left with
@@ -662,7 +661,7 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
                 break
             chosen = candidates[allowed]
 
-        keep_c, remove_c = priced.keep(chosen), priced.remove(chosen)
+        keep_c, remove_c = priced.ends(chosen)
         vertices[keep_c] = priced.points(chosen)
         positions[:, keep_c] = vertices[keep_c].T
         quadrics[keep_c] = np.take(quadrics, keep_c, axis=0) + np.take(quadrics, remove_c, axis=0)

@@ -270,8 +270,8 @@ def test_edge_prices_read_through_slots_match_a_fresh_pricing_after_compaction()
         every = np.arange(len(tables.edges))
         assert np.array_equal(cost, fresh_cost)
         assert np.array_equal(kept_forward.points(every), fresh.points(every))
-        assert np.array_equal(kept_forward.keep(every), fresh.keep(every))
-        assert np.array_equal(kept_forward.remove(every), fresh.remove(every))
+        for forward_end, fresh_end in zip(kept_forward.ends(every), fresh.ends(every)):   # keep, then remove
+            assert np.array_equal(forward_end, fresh_end)
         changed = rng.random(n) < 0.3
         vertices[changed] += rng.normal(scale=1e-3, size=(int(changed.sum()), 3))
         quadrics[changed] *= 1.5
@@ -290,12 +290,12 @@ def test_a_moved_point_is_kept_while_its_edge_stays_unchanged():
     prices = _EdgePrices()
     prices.update(tables.edges, tables.boundary, no_boundary, vertices, quadrics, np.ones(n, dtype=bool))
     edge = np.array([3])
-    prices.move(edge, vertices[prices.keep(edge)])
+    prices.move(edge, vertices[prices.ends(edge)[0]])
     changed = np.zeros(n, dtype=bool)
     changed[tables.edges[10]] = True                     # another edge's ends, not edge 3's
     assert not np.isin(tables.edges[3], tables.edges[10]).any()
     prices.update(tables.edges, tables.boundary, no_boundary, vertices, quadrics, changed)
-    assert np.array_equal(prices.points(edge), vertices[prices.keep(edge)])
+    assert np.array_equal(prices.points(edge), vertices[prices.ends(edge)[0]])
 
 
 def test_a_flat_patch_stays_flat_and_keeps_its_outline():
