@@ -61,11 +61,22 @@ def test_course_command_copies_every_chapter_without_outputs(tmp_path, capsys):
     assert f"jupyter lab {destination}" in out
 
 
+def students_work(path: Path) -> bytes:
+    """Write a valid notebook at ``path``, as JupyterLab saves a student's edited chapter; return its bytes."""
+    notebook = json.loads((STUDENT / path.name).read_text(encoding="utf-8")) if (STUDENT / path.name).exists() \
+        else {"nbformat": 4, "nbformat_minor": 5, "metadata": {}, "cells": []}
+    notebook["cells"].append({"cell_type": "code", "id": "mine", "metadata": {}, "execution_count": None,
+                              "outputs": [], "source": ["my_answer = 42\n"]})
+    data = json.dumps(notebook).encode("utf-8")
+    path.write_bytes(data)
+    return data
+
+
 def test_course_command_never_overwrites_a_students_work(tmp_path, capsys):
     work = tmp_path / CHAPTERS[0]
-    work.write_text("my answers", encoding="utf-8")
+    mine = students_work(work)
     assert cli.main(["course", str(tmp_path)]) == cli.EXIT_OK
-    assert work.read_text(encoding="utf-8") == "my answers"
+    assert work.read_bytes() == mine
     assert f"kept 1 already there: {CHAPTERS[0]}" in capsys.readouterr().out
     assert len(list(tmp_path.glob(course.CHAPTER_GLOB))) == len(CHAPTERS)
 
@@ -126,3 +137,186 @@ def test_course_from_a_wheel_in_a_fresh_venv(tmp_path):
 @pytest.mark.parametrize("name", ["setup.py", "MANIFEST.in"])
 def test_the_sdist_and_wheel_build_files_name_the_notebooks(name):
     assert "notebooks" in (ROOT / name).read_text(encoding="utf-8")
+
+
+# ----------------------------------------------------------------- errata: version and --update
+
+def test_each_copied_chapter_is_stamped_with_the_package_version(tmp_path):
+    import halfedge_edu
+
+    result = course.copy_course(tmp_path)
+    assert result.version == halfedge_edu.__version__
+    for name in CHAPTERS:
+        notebook = json.loads((tmp_path / name).read_text(encoding="utf-8"))
+        stamp = notebook["metadata"]["halfedge_edu"]["course"]
+        assert stamp["version"] == halfedge_edu.__version__
+        assert stamp["cells_sha256"] == course.cells_digest(notebook)
+        title = next(cell for cell in notebook["cells"] if cell["cell_type"] == "markdown")
+        assert f"halfedge_edu {halfedge_edu.__version__}" in course._source_text(title).split("\n", 3)[2], name
+
+
+@pytest.fixture()
+def next_release(tmp_path, monkeypatch):
+    """The course copied by this version into tmp_path/course; then the installed package
+    becomes version 9.9.9, whose chapter 00 has an erratum."""
+    destination = tmp_path / "course"
+    course.copy_course(destination)
+    newer = tmp_path / "newer"
+    newer.mkdir()
+    for name in CHAPTERS:
+        notebook = json.loads((STUDENT / name).read_text(encoding="utf-8"))
+        if name == CHAPTERS[0]:
+            notebook["cells"].append({"cell_type": "markdown", "id": "erratum", "metadata": {},
+                                      "source": ["Erratum: the fixed sentence.\n"]})
+        (newer / name).write_text(json.dumps(notebook), encoding="utf-8")
+    monkeypatch.setattr(course, "chapter_source", lambda: newer)
+    monkeypatch.setattr(course, "package_version", lambda: "9.9.9")
+    return destination
+
+
+def has_erratum(path: Path) -> bool:
+    return "Erratum: the fixed sentence." in path.read_text(encoding="utf-8")
+
+
+def test_a_rerun_without_update_keeps_older_chapters_and_says_update_brings_the_new_ones(next_release, capsys):
+    assert cli.main(["course", str(next_release)]) == cli.EXIT_OK
+    assert not has_erratum(next_release / CHAPTERS[0])
+    out = capsys.readouterr().out
+    assert f"kept {len(CHAPTERS)} from another version" in out and "--update" in out and "9.9.9" in out
+
+
+def test_update_replaces_a_chapter_nobody_edited(next_release, capsys):
+    # Running cells changes outputs, not sources: still "not edited".
+    chapter = next_release / CHAPTERS[0]
+    notebook = json.loads(chapter.read_text(encoding="utf-8"))
+    code = next(cell for cell in notebook["cells"] if cell["cell_type"] == "code")
+    code["outputs"], code["execution_count"] = [{"output_type": "stream", "name": "stdout", "text": ["ran\n"]}], 1
+    chapter.write_text(json.dumps(notebook), encoding="utf-8")
+
+    assert cli.main(["course", str(next_release), "--update"]) == cli.EXIT_OK
+    assert has_erratum(chapter)
+    updated = json.loads(chapter.read_text(encoding="utf-8"))
+    assert updated["metadata"]["halfedge_edu"]["course"]["version"] == "9.9.9"
+    assert f"updated {len(CHAPTERS)} unedited chapters to 9.9.9" in capsys.readouterr().out
+    assert sorted(p.name for p in next_release.iterdir()) == CHAPTERS
+
+
+def test_update_keeps_an_edited_chapter_and_writes_the_newer_one_beside_it(next_release, capsys):
+    chapter = next_release / CHAPTERS[0]
+    notebook = json.loads(chapter.read_text(encoding="utf-8"))
+    code = next(cell for cell in notebook["cells"] if cell["cell_type"] == "code")
+    code["source"] = "my_answer = 42\n"
+    mine = json.dumps(notebook, indent=1)
+    chapter.write_text(mine, encoding="utf-8")
+
+    assert cli.main(["course", str(next_release), "--update"]) == cli.EXIT_OK
+    assert chapter.read_text(encoding="utf-8") == mine
+    beside = next_release / f"{chapter.stem}-9.9.9.ipynb"
+    assert has_erratum(beside)
+    out = capsys.readouterr().out
+    assert f"{CHAPTERS[0]} has your edits and was kept; the 9.9.9 version is beside it: {beside.name}" in out
+    # A second --update changes nothing more.
+    before = {p.name: p.read_bytes() for p in next_release.iterdir()}
+    assert cli.main(["course", str(next_release), "--update"]) == cli.EXIT_OK
+    assert {p.name: p.read_bytes() for p in next_release.iterdir()} == before
+
+
+# ---------------------------------------------- never half a chapter, never outside DEST (issue 25)
+
+def test_a_truncated_chapter_is_repaired_on_a_rerun_and_the_broken_file_kept_aside(tmp_path, capsys):
+    course.copy_course(tmp_path)
+    chapter = tmp_path / CHAPTERS[3]
+    whole = chapter.read_bytes()
+    chapter.write_bytes(whole[: len(whole) // 2])        # what kill -9 or a full disk left before
+    work = tmp_path / CHAPTERS[4]
+    mine = students_work(work)
+
+    assert cli.main(["course", str(tmp_path)]) == cli.EXIT_OK
+    assert chapter.read_bytes() == whole
+    assert (tmp_path / f"{CHAPTERS[3]}.broken").read_bytes() == whole[: len(whole) // 2]
+    assert work.read_bytes() == mine
+    assert f"{CHAPTERS[3]} was not a valid notebook; copied it again" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("kind", ["dangling", "loop", "to a file outside"])
+def test_a_symbolic_link_in_dest_is_never_followed_and_the_other_chapters_are_copied(tmp_path, capsys, kind):
+    destination, outside = tmp_path / "course", tmp_path / "outside"
+    destination.mkdir()
+    outside.mkdir()
+    link = destination / CHAPTERS[2]
+    if kind == "dangling":
+        link.symlink_to(outside / "stolen.ipynb")
+    elif kind == "loop":
+        link.symlink_to(link.name)
+    else:
+        (outside / "notes.ipynb").write_text("not a notebook", encoding="utf-8")
+        link.symlink_to(outside / "notes.ipynb")
+
+    assert cli.main(["course", str(destination)]) == cli.EXIT_ERROR
+    assert link.is_symlink()
+    assert sorted(p.name for p in outside.iterdir()) == ([] if kind != "to a file outside" else ["notes.ipynb"])
+    if kind == "to a file outside":
+        assert (outside / "notes.ipynb").read_text(encoding="utf-8") == "not a notebook"
+    copied = sorted(p.name for p in destination.iterdir() if not p.is_symlink())
+    assert copied == [name for name in CHAPTERS if name != CHAPTERS[2]]
+    captured = capsys.readouterr()
+    assert f"copied {len(CHAPTERS) - 1} chapters" in captured.out
+    (line,) = captured.err.splitlines()
+    assert line.startswith("halfedge-edu: error: ") and CHAPTERS[2] in line and "symbolic link" in line
+
+
+def test_a_chapter_that_cannot_be_read_is_skipped_with_a_message_and_the_rest_copied(tmp_path, monkeypatch):
+    real_read = Path.read_text
+
+    def read_text(path, *args, **kwargs):
+        if path.name == CHAPTERS[5]:
+            raise PermissionError(13, "Permission denied", str(path))
+        return real_read(path, *args, **kwargs)
+
+    monkeypatch.setattr(Path, "read_text", read_text)
+    result = course.copy_course(tmp_path)
+    assert result.skipped == ((CHAPTERS[5], "Permission denied"),)
+    assert len(result.copied) == len(CHAPTERS) - 1
+    assert not (tmp_path / CHAPTERS[5]).exists()
+
+
+def test_a_write_that_fails_midway_leaves_no_partial_chapter_and_no_temporary_file(tmp_path, monkeypatch):
+    real_fsync = os.fsync
+
+    def fsync(descriptor):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(course.os, "fsync", fsync)
+    result = course.copy_course(tmp_path)
+    monkeypatch.setattr(course.os, "fsync", real_fsync)
+    assert [reason for _, reason in result.skipped] == ["No space left on device"] * len(CHAPTERS)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_file_size_limit_cuts_no_chapter_and_a_rerun_copies_them_all(tmp_path):
+    """The command line under a 20 KB file-size limit (ulimit -f): the chapters larger than
+    that are skipped whole with a message each, never left truncated; a rerun without the
+    limit copies them, with nothing to repair."""
+    destination = tmp_path / "course"
+    limited = (
+        "import resource, signal, sys\n"
+        "signal.signal(signal.SIGXFSZ, signal.SIG_IGN)\n"
+        "resource.setrlimit(resource.RLIMIT_FSIZE, (20_000, 20_000))\n"
+        "from halfedge_edu.cli import main\n"
+        "sys.exit(main(sys.argv[1:]))\n"
+    )
+    run = subprocess.run([sys.executable, "-c", limited, "course", str(destination)],
+                         capture_output=True, text=True, timeout=120, cwd=ROOT)
+    assert run.returncode == cli.EXIT_ERROR, run.stderr
+    too_large = [line for line in run.stderr.splitlines() if "not copied: File too large" in line]
+    assert too_large and len(too_large) == len(run.stderr.splitlines()), run.stderr
+    present = sorted(p.name for p in destination.iterdir())
+    assert len(present) == len(CHAPTERS) - len(too_large)
+    for name in present:
+        assert_is_a_clean_chapter(destination / name)
+
+    rerun = subprocess.run([sys.executable, "-m", "halfedge_edu", "course", str(destination)],
+                           capture_output=True, text=True, timeout=120, cwd=ROOT)
+    assert rerun.returncode == cli.EXIT_OK, rerun.stderr
+    assert f"copied {len(too_large)} chapters" in rerun.stdout and "not a valid notebook" not in rerun.stdout
+    assert sorted(p.name for p in destination.iterdir()) == CHAPTERS
