@@ -13,6 +13,9 @@ SEMESTER ?= 2026-fall
 LOCK ?= constraints/$(SEMESTER).txt
 
 PY := $(VENV)/bin/python
+# What each target installs: `make lab` the notebooks extra (what a student needs),
+# `make test` the dev extra (which includes it), `make bench` dev and bench.
+NOTEBOOKS_STAMP := $(VENV)/.installed-notebooks
 DEV_STAMP := $(VENV)/.installed-dev
 BENCH_STAMP := $(VENV)/.installed-bench
 WASM_EMPTY := $(abspath $(VENV))/vtk-wasm-empty
@@ -55,15 +58,18 @@ define install
 	fi
 endef
 
-.PHONY: help lab test figures bench book lock clean distclean
+.PHONY: help lab test test-lowest dist figures bench book lock clean distclean
 .DEFAULT_GOAL := help
 
 help:
 	@echo "make lab        open the notebooks in JupyterLab (sets up $(VENV) on first use)"
 	@echo "make test       run every test and every notebook, headless"
+	@echo "make test-lowest  the library tests and one chapter with the lowest versions pyproject.toml allows"
+	@echo "make dist       build the sdist and the wheel into dist/ and check their metadata"
 	@echo "make figures    rebuild the pictures in figures/"
 	@echo "make bench      compare against OpenMesh, fast-simplification and PyMeshLab"
-	@echo "make book       build the website (executed chapters, CLI and API) in build/book"
+	@echo "make book       build the website (student edition: no answers) in build/book"
+	@echo "                make book EDITION=solutions: with the answers, for instructors, in build/book-solutions"
 	@echo "make lock       write the installed versions to constraints/\$$SEMESTER.txt"
 	@echo "make clean      remove caches and build files (distclean: also $(VENV))"
 	@echo "options: PYTHON=python3.12  PYTEST_ARGS='-k cli -x'  LOCK= (no semester lock)"
@@ -78,14 +84,20 @@ $(PY):
 	  exit 1; \
 	fi
 
+$(NOTEBOOKS_STAMP): pyproject.toml $(LOCK) | $(PY)
+	$(call install,notebooks,$@)
+
+# The dev extra includes the notebooks extra: a `make test` environment is a `make lab` one.
 $(DEV_STAMP): pyproject.toml $(LOCK) | $(PY)
 	$(call install,dev,$@)
+	@cp $@ $(NOTEBOOKS_STAMP)
 
 $(BENCH_STAMP): pyproject.toml $(LOCK) | $(PY)
 	$(call install,dev$(COMMA)bench,$@)
 	@cp $@ $(DEV_STAMP)
+	@cp $@ $(NOTEBOOKS_STAMP)
 
-lab: $(DEV_STAMP)
+lab: $(NOTEBOOKS_STAMP)
 	@mkdir -p notebooks "$(WASM_EMPTY)"
 	$(LAB_ENV) $(VENV)/bin/jupyter lab $(LAB_FLAGS) notebooks/
 
@@ -98,6 +110,31 @@ test: $(DEV_STAMP)
 	@mkdir -p "$(WASM_EMPTY)"
 	HALFEDGE_EDU_LOCK="$$(cat $(DEV_STAMP))" $(HEADLESS_ENV) $(PY) -m pytest $(PYTEST_WORKERS) $(PYTEST_ARGS)
 
+# The lowest versions pyproject.toml allows for the library and the notebooks extra
+# (constraints/lowest.py), in a venv of their own made afresh, with the test tools at
+# their newest: the library tests and chapter 07 (it renders and uses Pillow) executed
+# headless. Not part of `make test`: it downloads the old versions (about 0.5 GB).
+LOWEST_VENV ?= $(VENV)/lowest
+LOWEST_TOOLS := "pytest>=8" "pytest-xdist>=3.5" "nbval>=0.11" "hypothesis>=6.100" "rtree>=1.0" "pycollada>=0.9" \
+  "pyyaml>=6" "nbclient>=0.8" "nbformat>=5.9" "jupytext>=1.16"
+LOWEST_TESTS ?= tests/core tests/io tests/algorithms tests/exercises tests/test_samples.py
+test-lowest:
+	rm -rf "$(LOWEST_VENV)"
+	$(PYTHON) -m venv "$(LOWEST_VENV)"
+	@mkdir -p "$(WASM_EMPTY)"
+	$(PYTHON) constraints/lowest.py notebooks > "$(LOWEST_VENV)/lowest.txt"
+	PIP_DISABLE_PIP_VERSION_CHECK=1 "$(LOWEST_VENV)/bin/python" -m pip install --quiet -e ".[notebooks]" $(LOWEST_TOOLS) -c "$(LOWEST_VENV)/lowest.txt"
+	@"$(LOWEST_VENV)/bin/python" -c 'import sys, importlib.metadata as m; print("installed:", ", ".join(f"{n}=={m.version(n)}" for n in (l.split("==")[0] for l in open(sys.argv[1]))))' "$(LOWEST_VENV)/lowest.txt"
+	$(HEADLESS_ENV) "$(LOWEST_VENV)/bin/python" -m pytest -n 2 -p no:cacheprovider $(LOWEST_TESTS)
+	$(HEADLESS_ENV) "$(LOWEST_VENV)/bin/python" -m pytest -n 0 -p no:cacheprovider -o addopts="-ra" --nbval-lax --nbval-current-env notebooks/07_edge_collapse.ipynb
+
+# The sdist and the wheel, as they would be uploaded, with their metadata checked
+# (twine check --strict: the README renders on the package index, nothing missing).
+dist: $(DEV_STAMP)
+	rm -rf dist
+	$(PY) -m build --outdir dist .
+	$(PY) -m twine check --strict dist/*
+
 figures: $(DEV_STAMP)
 	@mkdir -p "$(WASM_EMPTY)"
 	$(HEADLESS_ENV) $(PY) -m halfedge_edu.figures
@@ -109,9 +146,13 @@ bench: $(BENCH_STAMP)
 # are the pictures) and the docstrings; offline, nothing is downloaded. Not -W: docstrings
 # are written for help() and the notebooks, not as reST, so docutils warns about some
 # indented lines; tests/browser/test_book.py checks what matters (links, pictures).
+# EDITION=student (the default) shows each exercise as a student gets it; the
+# solution edition only when asked for (HALFEDGE_EDU_BOOK_EDITION, read by docs/conf.py).
+EDITION ?= student
+BOOK_OUT := build/$(if $(filter solutions,$(EDITION)),book-solutions,book)
 book: $(DEV_STAMP)
-	$(PY) -m sphinx -q -b html docs build/book
-	@echo "open build/book/index.html"
+	HALFEDGE_EDU_BOOK_EDITION=$(EDITION) $(PY) -m sphinx -q -b html docs $(BOOK_OUT)
+	@echo "open $(BOOK_OUT)/index.html"
 
 # Write the current environment as the semester lock (after `make test` passed with it).
 lock: $(DEV_STAMP)

@@ -62,16 +62,69 @@ def trame_mode(setting: str | None = None) -> str:
 # The trame-pyvista viewers of open client-side views (held weakly).
 _CLIENT_VIEWERS: weakref.WeakSet = weakref.WeakSet()
 
+#: trame-vtk's private names this module relies on, as (module, attribute path). The same
+#: in trame-vtk 2.8 to 2.11 (pyproject.toml bounds it below 2.12); a release that moves
+#: one makes :func:`missing_private_api` name it, and tests/test_live_backend.py fail.
+TRAME_VTK_PRIVATE_API = (
+    ("trame_vtk.modules.vtk.serializers", "extract_array_hash"),
+    ("trame_vtk.modules.vtk.protocols", "vtkWebLocalRendering"),
+    ("trame_vtk.modules.vtk.serializers.synchronization_context", "SynchronizationContext.check_for_arrays_to_release"),
+    ("trame_vtk.modules.vtk.serializers.synchronization_context", "SynchronizationContext.__init__ sets data_array_cache"),
+    ("trame_vtk.widgets.vtk.common", "VtkLocalView.__init__ sets __scene_id"),
+)
+
+
+def missing_private_api() -> list[str]:
+    """The entries of :data:`TRAME_VTK_PRIVATE_API` that the installed trame-vtk lacks,
+    as ``module:attribute`` (empty when everything :func:`keep_scene_arrays` uses is there)."""
+    import importlib
+    import inspect
+
+    missing = []
+    for module_name, path in TRAME_VTK_PRIVATE_API:
+        try:
+            target = importlib.import_module(module_name)
+        except ImportError:
+            missing.append(f"{module_name}:{path}")
+            continue
+        attributes, _, assigned = path.partition(" sets ")
+        try:
+            for attribute in attributes.split("."):
+                target = getattr(target, attribute)
+        except AttributeError:
+            missing.append(f"{module_name}:{path}")
+            continue
+        if assigned and f"self.{assigned} =" not in inspect.getsource(target):
+            missing.append(f"{module_name}:{path}")
+    return missing
+
 
 def keep_scene_arrays(viewer) -> None:
     """Keep the data arrays that ``viewer``'s views name in the kernel until they change.
 
     ``viewer`` is the trame-pyvista viewer of a client-side live view
     (``plotter.show(..., return_viewer=True).viewer``). Its arrays are kept while its
-    plotter is open; the viewer is held weakly.
+    plotter is open; the viewer is held weakly. With a trame-vtk whose private API moved
+    (:func:`missing_private_api`) it warns once and does nothing: the view still works,
+    with trame-vtk's own release rule.
     """
+    global _API_CHECKED
+    if _API_CHECKED is None:
+        _API_CHECKED = missing_private_api()
+        if _API_CHECKED:
+            import warnings
+
+            warnings.warn(f"halfedge_edu.live_backend: this trame-vtk lacks {', '.join(_API_CHECKED)}; "
+                          "client-side views may lose their mesh after 20 s (install trame-vtk<2.12)",
+                          RuntimeWarning, stacklevel=2)
+    if _API_CHECKED:
+        return
     _CLIENT_VIEWERS.add(viewer)
     _guard_array_cache(viewer.server)
+
+
+# What missing_private_api() found, once per kernel (None: not checked yet).
+_API_CHECKED: list[str] | None = None
 
 
 # The hashes each view's scene names, by the scene's state key: (that scene, its hashes).

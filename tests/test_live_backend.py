@@ -92,3 +92,38 @@ def test_a_client_view_keeps_the_arrays_its_scene_names_and_releases_the_old_one
     assert counts["now"] > 0 and counts["now_cached"] == counts["now"], counts
     # ... while the cell arrays of the scenes before the two steps were released.
     assert counts["old"] > 0 and counts["old_cached"] == 0, counts
+
+
+def test_the_installed_trame_vtk_has_every_private_name_live_backend_patches():
+    from importlib.metadata import version
+
+    assert live_backend.missing_private_api() == [], (
+        f"trame-vtk {version('trame-vtk')} moved what halfedge_edu/live_backend.py patches: "
+        "fix live_backend and the trame-vtk bounds in pyproject.toml together"
+    )
+
+
+def test_a_moved_private_name_is_named(monkeypatch):
+    monkeypatch.setattr(live_backend, "TRAME_VTK_PRIVATE_API", (
+        *live_backend.TRAME_VTK_PRIVATE_API,
+        ("trame_vtk.modules.vtk.serializers", "renamed_in_a_future_release"),
+        ("trame_vtk.widgets.vtk.common", "VtkLocalView.__init__ sets __scene_name"),
+    ))
+    assert live_backend.missing_private_api() == [
+        "trame_vtk.modules.vtk.serializers:renamed_in_a_future_release",
+        "trame_vtk.widgets.vtk.common:VtkLocalView.__init__ sets __scene_name",
+    ]
+
+
+def test_pyproject_bounds_trame_vtk_below_the_next_minor():
+    import sys
+    from pathlib import Path
+
+    from packaging.requirements import Requirement
+
+    tomllib = __import__("tomllib") if sys.version_info >= (3, 11) else __import__("tomli")
+    pyproject = tomllib.loads((Path(__file__).resolve().parents[1] / "pyproject.toml").read_text())
+    (line,) = [line for line in pyproject["project"]["optional-dependencies"]["notebooks"]
+               if Requirement(line).name == "trame-vtk"]
+    specifier = Requirement(line).specifier
+    assert "2.11.17" in specifier and "2.12.0" not in specifier and "2.7.0" not in specifier

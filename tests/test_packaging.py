@@ -225,3 +225,47 @@ def test_nbval_sanitize_patterns_hide_only_what_changes_between_runs():
     ]
     for first, second in different:
         assert sanitize(first) != sanitize(second), (first, second)
+
+
+# ------------------------------------------------------------------ true floors (issue 27)
+
+def test_vtk_floor_excludes_the_versions_whose_headless_rendering_aborts():
+    vtk = pyproject_requirements(("notebooks",))["vtk"]
+    assert "9.3.1" not in vtk and "9.4.1" not in vtk and "9.4.2" in vtk
+
+
+def test_pillow_is_declared_with_the_floor_chapter_07_needs():
+    pillow = pyproject_requirements(("notebooks",))["pillow"]
+    assert "10.0.1" not in pillow and "10.1.0" in pillow
+
+
+def test_lowest_constraints_pin_every_floor_of_the_notebooks_extra():
+    lowest = subprocess.run([sys.executable, str(ROOT / "constraints" / "lowest.py"), "notebooks"],
+                            capture_output=True, text=True, check=True).stdout.split()
+    pins = dict(line.split("==") for line in lowest)
+    floors = pyproject_requirements(("notebooks",))
+    assert set(pins) == {name for name, spec in floors.items() if any(s.operator == ">=" for s in spec)}
+    for name, version in pins.items():
+        assert version in floors[name], f"{name}=={version} is not allowed by pyproject.toml"
+    assert pins["vtk"] == "9.4.2" and pins["pillow"] == "10.1"
+
+
+def make_dry_run(target: str, tmp_path: Path) -> str:
+    """What `make TARGET` would run in a clone without a virtual environment yet."""
+    return subprocess.run(["make", "-n", target, f"VENV={tmp_path / 'venv'}"], cwd=ROOT,
+                          capture_output=True, text=True, check=True).stdout
+
+
+def test_make_lab_installs_the_notebooks_extra_not_the_developers_tools(tmp_path):
+    lab = make_dry_run("lab", tmp_path)
+    assert 'install -e ".[notebooks]"' in lab
+    assert ".[dev" not in lab
+
+
+def test_make_test_installs_the_dev_extra(tmp_path):
+    assert 'install -e ".[dev]"' in make_dry_run("test", tmp_path)
+
+
+def test_make_dist_builds_both_and_checks_their_metadata(tmp_path):
+    dist = make_dry_run("dist", tmp_path)
+    assert "-m build" in dist and "twine check --strict dist/*" in dist
