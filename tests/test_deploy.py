@@ -126,8 +126,10 @@ def test_local_hub_config_starts_students_through_the_shared_script(tmp_path):
     assert Path(command[0]) == START and os.access(command[0], os.X_OK)
     assert command[1:] == ["jupyterhub-singleuser"]
     assert (tmp_path / "hub").is_dir()
-    # Without the variables below, no API token and the package's own live view.
-    assert "services" not in config.JupyterHub and "environment" not in config.Spawner
+    # Without the variables below, no API token (only the culler's service) and the
+    # package's own live view.
+    assert [service["name"] for service in config.JupyterHub.services] == ["idle-culler"]
+    assert "environment" not in config.Spawner
 
 
 def test_local_hub_config_passes_the_live_backend_on_and_takes_an_admin_token(tmp_path, monkeypatch):
@@ -136,12 +138,69 @@ def test_local_hub_config_passes_the_live_backend_on_and_takes_an_admin_token(tm
     monkeypatch.setenv("HALFEDGE_HUB_INTERNAL_PORT", "18081")
     config = hub_config(tmp_path)
     assert config.Spawner.environment == {"HALFEDGE_EDU_LIVE_BACKEND": "client"}
-    [service] = config.JupyterHub.services
+    [service] = [service for service in config.JupyterHub.services if service["name"] != "idle-culler"]
     assert service["api_token"] == "secret-of-the-script"
-    [role] = config.JupyterHub.load_roles
+    [role] = [role for role in config.JupyterHub.load_roles if role["name"] != "idle-culler"]
     assert role["services"] == [service["name"]]
     assert {"admin:servers", "access:servers"} <= set(role["scopes"])
     assert config.JupyterHub.hub_port == 18081
+
+
+def server_options(config: Config) -> dict[str, str]:
+    """The ``--Class.trait=value`` options the hub passes to every student's server."""
+    return dict(arg[2:].split("=", 1) for arg in config.Spawner.args if arg.startswith("--") and "=" in arg)
+
+
+def test_idle_servers_are_culled_by_the_hubs_culler_service(tmp_path, monkeypatch):
+    monkeypatch.setenv("HALFEDGE_HUB_CULL_SECONDS", "1800")
+    config = hub_config(tmp_path)
+    [culler] = [service for service in config.JupyterHub.services if service["name"] == "idle-culler"]
+    assert culler["command"][1:3] == ["-m", "jupyterhub_idle_culler"] and "--timeout=1800" in culler["command"]
+    [role] = [role for role in config.JupyterHub.load_roles if role["name"] == "idle-culler"]
+    assert role["services"] == ["idle-culler"]
+    assert {"list:users", "read:users:activity", "read:servers", "delete:servers"} == set(role["scopes"])
+    import jupyterhub_idle_culler  # noqa: F401  (the hub extra installs it: the command runs)
+
+
+def test_idle_kernels_are_culled_even_with_their_tab_open(tmp_path, monkeypatch):
+    options = server_options(hub_config(tmp_path))
+    assert options["MappingKernelManager.cull_idle_timeout"] == "1200"
+    assert options["MappingKernelManager.cull_connected"] == "True"
+    monkeypatch.setenv("HALFEDGE_HUB_KERNEL_CULL_SECONDS", "30")
+    options = server_options(hub_config(tmp_path))
+    assert options["MappingKernelManager.cull_idle_timeout"] == "30"
+    assert options["MappingKernelManager.cull_interval"] == "3"
+
+
+def test_systemd_spawner_runs_students_as_dynamic_users(tmp_path, monkeypatch):
+    monkeypatch.setenv("HALFEDGE_HUB_SPAWNER", "systemdspawner.SystemdSpawner")
+    config = hub_config(tmp_path)
+    assert config.SystemdSpawner.dynamic_users is True
+    assert config.SystemdSpawner.isolate_tmp is True and config.SystemdSpawner.isolate_devices is True
+    assert "--ServerApp.allow_root=True" not in config.Spawner.args
+
+
+def test_the_hub_takes_tls_and_a_public_address_only_when_told(tmp_path, monkeypatch):
+    assert hub_config(tmp_path).JupyterHub.ip == "127.0.0.1" and "ssl_cert" not in hub_config(tmp_path).JupyterHub
+    monkeypatch.setenv("HALFEDGE_HUB_IP", "0.0.0.0")
+    monkeypatch.setenv("HALFEDGE_HUB_SSL_CERT", "/etc/letsencrypt/live/hub/fullchain.pem")
+    monkeypatch.setenv("HALFEDGE_HUB_SSL_KEY", "/etc/letsencrypt/live/hub/privkey.pem")
+    config = hub_config(tmp_path)
+    assert config.JupyterHub.ip == "0.0.0.0"
+    assert config.JupyterHub.ssl_cert.endswith("fullchain.pem") and config.JupyterHub.ssl_key.endswith("privkey.pem")
+
+
+def test_kubernetes_values_cull_servers_and_kernels_like_the_local_hub(tmp_path):
+    config = hub_config(tmp_path)
+    assert VALUES["cull"]["enabled"] is True
+    [culler] = [service for service in config.JupyterHub.services if service["name"] == "idle-culler"]
+    assert f"--timeout={VALUES['cull']['timeout']}" in culler["command"]
+    kernels = VALUES["singleuser"]["extraFiles"]["kernel-culling"]
+    assert kernels["mountPath"].startswith("/etc/jupyter/jupyter_server_config.d/") and kernels["mountPath"].endswith(".json")
+    options = server_options(config)
+    for name, value in kernels["data"]["MappingKernelManager"].items():
+        if name != "cull_interval":
+            assert str(value).lower() == options[f"MappingKernelManager.{name}"].lower(), name
 
 
 def test_kubernetes_values_have_the_local_hubs_limits(tmp_path):
@@ -170,9 +229,25 @@ def test_dockerfile_parses_and_installs_the_package_like_binder():
     apt = set((ROOT / "binder" / "apt.txt").read_text().split())
     assert apt == {"libgl1", "libegl1"} and all(package in shlex.split(runs) for package in apt)
     assert f"constraints/{LOCK}.txt" in runs and (ROOT / "constraints" / f"{LOCK}.txt").exists()
-    assert '"/tmp/halfedge_edu[notebooks]"' in runs and " -e " not in runs, "the notebooks extra, not editable"
+    assert '"$(ls /tmp/wheel/halfedge_edu-*.whl)[notebooks]"' in runs and " -e " not in runs, \
+        "the wheel with the notebooks extra, not editable"
     python = re.match(r"python:(\d+\.\d+)", by_name["FROM"][0]).group(1)
     assert (ROOT / "binder" / "runtime.txt").read_text().strip() == f"python-{python}"
+
+
+def test_the_image_keeps_no_build_context_and_pins_the_charts_jupyterhub():
+    stages = re.split(r"^FROM ", DOCKERFILE, flags=re.M)[1:]
+    assert len(stages) == 2 and stages[0].startswith("python:3.11-slim AS wheel")
+    final = stages[1]
+    copies = re.findall(r"^COPY (.*)$", final, flags=re.M)
+    assert copies == ["--chmod=755 deploy/singleuser-start.sh /usr/local/bin/singleuser-start.sh"], copies
+    assert "--mount=type=bind,from=wheel" in final
+    chart = re.search(r"helm upgrade .*--version (\d+\.\d+\.\d+)", (ROOT / "deploy" / "z2jh" / "values.yaml").read_text())
+    assert chart, "values.yaml names the chart version to install"
+    hub = re.search(r'"jupyterhub==(\d+\.\d+\.\d+)"', final).group(1)
+    assert f"chart {chart.group(1)}: JupyterHub {hub}" in final
+    ignore = (ROOT / ".dockerignore").read_text().split()
+    assert ignore[ignore.index("*") + 1:] and "!notebooks/student/" in ignore and "!notebooks/" not in ignore
 
 
 def test_binder_installs_the_notebooks_extra_non_editable_and_starts_through_the_script():
@@ -190,3 +265,76 @@ def test_binder_installs_the_notebooks_extra_non_editable_and_starts_through_the
         syntax = subprocess.run(["bash", "-n", str(path)], capture_output=True, text=True)
         assert syntax.returncode == 0, syntax.stderr
     assert "jupyter-server-proxy" in DOCKERFILE
+
+
+# ------------------------------------------------ what is published hands out no answers (issue 24)
+
+def book_settings(edition: str | None) -> dict:
+    """docs/conf.py's settings as Sphinx reads them, with HALFEDGE_EDU_BOOK_EDITION=edition."""
+    env = {key: value for key, value in os.environ.items() if key != "HALFEDGE_EDU_BOOK_EDITION"}
+    if edition is not None:
+        env["HALFEDGE_EDU_BOOK_EDITION"] = edition
+    code = ("import json, runpy; s = runpy.run_path('docs/conf.py'); "
+            "print(json.dumps({k: s[k] for k in ('CHAPTERS', 'include_patterns', 'exclude_patterns', 'html_title')}))")
+    result = subprocess.run([sys.executable, "-c", code], cwd=ROOT, env=env, capture_output=True, text=True, timeout=60)
+    assert result.returncode == 0 or edition == "answers", result.stderr
+    return json.loads(result.stdout) if result.returncode == 0 else {"error": result.stderr}
+
+
+def test_the_website_shows_the_student_edition_unless_the_solutions_are_asked_for():
+    student = book_settings(None)
+    folder = (ROOT / "docs" / student["CHAPTERS"]).resolve()
+    assert folder == (ROOT / "notebooks" / "student").resolve()
+    assert [p for p in student["include_patterns"] if "ipynb" in p] == ["chapters/[0-9][0-9]*_*.ipynb"]
+    for chapter in folder.glob("[0-9][0-9]*_*.ipynb"):
+        text = chapter.read_text(encoding="utf-8")
+        assert json.loads(text)["metadata"]["halfedge_edu"]["edition"] == "student", chapter.name
+        assert "### BEGIN SOLUTION" not in text, chapter.name
+
+    solutions = book_settings("solutions")
+    assert (ROOT / "docs" / solutions["CHAPTERS"]).resolve() == (ROOT / "notebooks").resolve()
+    assert "instructors only" in solutions["html_title"]
+    assert "ValueError" in book_settings("answers")["error"]
+
+
+def test_make_book_builds_the_student_edition_and_the_solutions_only_when_asked(tmp_path):
+    def dry(*options: str) -> str:
+        return subprocess.run(["make", "-n", "book", f"VENV={tmp_path / 'venv'}", *options], cwd=ROOT,
+                              capture_output=True, text=True, check=True).stdout
+
+    assert "HALFEDGE_EDU_BOOK_EDITION=student" in dry() and "build/book\n" in dry() + "\n"
+    assert "HALFEDGE_EDU_BOOK_EDITION=solutions" in dry("EDITION=solutions")
+    assert "build/book-solutions" in dry("EDITION=solutions")
+
+
+def test_a_chapter_page_and_the_api_reference_build_cleanly_with_described_pictures(tmp_path):
+    """The website's machinery on one chapter and the API page (the whole site is
+    tests/browser/test_book.py's): no docutils error or warning (the Google-style
+    docstrings need napoleon), and each picture's alt text says what it shows, not its
+    file name."""
+    source = tmp_path / "src"
+    (source / "chapters").mkdir(parents=True)
+    chapter = "03_navigating.ipynb"
+    (source / "chapters" / chapter).symlink_to(ROOT / "notebooks" / "student" / chapter)
+    (source / "api.md").symlink_to(ROOT / "docs" / "api.md")
+    (source / "index.md").write_text("# t\n\n```{toctree}\napi\nchapters/03_navigating\n```\n", encoding="utf-8")
+    build = subprocess.run([sys.executable, "-m", "sphinx", "-q", "-b", "html", "-c", str(ROOT / "docs"),
+                            str(source), str(tmp_path / "out")], capture_output=True, text=True, timeout=600)
+    assert build.returncode == 0, build.stderr[-3000:]
+    assert build.stderr.strip() == "", build.stderr[-3000:]
+    page = (tmp_path / "out" / "chapters" / "03_navigating.html").read_text(encoding="utf-8")
+    alts = re.findall(r'<img alt="([^"]*)"', page)
+    assert len(alts) >= 3
+    for alt in alts:
+        assert not re.search(r"\.(png|jpe?g)$", alt) and len(alt.split()) >= 5, alt
+    assert "halfedge 7" in alts[0]
+
+
+def test_binder_removes_the_solution_edition_and_history_after_installing():
+    post_build = (ROOT / "binder" / "postBuild").read_text()
+    commands = [line for line in post_build.splitlines() if line.strip() and not line.lstrip().startswith("#")]
+    install = next(i for i, line in enumerate(commands) if "pip install" in line)
+    removal = next(i for i, line in enumerate(commands) if line.startswith("rm -rf"))
+    assert install < removal
+    removed = shlex.split(commands[removal])[2:]
+    assert {"notebooks", ".git", "docs/solutions"} <= set(removed)
