@@ -37,6 +37,15 @@ export MALLOC_MMAP_THRESHOLD_="${MALLOC_MMAP_THRESHOLD_:-131072}"
 export MALLOC_TRIM_THRESHOLD_="${MALLOC_TRIM_THRESHOLD_:-131072}"
 export LP_NUM_THREADS="${LP_NUM_THREADS:-1}"
 mkdir -p "$VTK_WASM_DIR_OVERRIDE"
+# The kernels' Unix sockets (the hub starts servers with --KernelManager.transport=ipc) live
+# in the runtime folder, by default under the home: a long home path
+# (/var/lib/private/firstname.lastname/.local/share/jupyter/runtime/kernel-UUID-ipc-1)
+# passes the 107 bytes a socket path may have, and every kernel fails to start ("File name
+# too long"). A fresh private folder under /tmp for each server start is short enough.
+if [ -z "${JUPYTER_RUNTIME_DIR:-}" ]; then
+  JUPYTER_RUNTIME_DIR="$(mktemp -d /tmp/jr-XXXXXXXX)"
+  export JUPYTER_RUNTIME_DIR
+fi
 
 # Each student's own copy of the chapters, from the installed package; files already
 # there (their work) are kept. A failure here must not keep the server from starting.

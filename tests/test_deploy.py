@@ -77,7 +77,7 @@ def run_start_script(home: Path, **preset: str) -> dict:
     """The environment a command started through deploy/singleuser-start.sh sees, plus the
     live view's address prefix pyvista builds (``view_prefix``)."""
     env = {key: value for key, value in os.environ.items()
-           if not key.startswith(("PYVISTA_", "VTK_", "HALFEDGE_EDU_")) and key not in MEMORY_SETTINGS}
+           if not key.startswith(("PYVISTA_", "VTK_", "HALFEDGE_EDU_", "JUPYTER_RUNTIME")) and key not in MEMORY_SETTINGS}
     env.update(HOME=str(home), JUPYTERHUB_SERVICE_PREFIX="/user/ann/",
                PATH=os.path.dirname(sys.executable) + os.pathsep + env.get("PATH", ""), **preset)
     result = subprocess.run(
@@ -99,6 +99,16 @@ def test_shared_start_script_sets_the_live_environment_and_copies_the_course(tmp
     assert "PYVISTA_JUPYTER_BACKEND" not in started, "a hub keeps the live view (static is for CI)"
     assert len(list((tmp_path / "course").glob("[0-9][0-9]*_*.ipynb"))) == len(list((ROOT / "notebooks").glob("[0-9][0-9]*_*.ipynb")))
     assert {name: started[name] for name in MEMORY_SETTINGS} == MEMORY_SETTINGS
+
+
+def test_start_script_puts_the_kernels_sockets_where_a_long_home_cannot_push_them_past_107_bytes(tmp_path):
+    home = tmp_path / ("a-student-with-a-long-name-" * 3)
+    home.mkdir()
+    env = run_start_script(home)
+    runtime = Path(env["JUPYTER_RUNTIME_DIR"])
+    assert runtime.is_dir() and not str(runtime).startswith(str(home))
+    assert len(f"{runtime}/kernel-{'0' * 8}-{'0' * 4}-{'0' * 4}-{'0' * 4}-{'0' * 12}-ipc-1") <= 107
+    assert oct(runtime.stat().st_mode & 0o777) == "0o700"
 
 
 def test_start_script_keeps_memory_settings_the_hub_already_chose(tmp_path):

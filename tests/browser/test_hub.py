@@ -1,4 +1,5 @@
-"""A class of two on a real JupyterHub: benchmarks/bench_class.py's smallest case.
+"""A class of two on a real JupyterHub: benchmarks/bench_class.py's smallest case; and
+the recipe's kernel culling, seen on a real hub.
 
 The hub of deploy/jupyterhub/jupyterhub_config.py on 127.0.0.1 spawns two students'
 servers through its REST API (deploy/singleuser-start.sh copies the course), runs
@@ -18,6 +19,7 @@ import importlib.util
 import math
 import shutil
 import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -70,3 +72,45 @@ def test_two_students_run_chapter_03_and_see_their_live_views_through_the_hub(hu
             assert (screenshot_dir / f"{view['student']}-{shot}.png").stat().st_size > 0
     row = result.row()
     assert row["step_p50_ms"] <= row["step_p95_ms"]
+
+
+# The kernel-culling test: the recipe's own config with a short timeout, as an instructor
+# would shorten it to try it. cull_interval is a tenth of it, at least 1 s.
+KERNEL_CULL_SECONDS = 6
+
+
+def test_the_recipes_hub_culls_a_students_idle_kernel_even_with_its_tab_connected(tmp_path, monkeypatch):
+    if shutil.which("configurable-http-proxy") is None:
+        pytest.skip("configurable-http-proxy not installed: npm install -g configurable-http-proxy")
+    bench = bench_class()
+    monkeypatch.setenv("HALFEDGE_HUB_KERNEL_CULL_SECONDS", str(KERNEL_CULL_SECONDS))
+    # A long home on purpose (pytest's tmp_path): the kernels' sockets must not live under
+    # it (singleuser-start.sh's JUPYTER_RUNTIME_DIR), or no kernel starts.
+    state = tmp_path
+    hub = bench.start_hub(state, "client", timeout=120)
+    try:
+        import psutil
+
+        culler = [process for process in psutil.Process(hub.process.pid).children(recursive=True)
+                  if "jupyterhub_idle_culler" in " ".join(process.cmdline())]
+        assert culler, f"the recipe's hub runs no jupyterhub-idle-culler:\n{hub.log_tail()}"
+        bench.prepare_home(state, "student00")
+        bench.spawn(hub, "student00", timeout=180)
+        kernels_url = f"{hub.url}/user/student00/api/kernels"
+        kernel = bench.Kernel(hub, "student00", "course/00_setup_and_tour.ipynb", timeout=120)
+        try:
+            kernel.execute("import halfedge_edu as hx; mesh = hx.sample('cube')", timeout=120)
+            assert [k["id"] for k in bench.http_json("GET", kernels_url, hub.token)] == [kernel.kernel_id]
+            # The websocket stays open (its tab is open) and nothing runs: the kernel goes.
+            started, alive = time.monotonic(), True
+            while alive and time.monotonic() - started < 20 * KERNEL_CULL_SECONDS:
+                time.sleep(1)
+                alive = bool(bench.http_json("GET", kernels_url, hub.token))
+            waited = time.monotonic() - started
+        finally:
+            kernel.close()
+        assert not alive, f"the idle kernel still runs after {waited:.0f} s:\n{hub.log_tail()}"
+        assert waited >= KERNEL_CULL_SECONDS - 1, f"culled after {waited:.1f} s, before it was idle long enough"
+        print(f"idle kernel culled {waited:.1f} s after its last cell (cull_idle_timeout={KERNEL_CULL_SECONDS})")
+    finally:
+        bench.stop_hub(hub)
