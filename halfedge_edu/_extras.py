@@ -19,6 +19,29 @@ EXTRA_MODULES: dict[str, tuple[str, ...]] = {
 }
 
 
+# Modules an extra brings without naming them itself (its requirements do), by extra:
+# what the command line needs from the notebooks extra (grade runs notebooks with
+# nbclient and nbformat, which come with jupyterlab; --progress draws with tqdm).
+BROUGHT_MODULES: dict[str, tuple[str, ...]] = {
+    "notebooks": ("tqdm", "nbclient", "nbformat", "ipykernel"),
+}
+
+
+def extra_for(module: str | None) -> str | None:
+    """The extra that installs ``module`` (a top-level module name, or a submodule of one), or None."""
+    top = (module or "").split(".")[0]
+    for table in (EXTRA_MODULES, BROUGHT_MODULES):
+        for extra, modules in table.items():
+            if top in modules:
+                return extra
+    return None
+
+
+def install_hint(extra: str) -> str:
+    """The command that installs ``extra``."""
+    return f'pip install "{PACKAGE}[{extra}]"'
+
+
 class MissingExtraError(ModuleNotFoundError):
     """An optional dependency is not installed; the message names the extra that brings it."""
 
@@ -34,6 +57,6 @@ def require(extra: str, feature: str) -> None:
     if missing:
         raise MissingExtraError(
             f"{feature} needs {' and '.join(missing)}, which {'is' if len(missing) == 1 else 'are'} "
-            f'not installed: pip install "{PACKAGE}[{extra}]"',
+            f"not installed: {install_hint(extra)}",
             name=missing[0],
         )

@@ -135,6 +135,9 @@ def _run(args: argparse.Namespace) -> int:
     except Exception as error:
         if args.debug:
             raise
+        missing_extra = _missing_extra(args, error)
+        if missing_extra:
+            return _fail(missing_extra)
         if _is_input_error(error):
             return _fail(_with_path(args.file, error))
         # Anything else is a bug in halfedge_edu, not a problem with the input.
@@ -142,6 +145,16 @@ def _run(args: argparse.Namespace) -> int:
             f"internal error ({type(error).__name__}: {error}); "
             f"run again with --debug to see the traceback, and please report it"
         )
+
+
+def _missing_extra(args: argparse.Namespace, error: Exception) -> str | None:
+    """For an optional dependency that is not installed, the line naming the extra that
+    brings it (``grade`` without the notebooks extra); None for any other error."""
+    from halfedge_edu._extras import extra_for, install_hint
+
+    if not isinstance(error, ModuleNotFoundError) or extra_for(error.name) is None:
+        return None
+    return f"{args.command} needs {error.name}, which is not installed: {install_hint(extra_for(error.name))}"
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -681,7 +694,16 @@ def _check_result_size(estimated_faces: float, what: str, limit: int) -> None:
 
 
 def _progress(args: argparse.Namespace) -> bool:
-    """``--progress`` / ``--no-progress``, or by default: is stderr a terminal?"""
+    """``--progress`` / ``--no-progress``, or by default: is stderr a terminal? An explicit
+    ``--progress`` without tqdm installed is an input problem naming the extra (by
+    default the bar is simply left out)."""
+    if args.progress:
+        import importlib.util
+
+        from halfedge_edu._extras import extra_for, install_hint
+
+        if importlib.util.find_spec("tqdm") is None:
+            raise InputProblem(f"--progress needs tqdm, which is not installed: {install_hint(extra_for('tqdm'))}")
     if args.progress is not None:
         return args.progress
     try:

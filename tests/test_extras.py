@@ -66,3 +66,58 @@ def test_every_extra_module_is_a_requirement_of_that_extra_in_pyproject():
     for extra, modules in _extras.EXTRA_MODULES.items():
         names = {Requirement(line).name.lower() for line in extras[extra]}
         assert set(modules) <= names, f"{extra}: {sorted(set(modules) - names)} not in the extra"
+
+
+# ------------------------------------------- the command line names the extra (issue 27)
+
+def run_cli_without(blocked: tuple[str, ...], *arguments: str, cwd: Path = ROOT) -> subprocess.CompletedProcess:
+    """``halfedge-edu ARGUMENTS`` in a fresh interpreter in which ``blocked`` cannot be imported."""
+    code = (
+        "import sys\n"
+        f"for name in {blocked!r}:\n"
+        "    sys.modules[name] = None\n"
+        "from halfedge_edu.cli import main\n"
+        "sys.exit(main(sys.argv[1:]))\n"
+    )
+    return subprocess.run([sys.executable, "-c", code, *arguments], capture_output=True, text=True,
+                          cwd=cwd, timeout=120)
+
+
+def test_grade_without_the_notebooks_extra_names_the_extra_not_an_internal_error(tmp_path):
+    submission = tmp_path / "03_navigating.ipynb"
+    submission.write_text((ROOT / "notebooks" / "student" / "03_navigating.ipynb").read_text(encoding="utf-8"),
+                          encoding="utf-8")
+    result = run_cli_without(("nbformat", "nbclient"), "grade", str(submission), "--out", str(tmp_path / "out"))
+    assert result.returncode == 2, result.stderr
+    (line,) = result.stderr.splitlines()
+    assert line.startswith("halfedge-edu: error: grade needs nbformat") and INSTALL_HINT in line
+    assert "internal error" not in line
+
+
+TETRAHEDRON = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n"
+
+
+def test_progress_without_tqdm_names_the_extra(tmp_path):
+    (tmp_path / "in.obj").write_text(TETRAHEDRON)
+    result = run_cli_without(("tqdm",), "smooth", str(tmp_path / "in.obj"),
+                             str(tmp_path / "out.obj"), "--progress")
+    assert result.returncode == 2, result.stderr
+    (line,) = result.stderr.splitlines()
+    assert line == f"halfedge-edu: error: --progress needs tqdm, which is not installed: {INSTALL_HINT}"
+    assert not (tmp_path / "out.obj").exists()
+
+
+def test_without_tqdm_the_default_simply_draws_no_bar(tmp_path):
+    (tmp_path / "in.obj").write_text(TETRAHEDRON)
+    result = run_cli_without(("tqdm",), "smooth", str(tmp_path / "in.obj"),
+                             str(tmp_path / "out.obj"))
+    assert result.returncode == 0, result.stderr
+    assert (tmp_path / "out.obj").exists()
+
+
+def test_every_module_the_command_line_names_comes_with_its_extra():
+    for extra, modules in _extras.BROUGHT_MODULES.items():
+        for module in modules:
+            assert _extras.extra_for(module) == extra
+    assert _extras.extra_for("pyvista.plotting") == "notebooks"
+    assert _extras.extra_for("numpy") is None
