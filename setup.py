@@ -7,9 +7,12 @@ The README links pictures and files relative to the repository, which is right o
 repository's own page and in a clone, but the package index shows the README without
 the repository beside it. :func:`readme_for_index` rewrites each relative link to an
 absolute one under ``REPOSITORY`` (``/raw/main/`` for pictures, ``/blob/main/`` for
-other files); the README itself stays relative. ``REPOSITORY`` is a placeholder until the
-project has a public address; tests/test_environments.py checks that it equals
-``[project.urls] Repository`` and that every relative link names a file in the repository.
+other files); the README itself stays relative. ``REPOSITORY`` is
+``$HALFEDGE_EDU_REPOSITORY``, which whoever builds a wheel to publish sets to the
+repository's public address (``https://github.com/ORG/halfedge_edu``); it also becomes
+the package's "Repository" URL. Without it (a wheel for a class, built from a clone) the
+README is left as it is and the package names no URL: no made-up address is published.
+tests/test_environments.py checks that every relative link names a file in the repository.
 
 ``build_py`` here also writes
 ``halfedge_edu/chapters/NN_*.ipynb``: the executed student edition of the chapters,
@@ -21,6 +24,7 @@ not checked in: see course.py's docstring.
 from __future__ import annotations
 
 import importlib.util
+import os
 import re
 import sys
 from pathlib import Path
@@ -29,7 +33,8 @@ from setuptools import setup
 from setuptools.command.build_py import build_py
 
 ROOT = Path(__file__).resolve().parent
-REPOSITORY = "https://example.org/halfedge_edu"
+#: The repository's public address, set by whoever builds a wheel for the package index.
+REPOSITORY = os.environ.get("HALFEDGE_EDU_REPOSITORY", "").strip().rstrip("/")
 
 # A Markdown link or picture: [text](target) or ![alt](target), target without spaces.
 MARKDOWN_LINK = re.compile(r"(!?)\[([^\]]*)\]\(([^)\s]+)\)")
@@ -41,7 +46,10 @@ def is_relative(target: str) -> bool:
 
 
 def readme_for_index(text: str, repository: str = REPOSITORY) -> str:
-    """``text`` (Markdown) with every relative link made absolute under ``repository``."""
+    """``text`` (Markdown) with every relative link made absolute under ``repository``
+    (unchanged when there is no repository address)."""
+    if not repository:
+        return text
 
     def absolute(match: re.Match) -> str:
         bang, label, target = match.groups()
@@ -80,4 +88,5 @@ if __name__ == "__main__":  # setuptools runs this file as __main__; tests impor
         cmdclass={"build_py": BuildWithChapters},
         long_description=readme_for_index((ROOT / "README.md").read_text(encoding="utf-8")),
         long_description_content_type="text/markdown",
+        project_urls={"Repository": REPOSITORY} if REPOSITORY else {},
     )

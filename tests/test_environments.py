@@ -128,10 +128,21 @@ def test_every_relative_readme_link_names_a_file_in_the_repository():
 
 def test_readme_for_the_package_index_has_only_absolute_links():
     setup_py = load_setup_py()
-    assert setup_py.REPOSITORY == PROJECT["urls"]["Repository"]
-    rewritten = setup_py.readme_for_index(README)
+    repository = "https://github.com/a-course/halfedge_edu"
+    rewritten = setup_py.readme_for_index(README, repository)
     targets = [m.group(3) for m in setup_py.MARKDOWN_LINK.finditer(rewritten)]
     assert targets and not [t for t in targets if setup_py.is_relative(t)]
-    assert f"{setup_py.REPOSITORY}/raw/main/figures/navigation.png" in rewritten
-    assert f"{setup_py.REPOSITORY}/blob/main/notebooks/03_navigating.ipynb" in rewritten
-    assert setup_py.readme_for_index("[a](#speed) [b](https://x.org/y)") == "[a](#speed) [b](https://x.org/y)"
+    assert f"{repository}/raw/main/figures/navigation.png" in rewritten
+    assert f"{repository}/blob/main/notebooks/03_navigating.ipynb" in rewritten
+    assert setup_py.readme_for_index("[a](#speed) [b](https://x.org/y)", repository) == "[a](#speed) [b](https://x.org/y)"
+
+
+def test_no_made_up_address_is_published():
+    """The repository's address comes from whoever builds for the index
+    ($HALFEDGE_EDU_REPOSITORY); without it the README stays as written and the package
+    names no URL, rather than a placeholder."""
+    assert "urls" not in PROJECT and "urls" in PROJECT["dynamic"]
+    for name in ("pyproject.toml", "setup.py", "README.md", "docs/index.md"):
+        assert "example.org" not in (ROOT / name).read_text(encoding="utf-8"), name
+    setup_py = load_setup_py()
+    assert setup_py.readme_for_index(README, "") == README
