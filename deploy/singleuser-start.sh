@@ -47,8 +47,11 @@ if [ -z "${JUPYTER_RUNTIME_DIR:-}" ]; then
   export JUPYTER_RUNTIME_DIR
 fi
 
-# Each student's own copy of the chapters, from the installed package; files already
-# there (their work) are kept. A failure here must not keep the server from starting.
-halfedge-edu course "${HALFEDGE_EDU_COURSE_DIR:-$HOME/course}" || echo "singleuser-start: could not copy the course" >&2
+# Each student's own copy of the chapters, from the installed package; a chapter the
+# student edited is never overwritten. --update: after the hub's package (or image) is
+# updated, errata reach every student at their next server start; an edited chapter is
+# kept and the newer one written beside it (NN_topic-VERSION.ipynb). A failure here must
+# not keep the server from starting.
+halfedge-edu course "${HALFEDGE_EDU_COURSE_DIR:-$HOME/course}" --update || echo "singleuser-start: could not copy the whole course" >&2
 
 exec "$@"

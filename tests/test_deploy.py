@@ -101,6 +101,18 @@ def test_shared_start_script_sets_the_live_environment_and_copies_the_course(tmp
     assert {name: started[name] for name in MEMORY_SETTINGS} == MEMORY_SETTINGS
 
 
+def test_start_script_brings_errata_to_a_course_copied_by_an_older_version(tmp_path):
+    course = tmp_path / "course"
+    run_start_script(tmp_path)
+    chapter = sorted(course.glob("[0-9][0-9]*_*.ipynb"))[0]
+    notebook = json.loads(chapter.read_text(encoding="utf-8"))
+    notebook["metadata"]["halfedge_edu"]["course"]["version"] = "0.0.1"   # copied by an older release
+    chapter.write_text(json.dumps(notebook), encoding="utf-8")
+    run_start_script(tmp_path)
+    updated = json.loads(chapter.read_text(encoding="utf-8"))["metadata"]["halfedge_edu"]["course"]["version"]
+    assert updated != "0.0.1"
+
+
 def test_start_script_puts_the_kernels_sockets_where_a_long_home_cannot_push_them_past_107_bytes(tmp_path):
     home = tmp_path / ("a-student-with-a-long-name-" * 3)
     home.mkdir()

@@ -269,3 +269,28 @@ def test_make_test_installs_the_dev_extra(tmp_path):
 def test_make_dist_builds_both_and_checks_their_metadata(tmp_path):
     dist = make_dry_run("dist", tmp_path)
     assert "-m build" in dist and "twine check --strict dist/*" in dist
+
+
+# ----------------------------------------------- install lines that work as written (issue 27)
+
+INSTALL_DOCS = ("README.md", "docs/index.md", "docs/deploying.md")
+# `pip install` of the package by name, from the package index (not a wheel file, not a path).
+INDEX_INSTALL = re.compile(r"pip install [\"']?halfedge_edu(\[[a-z,]+\])?[\"']?(?![-\w.])")
+
+
+@pytest.mark.parametrize("name", INSTALL_DOCS)
+def test_an_install_from_the_package_index_is_only_shown_as_what_works_once_published(name):
+    """The package is not on the index: a line that installs it from there fails ("No
+    matching distribution found"). Each paragraph that shows one says so."""
+    text = (ROOT / name).read_text(encoding="utf-8")
+    paragraphs = re.split(r"\n\s*\n", text)
+    unmarked = [paragraph.strip()[:120] for paragraph in paragraphs
+                if INDEX_INSTALL.search(paragraph) and "published" not in paragraph]
+    assert not unmarked, f"{name}: an index install line not marked as working once published: {unmarked}"
+
+
+def test_the_wheel_install_line_names_the_wheel_make_dist_builds():
+    version = PROJECT["version"]
+    for name in ("README.md", "docs/index.md"):
+        text = (ROOT / name).read_text(encoding="utf-8")
+        assert f'pip install "halfedge_edu-{version}-py3-none-any.whl[notebooks]"' in text, name
