@@ -102,9 +102,12 @@ if os.environ.get("HALFEDGE_HUB_SSL_CERT"):
 # Measured (issue 14, benchmarks/bench_class.py, PSS after chapter 03): with the views
 # drawn in the browser (the default) about 350-380 MiB per student, server plus kernel,
 # and nothing while a student rotates a view; with HALFEDGE_EDU_LIVE_BACKEND=server
-# 450-490 MiB and up to a core while dragging. RSS stays under 700 MiB either way.
+# 450-490 MiB and up to a core while dragging. With three chapters' kernels open
+# (benchmarks/bench_chapters_open.py, issue 27) 812-846 MiB at N = 5-20: the guarantee,
+# which Kubernetes places students by, is that, so a node never holds more students than
+# fit when each has three chapters open (docs/deploying.md, "Sizing").
 c.Spawner.mem_limit = "1G"
-c.Spawner.mem_guarantee = "512M"
+c.Spawner.mem_guarantee = "850M"
 c.Spawner.cpu_limit = 1.0
 c.Spawner.cpu_guarantee = 0.25
 c.Spawner.start_timeout = 120
