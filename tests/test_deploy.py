@@ -350,6 +350,7 @@ def test_a_chapter_page_and_the_api_reference_build_cleanly_with_described_pictu
     for alt in alts:
         assert not re.search(r"\.(png|jpe?g)$", alt) and len(alt.split()) >= 5, alt
     assert "halfedge 7" in alts[0]
+    assert "BEGIN SOLUTION" not in page, "the website hands out an answer"
 
 
 def test_binder_removes_the_solution_edition_and_history_after_installing():
