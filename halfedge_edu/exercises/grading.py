@@ -442,7 +442,8 @@ def _grade_in(sandbox: Sandbox, data: bytes, path: Path, chapter: str, chapter_f
             judge.wait()
     out_of_memory = sandbox.out_of_memory()
     verdict = _judge_verdict(judged, exercises)
-    cell_errors = [f"cell {e['cell']} ({e['first_line']}): {e['error']}" for e in report.get("cell_errors", [])]
+    cell_errors = [f"cell {e['cell']}: {e['error']} (the cell that starts {e['first_line']!r})"
+                   for e in report.get("cell_errors", [])]
     problem = stopped or _run_problem(report, out_of_memory, sandbox.limits)
     if verdict is None:
         reason = problem or "the grading cell did not run (the kernel stopped before it)"

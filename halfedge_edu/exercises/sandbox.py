@@ -31,6 +31,7 @@ clean-up, but not the file-system view: run one submission per CI job there.
 
 from __future__ import annotations
 
+import functools
 import os
 import secrets
 import shutil
@@ -72,6 +73,7 @@ class Limits:
     output_mb: int = 8
 
 
+@functools.lru_cache(maxsize=None)
 def bubblewrap_works() -> bool:
     """Whether ``bwrap`` is installed and can make the namespaces the sandbox uses here."""
     bwrap = shutil.which("bwrap")

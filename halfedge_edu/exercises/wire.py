@@ -29,7 +29,7 @@ import json
 import math
 import socket
 import struct
-from pathlib import PurePath
+from pathlib import Path, PurePath
 
 import numpy as np
 
@@ -192,7 +192,7 @@ def decode(data, meshes: list | None = None, mesh_factory=None, depth: int = 0):
             raise WireError(f"an unknown float {text!r}")
         return float(text)
     if tag == "path":
-        return PurePath(_field(data, "v", str))
+        return Path(_field(data, "v", str))
     if tag == "handle":
         return _handle(data, meshes)
     if tag == "mesh":
