@@ -4,7 +4,8 @@
 ``simplify``, ``smooth``, ``remesh`` and ``convert`` read IN, run one algorithm and
 write OUT (the format picked by OUT's suffix), then print a one-line summary.
 ``course DEST`` copies the student edition of the chapters; ``grade`` grades learners'
-chapter notebooks into JSON and JUnit reports (exit 0 whenever grading ran).
+chapter notebooks, each in its own sandbox, into JSON and JUnit reports (exit 0 when every
+report was written, whatever the scores).
 
 Promises, each tested in tests/test_cli.py:
 

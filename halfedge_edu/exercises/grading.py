@@ -266,6 +266,9 @@ def exercises_for(chapter: str) -> list[Exercise]:
 
 #: A chapter's number as its file name starts: "06", or "08b" for a chapter inserted after 08.
 _CHAPTER = r"\d\d[a-z]?"
+#: Seconds the grader gives a run beyond its total time limit to stop by itself (the
+#: runner stops its kernel at the limit; this covers starting and stopping).
+_GRACE = 15
 #: The largest submission the grader reads (a chapter with its pictures is a few MB).
 MAX_SUBMISSION_BYTES = 50 * 1024 * 1024
 
@@ -400,18 +403,22 @@ def _grade_in(sandbox: Sandbox, data: bytes, path: Path, chapter: str, chapter_f
         os.chown(notebook, sandbox.uid, sandbox.uid)
     address = str(sandbox.exchange / "judge.sock")
     listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+    # The judge starts at once (its imports overlap the notebook's run) and waits on
+    # ``handoff`` for the kernel's connection, which the grader accepts and passes on. A
+    # run that ends without connecting closes ``handoff``, and the judge stops at once.
+    handoff, judge_end = socket.socketpair()
     judge = None
     try:
         listener.bind(address)
         os.chmod(address, 0o666)
         listener.listen(1)
         judge = subprocess.Popen(
-            [sys.executable, "-m", "halfedge_edu.exercises.judge", "--listen-fd", str(listener.fileno()),
-             "--exercises", ",".join(e.name for e in exercises), "--seed", str(seed), "--wait", str(total_timeout)],
-            pass_fds=(listener.fileno(),), stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+            [sys.executable, "-m", "halfedge_edu.exercises.judge", "--handoff-fd", str(judge_end.fileno()),
+             "--exercises", ",".join(e.name for e in exercises), "--seed", str(seed)],
+            pass_fds=(judge_end.fileno(),), stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
             stderr=subprocess.DEVNULL, start_new_session=True,
         )
-        listener.close()
+        judge_end.close()
         functions = sorted({name for e in exercises for name in e.functions})
         forbids = {e.name: [*e.forbids, *ANSWER_KEYS] for e in exercises}
         runner_out = sandbox.root / "runner.out"
@@ -423,13 +430,16 @@ def _grade_in(sandbox: Sandbox, data: bytes, path: Path, chapter: str, chapter_f
                  "--kernel", kernel_name, "--max-output", str(sandbox.limits.output_mb * 2**20)],
                 stdout=out,
             )
+            deadline = time.monotonic() + total_timeout + _GRACE
+            _hand_over_connection(listener, handoff, runner, deadline)
             try:
-                runner.wait(timeout=total_timeout + 60)
+                runner.wait(timeout=max(0.0, deadline - time.monotonic()))
                 stopped = None
             except subprocess.TimeoutExpired:
                 stopped = f"the notebook did not finish within {total_timeout:g} s and was stopped"
         sandbox.end_processes()
         try:
+            # With the notebook's processes gone, the judge finishes at once (every call left fails).
             judged, _ = judge.communicate(timeout=30)
         except subprocess.TimeoutExpired:
             judge.kill()
@@ -437,6 +447,8 @@ def _grade_in(sandbox: Sandbox, data: bytes, path: Path, chapter: str, chapter_f
         report = _runner_report(runner_out)
     finally:
         listener.close()
+        handoff.close()
+        judge_end.close()
         if judge is not None and judge.poll() is None:
             judge.kill()
             judge.wait()
@@ -446,7 +458,9 @@ def _grade_in(sandbox: Sandbox, data: bytes, path: Path, chapter: str, chapter_f
                    for e in report.get("cell_errors", [])]
     problem = stopped or _run_problem(report, out_of_memory, sandbox.limits)
     if verdict is None:
-        reason = problem or "the grading cell did not run (the kernel stopped before it)"
+        reason = problem or ("the notebook's run was killed before its functions could be checked (by the "
+                             "notebook's own code, or a limit on memory, processes or time)" if not report
+                             else "the grading cell did not run (the kernel stopped before it)")
         return zero(reason, cell_errors, sandbox.isolation)
     graded = []
     for exercise in exercises:
@@ -458,6 +472,24 @@ def _grade_in(sandbox: Sandbox, data: bytes, path: Path, chapter: str, chapter_f
                                     exercise.points, output, tuple(entry["public"]), tuple(entry["hidden"])))
     return Grade(str(path), chapter, graded, time.monotonic() - started, problem, cell_errors, chapter_from, seed,
                  sandbox.isolation)
+
+
+def _hand_over_connection(listener: socket.socket, handoff: socket.socket, runner: subprocess.Popen,
+                          deadline: float) -> None:
+    """Wait for the kernel's one connection (or the run's end) and pass it to the judge."""
+    listener.settimeout(0.2)
+    try:
+        while runner.poll() is None and time.monotonic() < deadline:
+            try:
+                connection, _ = listener.accept()
+            except TimeoutError:
+                continue
+            with connection:
+                socket.send_fds(handoff, [b"k"], [connection.fileno()])
+            return
+    finally:
+        listener.close()
+        handoff.close()   # no connection came: the judge reads the end of the pipe and stops
 
 
 def _runner_report(path: Path) -> dict:

@@ -1,6 +1,6 @@
 """The judge: run the package's checks on a learner's functions that live in another process.
 
-    python -m halfedge_edu.exercises.judge --listen-fd 3 --exercises flip --seed 1234
+    python -m halfedge_edu.exercises.judge --handoff-fd 3 --exercises flip --seed 1234
 
 The grader starts this process for each submission, next to the sandbox in which the
 learner's notebook runs. The judge imports the checks itself, before any learner code
@@ -234,23 +234,26 @@ def judge(link: Link, exercises: list, seed: int) -> dict:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m halfedge_edu.exercises.judge")
-    parser.add_argument("--listen-fd", type=int, required=True, help="a listening Unix socket, inherited")
+    parser.add_argument("--handoff-fd", type=int, required=True,
+                        help="a Unix socket on which the grader passes the kernel's connection")
     parser.add_argument("--exercises", required=True, help="comma-separated exercise names")
     parser.add_argument("--seed", type=int, required=True, help="the seed of the hidden cases")
-    parser.add_argument("--wait", type=float, default=600, help="seconds to wait for the kernel to connect")
     args = parser.parse_args(argv)
 
     from .grading import EXERCISES
 
     by_name = {exercise.name: exercise for exercise in EXERCISES}
     exercises = [by_name[name] for name in args.exercises.split(",")]
-    listener = socket.socket(fileno=args.listen_fd)
-    listener.settimeout(args.wait)
+    handoff = socket.socket(fileno=args.handoff_fd)
     try:
-        connection, _ = listener.accept()
+        _, fds, _, _ = socket.recv_fds(handoff, 1, 1)
     except OSError:
+        fds = []
+    handoff.close()
+    if not fds:  # the run ended without reaching the grading cell
         print(json.dumps({"connected": False}), flush=True)
         return 0
+    connection = socket.socket(fileno=fds[0])
     link = Link(connection)
     try:
         results = judge(link, exercises, args.seed)
