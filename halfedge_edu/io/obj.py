@@ -26,6 +26,13 @@ Encodings and line endings, each decided on purpose:
 - UTF-16 and UTF-32 text (with or without a byte-order mark) is refused by name, and
   any other file with NUL bytes as binary: their records cannot be read line by line.
 
+Numbers are read with OBJ's own syntax, as other OBJ readers read them, not Python's:
+a coordinate is an optional sign, digits with an optional decimal point, and an
+optional exponent (``1``, ``-0.5``, ``.5``, ``2.``, ``1e-3``, ``+1.5E+2``); an index is an
+optional sign and digits. Anything else is an error naming its line: ``1_000`` (Python
+reads it as 1000, other readers stop or refuse), ``nan`` and ``inf`` (not numbers a mesh
+can use), ``0x10``, digits of other scripts.
+
 The reader checks everything before it returns: a bad line raises ``MeshInputError``
 whose ``.line`` is the 1-based line number and whose message quotes the line, and
 nothing is half-loaded. Only regular files are read (a FIFO would block, a link to
@@ -48,7 +55,8 @@ import numpy as np
 
 from halfedge_edu.core.errors import MeshInputError
 
-__all__ = ["ObjData", "read_obj", "write_obj", "atomic_output", "checked_arrays", "require_regular_file"]
+__all__ = ["ObjData", "read_obj", "write_obj", "atomic_output", "checked_arrays", "parse_coordinates",
+           "require_regular_file"]
 
 
 @dataclass
@@ -81,6 +89,16 @@ SKIPPED_KEYWORDS = frozenset({
 
 #: One line break of any of the three conventions (Windows first, so \r\n is one break).
 _LINE_BREAK = re.compile(r"\r\n|\r|\n")
+
+#: A coordinate in OBJ's number syntax: optional sign, digits with an optional decimal
+#: point (or a point then digits), optional exponent. ASCII only.
+OBJ_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+
+#: A vertex index in OBJ's syntax: optional sign, ASCII digits.
+OBJ_INDEX = re.compile(r"[+-]?[0-9]+")
+
+#: Any character that cannot appear in an OBJ number: the fast check before numpy parses.
+_NOT_A_NUMBER_CHARACTER = re.compile(r"[^0-9eE.+-]")
 
 #: Larger positive indices are rejected while parsing (the range check proper is at the end,
 #: since a positive index may name a vertex defined further down the file).
@@ -217,9 +235,15 @@ def read_obj(path_or_file: str | os.PathLike | IO, *, triangulate: bool = True) 
             vertex_lines.append(line_no)
         elif keyword == "f":
             corners = []
+            # int() alone would also take Python's "1_0" and digits of other scripts: one
+            # look at the whole line, then a token-by-token one only if it has either.
+            python_only = "_" in line or not line.isascii()
             for token in tokens[1:]:
+                vertex_part = token.split("/", 1)[0]
                 try:
-                    index = int(token.split("/", 1)[0])
+                    if python_only and not OBJ_INDEX.fullmatch(vertex_part):
+                        raise ValueError(vertex_part)
+                    index = int(vertex_part)
                 except ValueError:
                     raise _fail(source, line_no, line, f"{token!r} is not a vertex index") from None
                 if index > _MAX_INDEX:  # would not fit an int64 array; no file has this many vertices
@@ -254,7 +278,7 @@ def read_obj(path_or_file: str | os.PathLike | IO, *, triangulate: bool = True) 
                 f"{keyword[:20]!r} is not an OBJ record (v and f are read; vt, vn, g, o, s, usemtl ... are skipped)",
             )
 
-    vertices = _parse_coordinates(coordinates, vertex_lines, text, source)
+    vertices = parse_coordinates(coordinates, vertex_lines, text, source)
     if not faces:
         _refuse_faceless(text, len(vertices), source)
     faces_array = np.array(faces, dtype=np.int64).reshape(-1, 3)  # (m, 3)
@@ -288,33 +312,40 @@ def _refuse_faceless(text: str, n_vertices: int, source: str) -> None:
         )
 
 
-def _parse_coordinates(coordinates: list[list[str]], vertex_lines: list[int], text: str, source: str) -> np.ndarray:
+def parse_coordinates(coordinates: list[list[str]], vertex_lines: list[int], text: str, source: str) -> np.ndarray:
     """Turn the x y z tokens into an (n, 3) float64 array, all at once.
 
-    numpy parses the strings in one call (much faster than ``float()`` per token); only
-    if that fails do we go back line by line to find the bad one.
+    Every token must be an ``OBJ_NUMBER`` and finite. numpy parses the strings in one
+    call (much faster than ``float()`` per token) after one search for a character no
+    OBJ number has; only if either fails do we go back line by line to name the bad one.
+    (numpy alone would take ``1_000``, ``nan`` and ``inf``.) Also used for ASCII STL.
     """
     if not coordinates:
         return np.zeros((0, 3))
     try:
+        if _NOT_A_NUMBER_CHARACTER.search("".join(map("".join, coordinates))):
+            raise ValueError("a character no number has")
         vertices = np.array(coordinates, dtype=np.str_).astype(np.float64)  # (n, 3)
     except ValueError:
         vertices = np.array([_parse_row(row, line_no, text, source) for row, line_no in zip(coordinates, vertex_lines)])
     not_finite = np.flatnonzero(~np.isfinite(vertices).all(axis=1))
-    if len(not_finite):
+    if len(not_finite):  # e.g. 1e999, which overflows to inf
         line_no = vertex_lines[not_finite[0]]
-        raise _fail(source, line_no, _physical_line(text, line_no), "a coordinate is not finite (nan or inf)")
+        raise _fail(source, line_no, _physical_line(text, line_no), "a coordinate is not finite (too large for float64)")
     return vertices
 
 
 def _parse_row(row: list[str], line_no: int, text: str, source: str) -> list[float]:
-    """The slow path: parse one v record's tokens, naming the line if one is not a number."""
+    """The slow path: parse one record's tokens, naming the line if one is not an OBJ number."""
     values = []
     for token in row:
-        try:
-            values.append(float(token))
-        except ValueError:
-            raise _fail(source, line_no, _physical_line(text, line_no), f"{token!r} is not a number") from None
+        if not OBJ_NUMBER.fullmatch(token):
+            if token.lower().lstrip("+-") in ("nan", "inf", "infinity"):
+                problem = f"{token!r} is not finite: no position"
+            else:
+                problem = f"{token[:40]!r} is not a number (sign, digits, decimal point, exponent: e.g. -1.5e3)"
+            raise _fail(source, line_no, _physical_line(text, line_no), problem)
+        values.append(float(token))
     return values
 
 
