@@ -1,8 +1,13 @@
 """``load`` and ``save``: one entry point for every file format.
 
 ``.obj`` goes through the package's own reader and writer (``halfedge_edu.io.obj``), so
-errors name the line of the file. ``.ply``, ``.stl``, ``.off``, ``.glb`` and ``.gltf``
-go through trimesh.
+errors name the line of the file; so does ``.stl`` (``halfedge_edu.io.stl``: trimesh
+reads a damaged STL as the empty mesh). ``.ply`` and ``.off`` are read by trimesh after
+their header's counts are checked against what the file holds
+(``halfedge_edu.io.headers``: trimesh believes the header, so a lying one gave another
+mesh); ``.glb``, ``.gltf`` and ``.dae`` go through trimesh as they are. Every format is
+written by trimesh but ``.obj``. A file that does not say truthfully what it holds is
+refused, never loaded as another mesh.
 
 What each format can hold decides what ``save`` refuses, so that a file never loads
 back as a different mesh: no format takes a non-finite coordinate; the float32 formats
@@ -15,6 +20,7 @@ copies.
 
 from __future__ import annotations
 
+import io
 import os
 import warnings
 from pathlib import Path
@@ -24,7 +30,9 @@ import numpy as np
 from halfedge_edu.core.errors import MeshInputError, MeshWarning
 from halfedge_edu.core.mesh import HalfedgeMesh
 from halfedge_edu.core.repair import repair_faces
+from halfedge_edu.io.headers import check_off, check_ply
 from halfedge_edu.io.obj import atomic_output, checked_arrays, read_obj, require_regular_file, write_obj
+from halfedge_edu.io.stl import read_stl
 
 __all__ = ["load", "load_arrays", "save", "SUFFIXES"]
 
@@ -119,13 +127,29 @@ def load_arrays(path: str | os.PathLike, *, triangulate: bool = True) -> tuple[n
 
 
 def _load_with_trimesh(path: Path) -> tuple[np.ndarray, np.ndarray]:
-    """(vertices, faces) of a non-OBJ file, with trimesh's failures as MeshInputError."""
+    """(vertices, faces) of a non-OBJ file, with trimesh's failures as MeshInputError.
+
+    ``.stl`` is read by ``read_stl``; ``.ply`` and ``.off`` are checked against their
+    headers first (see the module docstring), then read from the same bytes.
+    """
     import trimesh
 
+    suffix = path.suffix.lower()
+    if suffix == ".stl":
+        # STL stores each triangle's three corners by value, with no shared vertices:
+        # corners at exactly the same position are one vertex.
+        return _merge_identical_vertices(*read_stl(path))
+    source: Path | io.BytesIO = path
+    if suffix in (".ply", ".off"):
+        data = _read_bytes(path)
+        (check_ply if suffix == ".ply" else check_off)(data, path.name)
+        source = io.BytesIO(data)
     try:
-        loaded = trimesh.load(path, force="mesh", process=False)
+        loaded = trimesh.load(source, file_type=suffix[1:], force="mesh", process=False)
     except Exception as error:  # trimesh raises many kinds; all mean "cannot read this file"
-        raise MeshInputError(f"{path.name}: trimesh could not read the file ({type(error).__name__}: {error})") from error
+        raise MeshInputError(
+            f"{path.name}: trimesh could not read the file ({type(error).__name__}: {_bounded(str(error))})"
+        ) from error
     faces = np.asarray(getattr(loaded, "faces", np.zeros((0, 3))), dtype=np.int64).reshape(-1, 3)
     vertices = np.asarray(getattr(loaded, "vertices", np.zeros((0, 3))), dtype=np.float64).reshape(-1, 3)
     if len(faces) == 0:
@@ -135,11 +159,20 @@ def _load_with_trimesh(path: Path) -> tuple[np.ndarray, np.ndarray]:
         points = len(getattr(trimesh.load(path, process=False), "vertices", ()))
         if points:
             raise MeshInputError(f"{path.name}: {points} vertices but no triangles: a point cloud, not a mesh")
-    if path.suffix.lower() == ".stl":
-        # STL stores each triangle's three corners by value, with no shared vertices:
-        # corners at exactly the same position are one vertex.
-        vertices, faces = _merge_identical_vertices(vertices, faces)
     return vertices, faces
+
+
+def _read_bytes(path: Path) -> bytes:
+    """The whole file, with a failure to read it as ``MeshInputError``."""
+    try:
+        return path.read_bytes()
+    except OSError as error:
+        raise MeshInputError(f"{path.name}: cannot read the file ({error.strerror or error})") from error
+
+
+def _bounded(text: str, limit: int = 300) -> str:
+    """``text`` cut to ``limit`` characters: a library's message can quote a whole file."""
+    return text if len(text) <= limit else text[: limit - 3] + "..."
 
 
 def _merge_identical_vertices(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
