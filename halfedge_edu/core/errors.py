@@ -9,6 +9,33 @@ structure's rules, ``TopologyError`` for a local operation that is not allowed, 
 
 from __future__ import annotations
 
+from typing import Iterable
+
+#: How many elements a message names before it only counts the rest: a message about a
+#: file with a million copies of one face must stay one readable line, not megabytes.
+MAX_NAMED = 8
+
+
+def first_few(items: Iterable, *, total: int | None = None, limit: int = MAX_NAMED) -> str:
+    """``"a, b, c, ... and 997 more"``: a list for a message, cut after ``limit`` items.
+
+    Every message that lists elements goes through this, so that its length does not
+    grow with the input. Items are shown with ``str``; only the first ``limit`` are
+    looked at, so ``items`` may be a generator over a million elements.
+
+    Args:
+        items: the elements, or a generator of their descriptions.
+        total: how many there are in all (default: counted from ``items``).
+    """
+    shown, count = [], 0
+    for count, item in enumerate(items, start=1):
+        if count <= limit:
+            shown.append(str(item))
+        elif total is not None:
+            break
+    total = count if total is None else total
+    return ", ".join(shown) + (f", ... and {total - limit} more" if total > limit else "")
+
 
 class MeshInputError(ValueError):
     """Input that cannot be turned into a halfedge mesh.
