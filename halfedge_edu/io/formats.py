@@ -20,6 +20,7 @@ copies.
 
 from __future__ import annotations
 
+import errno
 import io
 import os
 import warnings
@@ -31,7 +32,9 @@ from halfedge_edu.core.errors import MeshInputError, MeshWarning
 from halfedge_edu.core.mesh import HalfedgeMesh
 from halfedge_edu.core.repair import repair_faces
 from halfedge_edu.io.headers import check_off, check_ply
-from halfedge_edu.io.obj import atomic_output, checked_arrays, read_obj, require_regular_file, write_obj
+from halfedge_edu.io.obj import (
+    atomic_output, checked_arrays, path_error, read_obj, require_regular_file, shown_path, write_obj,
+)
 from halfedge_edu.io.stl import read_stl
 
 __all__ = ["load", "load_arrays", "save", "SUFFIXES"]
@@ -78,8 +81,10 @@ def load(path: str | os.PathLike, *, repair: bool = False, triangulate: bool = T
 
     Raises:
         FileNotFoundError: the file does not exist (the standard error for that).
-        MeshInputError: an unknown suffix, a file that cannot be read, or triangles
-            that cannot form a halfedge mesh (for ``.obj`` the message names the line).
+        MeshInputError: an unknown suffix, a path too long for the system, a file that
+            cannot be read, a file whose contents do not match what it declares (an
+            STL, PLY or OFF count; see the module docstring), or triangles that cannot
+            form a halfedge mesh (for ``.obj`` the message names the line).
     """
     path = Path(path)
     vertices, faces, face_lines = load_arrays(path, triangulate=triangulate)
@@ -116,8 +121,12 @@ def load_arrays(path: str | os.PathLike, *, triangulate: bool = True) -> tuple[n
     """
     path = Path(path)
     suffix = _suffix(path)
-    if not path.exists():
-        raise FileNotFoundError(f"no such file: {str(path)!r}")
+    try:
+        exists = path.exists()
+    except OSError as error:  # a path too long for the system, say
+        raise path_error(path, error, "read") from error
+    if not exists:
+        raise FileNotFoundError(f"no such file: {shown_path(path)!r}")
     require_regular_file(path)
     if suffix == ".obj":
         data = read_obj(path, triangulate=triangulate)
@@ -195,9 +204,11 @@ def save(mesh: HalfedgeMesh, path: str | os.PathLike) -> None:
     float32, rounded to about 7 digits.
 
     Raises:
-        MeshInputError: an unknown suffix, or a mesh the format cannot hold (see the
-            module docstring): a non-finite coordinate, one beyond float32's range, or
-            for ``.stl`` two vertices at the same position.
+        MeshInputError: an unknown suffix, a path too long for the system, or a mesh the
+            format cannot hold (see the module docstring): a non-finite coordinate, one
+            beyond float32's range, or for ``.stl`` two vertices at the same position.
+        OSError: the file cannot be written (no such folder, permission, disk full);
+            the message names ``path``.
     """
     path = Path(path)
     suffix = _suffix(path)
@@ -206,6 +217,16 @@ def save(mesh: HalfedgeMesh, path: str | os.PathLike) -> None:
         _check_fits_float32(vertices, suffix)
     if suffix == ".stl":
         _check_no_shared_positions(vertices)
+    try:
+        _write(mesh, path, suffix, vertices, faces)
+    except OSError as error:
+        if error.errno == errno.ENAMETOOLONG:
+            raise path_error(path, error, "write") from error
+        raise
+
+
+def _write(mesh: HalfedgeMesh, path: Path, suffix: str, vertices: np.ndarray, faces: np.ndarray) -> None:
+    """Write the checked arrays (``.obj``) or trimesh's export of ``mesh`` to ``path``, atomically."""
     if suffix == ".obj":
         write_obj(path, vertices, faces)
         return

@@ -42,10 +42,12 @@ nothing is half-loaded. Only regular files are read (a FIFO would block, a link 
 from __future__ import annotations
 
 import codecs
+import errno
 import os
 import re
 import secrets
 import stat
+import time
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -56,7 +58,7 @@ import numpy as np
 from halfedge_edu.core.errors import MeshInputError
 
 __all__ = ["ObjData", "read_obj", "write_obj", "atomic_output", "checked_arrays", "parse_coordinates",
-           "require_regular_file"]
+           "path_error", "remove_stale_temporaries", "require_regular_file", "shown_path"]
 
 
 @dataclass
@@ -122,12 +124,46 @@ def require_regular_file(path: str | os.PathLike) -> None:
     except FileNotFoundError:
         raise
     except OSError as error:
-        raise MeshInputError(f"{Path(path).name}: cannot read the file ({error.strerror})") from error
+        raise path_error(path, error, "read") from error
     if stat.S_ISDIR(mode):
         raise MeshInputError(f"{Path(path).name}: cannot read the file (it is a folder, not a file)")
     if not stat.S_ISREG(mode):
         kind = "a FIFO (named pipe)" if stat.S_ISFIFO(mode) else "a device or socket"
         raise MeshInputError(f"{Path(path).name}: is {kind}, not a regular file; only mesh files can be read")
+
+
+#: The longest path a message shows whole; a longer one is cut in the middle.
+MAX_SHOWN_PATH = 120
+
+
+def shown_path(path: str | os.PathLike) -> str:
+    """``path`` for a message: whole, or if very long its start and end and its length.
+
+    A path can be thousands of characters long; a message that quotes it whole is not
+    one readable line any more.
+    """
+    text = os.fsdecode(path)
+    if len(text) <= MAX_SHOWN_PATH:
+        return text
+    return f"{text[:60]}...{text[-40:]} ({len(text)} characters)"
+
+
+def path_error(path: str | os.PathLike, error: OSError, action: str) -> MeshInputError:
+    """The ``MeshInputError`` for a path the system refuses to ``action`` ("read" or "write").
+
+    An over-long path (``ENAMETOOLONG``: a name over 255 bytes, or a whole path over
+    the system's limit, 4096 bytes on Linux) is named as such, with the lengths; any
+    other refusal gives the system's reason.
+    """
+    if error.errno == errno.ENAMETOOLONG:
+        encoded = os.fsencode(path)
+        longest = max((len(part) for part in encoded.split(b"/")), default=0)
+        return MeshInputError(
+            f"{shown_path(path)}: cannot {action} the file: the path is too long for this system "
+            f"({len(encoded)} bytes, its longest name {longest} bytes; most systems allow names of up to "
+            f"255 bytes and paths of up to 4096); use a shorter name or folder"
+        )
+    return MeshInputError(f"{shown_path(Path(path).name)}: cannot {action} the file ({error.strerror or error})")
 
 
 def _read_text(path_or_file) -> tuple[str, str]:
@@ -366,9 +402,14 @@ def atomic_output(path: str | os.PathLike, mode: str = "w") -> Iterator[IO]:
     name plus a suffix, so that an output name near the file system's limit of 255
     bytes can still be written. An error in creating or moving it names ``path``, the
     file the caller asked for, not the temporary.
+
+    The data is flushed to the disk (``fsync``) before the rename, and the folder after
+    it, so that after a crash ``path`` is the old file or the whole new one. A process
+    killed with SIGKILL cannot remove its temporary file; the command line removes such
+    leftovers later (``remove_stale_temporaries``).
     """
     path = Path(path)
-    temporary = path.with_name(f".halfedge_edu-{secrets.token_hex(4)}.tmp")
+    temporary = path.with_name(f"{TEMPORARY_PREFIX}{secrets.token_hex(4)}{TEMPORARY_SUFFIX}")
     # One try from the moment the file may exist: a signal (Ctrl-C, SIGTERM) that lands
     # just after os.open made it must still remove it. ``ours`` is False only when
     # os.open itself failed, so a file we did not make is never removed.
@@ -382,14 +423,73 @@ def atomic_output(path: str | os.PathLike, mode: str = "w") -> Iterator[IO]:
             raise OSError(error.errno, error.strerror, str(path)) from None
         with os.fdopen(descriptor, mode, **({} if "b" in mode else {"encoding": "utf-8", "newline": "\n"})) as file:
             yield file
+            # On the disk before the rename: else a crash soon after can leave the new name
+            # pointing at an empty or partial file (the rename reached the disk, the data not).
+            file.flush()
+            os.fsync(file.fileno())
         try:
             os.replace(temporary, path)
         except OSError as error:
             raise OSError(error.errno, error.strerror, str(path)) from None
+        _sync_folder(path.parent)
     except BaseException:
         if ours:
             temporary.unlink(missing_ok=True)
         raise
+
+
+#: The names of ``atomic_output``'s temporary files: prefix, 8 hex digits, suffix.
+TEMPORARY_PREFIX = ".halfedge_edu-"
+TEMPORARY_SUFFIX = ".tmp"
+_TEMPORARY_NAME = re.compile(re.escape(TEMPORARY_PREFIX) + r"[0-9a-f]{8}" + re.escape(TEMPORARY_SUFFIX))
+
+#: A temporary file untouched this long (seconds) belongs to no running write: a write
+#: changes its file all the time, and takes seconds even for millions of faces.
+STALE_AFTER_SECONDS = 600
+
+
+def _sync_folder(folder: Path) -> None:
+    """Flush the folder's entry list (the rename) to the disk, where the system allows it."""
+    try:
+        descriptor = os.open(folder, os.O_RDONLY)
+    except OSError:
+        return  # e.g. Windows cannot open a folder; its rename is as durable as it gets
+    try:
+        os.fsync(descriptor)
+    except OSError:
+        pass  # some file systems refuse fsync on a folder: nothing more can be done
+    finally:
+        os.close(descriptor)
+
+
+def remove_stale_temporaries(folder: str | os.PathLike, *, older_than: float = STALE_AFTER_SECONDS) -> list[Path]:
+    """Remove ``atomic_output``'s temporary files in ``folder`` untouched for ``older_than`` seconds.
+
+    A write killed with SIGKILL (or a power cut) leaves its ``.halfedge_edu-XXXXXXXX.tmp``
+    behind: nothing in the process runs to remove it. Only regular files with exactly
+    that name pattern are removed (never a link, never another program's file), and
+    only old ones, so a write still running in another process keeps its file.
+
+    Returns:
+        The files removed. A file that cannot be removed is left, silently: cleaning
+        up is a courtesy, and must never stop the command that does it.
+    """
+    removed = []
+    now = time.time()
+    try:
+        entries = list(os.scandir(folder))
+    except OSError:
+        return removed
+    for entry in entries:
+        if not _TEMPORARY_NAME.fullmatch(entry.name):
+            continue
+        try:
+            if entry.is_file(follow_symlinks=False) and now - entry.stat(follow_symlinks=False).st_mtime > older_than:
+                os.unlink(entry.path)
+                removed.append(Path(entry.path))
+        except OSError:
+            continue
+    return removed
 
 
 def checked_arrays(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
