@@ -12,8 +12,17 @@ Promises, each tested in tests/test_cli.py:
   halfedge mesh, a bad option value, an output folder that is missing or not writable)
   ends with one line on stderr, ``halfedge-edu: error: ...``, and exit status 2, never a
   traceback. Usage errors too.
-- OUT is written to a temporary file beside it and moved into place (``hx.save``), so a
-  failure at any point leaves no partial file, and an existing OUT is left untouched.
+- A file that does not say truthfully what it holds (an STL, PLY or OFF whose counts do
+  not match its records, a truncated file, records after the declared ones) is bad
+  input like any other: exit status 2, never another mesh (``hx.load``).
+- OUT is written to a temporary file beside it, flushed to the disk and moved into place
+  (``hx.save``), so a failure at any point leaves no partial file, and an existing OUT
+  is left untouched. A run killed with SIGKILL cannot remove its temporary file: every
+  writing run first removes ``.halfedge_edu-XXXXXXXX.tmp`` files untouched for 10
+  minutes from OUT's folder (no other files).
+- Error lines stay short: lists name their first few elements and count the rest, a
+  path over 120 characters is shown cut in the middle, and a line is at most about 2000
+  characters. A path too long for the system is bad input (exit status 2).
 - Each result is validated before it is written. A broken result is a bug in
   halfedge_edu, not in the input: one line saying so, exit status 1 (the status ``check``
   gives a broken mesh), and nothing written.

@@ -1104,3 +1104,23 @@ def test_an_error_listing_a_million_faces_stays_short(capsys, tmp_path):
     status, _, err = run(capsys, "check", many)
     assert_one_line_error(status, err)
     assert "has 100000 faces" in err and "and 99992 more" in err and len(err) < 1000
+
+
+def test_the_temporary_file_of_a_write_killed_with_sigkill_is_removed_by_a_later_run(capsys, tmp_path, cube):
+    killed = subprocess.run(
+        [sys.executable, "-c",
+         "import os, signal, sys\n"
+         "from halfedge_edu.io.obj import atomic_output\n"
+         "with atomic_output(sys.argv[1], 'wb') as file:\n"
+         "    file.write(b'half a mesh'); file.flush()\n"
+         "    os.kill(os.getpid(), signal.SIGKILL)\n",
+         str(tmp_path / "out.obj")],
+        cwd=ROOT,
+    )
+    assert killed.returncode == -9
+    (left,) = tmp_path.glob(".halfedge_edu-*.tmp")  # nothing in a killed process can remove it
+    an_hour_ago = time.time() - 3600
+    os.utime(left, (an_hour_ago, an_hour_ago))
+    status, _, err = run(capsys, "convert", cube, tmp_path / "out.obj")
+    assert status == 0, err
+    assert_only(tmp_path, "cube.obj", "out.obj")
