@@ -101,6 +101,16 @@ def test_a_stale_handle_as_a_numpy_index_is_refused_with_numpys_index_error(coll
         mesh.positions[kept["vertex"]]
 
 
+def test_validate_around_and_find_edge_refuse_stale_handles(collected):
+    mesh, kept = collected
+    with pytest.raises(hx.StaleHandleError):
+        mesh.validate_around(vertices=[kept["vertex"]])
+    with pytest.raises(hx.StaleHandleError):
+        mesh.validate_around(edges=[kept["edge"]])
+    with pytest.raises(hx.StaleHandleError):
+        mesh.find_edge(kept["vertex"], 0)
+
+
 def test_writing_the_position_of_a_stale_vertex_raises_and_moves_nothing(collected):
     mesh, kept = collected
     before = mesh.positions.copy()
