@@ -92,6 +92,11 @@ def _first_not_a_number(lines: list[str]) -> tuple[int, str] | None:
     return text.count("\n", 0, found.start()), found.group()
 
 
+def _whole_number(word: str) -> int:
+    """``word`` as a count (digits only), or -1 for anything else (``3.5``, ``1e400``, ``-2``)."""
+    return int(word) if word.isascii() and word.isdigit() else -1
+
+
 def _quoted(line: str) -> str:
     """A record for a message, cut short so a message stays one readable line."""
     line = line.strip()
@@ -212,10 +217,7 @@ def _ply_values_wanted(element: _Element, words: list[str]) -> int:
             continue
         if wanted >= len(words):
             return -1
-        try:
-            entries = int(float(words[wanted]))
-        except ValueError:
-            return -1
+        entries = _whole_number(words[wanted])
         if entries < _least_entries(element, prop):
             return -1
         wanted += 1 + entries
@@ -343,6 +345,9 @@ def check_off(data: bytes, name: str) -> None:
         n_vertices, n_faces = int(counts[0]), int(counts[1])
     except (IndexError, ValueError):
         return  # trimesh refuses a malformed counts line by itself
+    if n_vertices < 0 or n_faces < 0:
+        raise MeshInputError(f"{name}: the counts line declares {n_vertices} vertices and {n_faces} faces: "
+                             f"a count cannot be negative")
     odd = _first_not_a_number([" ".join(words) for _, words in body])
     if odd is not None:
         index, word = odd
@@ -361,7 +366,7 @@ def check_off(data: bytes, name: str) -> None:
                 line=line_no, element=("vertex", index),
             )
     for index, (line_no, words) in enumerate(body[n_vertices: n_vertices + n_faces]):
-        corners = int(float(words[0]))
+        corners = _whole_number(words[0])
         if not (corners >= 3 and corners + 1 <= len(words) <= corners + 5):
             raise MeshInputError(
                 f"{name}, line {line_no}: face {index} should be a count n of at least 3 and n vertex indices "
