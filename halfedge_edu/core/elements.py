@@ -9,7 +9,8 @@ raises :class:`~halfedge_edu.core.errors.StaleHandleError` on any use (its index
 navigation, ``int(h)``, passing it to ``mesh.flip``) instead of silently naming
 whatever now has its index; the error points to the maps ``garbage_collect()``
 returned. (As a numpy index, ``mesh.positions[v]``, a stale handle is refused with
-numpy's own ``IndexError``: numpy replaces the handle's message with its generic one.) A collection that removes nothing renumbers nothing and keeps the generation.
+numpy's own ``IndexError``: numpy replaces the handle's message with its generic one.)
+A collection that removes nothing renumbers nothing and keeps the generation.
 
 Two handles are equal when they are of the same kind, on the same mesh, of the same
 generation, with the same index; they hash by kind and index, so they work in sets and
