@@ -211,3 +211,19 @@ def test_a_handle_of_another_mesh_is_still_refused_first(collected):
         mesh.copy().flip(mesh.edge(20))
     with pytest.raises(ValueError, match="another mesh"):
         hx.sample("icosphere").flip(kept["edge"])
+
+
+def test_no_handle_kept_across_a_renumbering_collection_names_any_element():
+    """The issue's survey: keep every handle, collapse at random, collect; none may act."""
+    rng = np.random.default_rng(25)
+    mesh = hx.sample("icosphere")
+    kept = ([mesh.vertex(i) for i in range(mesh.n_vertex_slots)] + [mesh.edge(i) for i in range(mesh.n_edge_slots)]
+            + [mesh.halfedge(i) for i in range(mesh.n_halfedge_slots)] + [mesh.face(i) for i in range(mesh.n_face_slots)])
+    for e in rng.permutation(mesh.n_edge_slots)[:40].tolist():
+        if not mesh.edge_deleted[e] and mesh.can_collapse(e):
+            mesh.collapse(e)
+    mesh.garbage_collect()
+    for handle in kept:
+        with pytest.raises(hx.StaleHandleError):
+            int(handle)
+    assert all(handle.is_stale for handle in kept)
