@@ -116,8 +116,9 @@ def load_arrays(path: str | os.PathLike, *, triangulate: bool = True) -> tuple[n
 
     Raises:
         FileNotFoundError: the file does not exist.
-        MeshInputError: an unknown suffix, a path that is not a regular file, or a file
-            that cannot be read.
+        MeshInputError: an unknown suffix, a path that is not a regular file or too long
+            for the system, a file that cannot be read, or one whose contents do not
+            match what it declares (an STL, PLY or OFF count).
     """
     path = Path(path)
     suffix = _suffix(path)
@@ -131,12 +132,12 @@ def load_arrays(path: str | os.PathLike, *, triangulate: bool = True) -> tuple[n
     if suffix == ".obj":
         data = read_obj(path, triangulate=triangulate)
         return data.vertices, data.faces, data.face_lines
-    vertices, faces = _load_with_trimesh(path)
+    vertices, faces = _load_other_format(path)
     return vertices, faces, None
 
 
-def _load_with_trimesh(path: Path) -> tuple[np.ndarray, np.ndarray]:
-    """(vertices, faces) of a non-OBJ file, with trimesh's failures as MeshInputError.
+def _load_other_format(path: Path) -> tuple[np.ndarray, np.ndarray]:
+    """(vertices, faces) of a non-OBJ file, with every failure as MeshInputError.
 
     ``.stl`` is read by ``read_stl``; ``.ply`` and ``.off`` are checked against their
     headers first (see the module docstring), then read from the same bytes.
