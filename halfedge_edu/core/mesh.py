@@ -53,22 +53,32 @@ class GarbageCollectMaps(NamedTuple):
 
 
 class _ElementList:
-    """The live elements of one kind, for ``for v in mesh.vertices`` and ``len(...)``."""
+    """The live elements of one kind, for ``for v in mesh.vertices`` and ``len(...)``.
+
+    A snapshot of the live indices, like the handles it gives: kept across a
+    renumbering ``garbage_collect()``, its handles raise ``StaleHandleError``.
+    """
 
     def __init__(self, mesh: "HalfedgeMesh", kind: type, deleted: np.ndarray):
         self._mesh = mesh
         self._kind = kind
         self._live = np.flatnonzero(~deleted)
+        self._generation = mesh._generation
 
     def __len__(self) -> int:
         return len(self._live)
 
     def __iter__(self):
-        mesh, kind = self._mesh, self._kind
-        return (kind(mesh, int(i)) for i in self._live)
+        return (self._handle(i) for i in self._live.tolist())
 
     def __getitem__(self, position: int):
-        return self._kind(self._mesh, int(self._live[position]))
+        return self._handle(int(self._live[position]))
+
+    def _handle(self, index: int):
+        """The handle of ``index``, of the generation the list was taken in (so stale if that is past)."""
+        handle = self._kind(self._mesh, index)
+        handle._generation = self._generation
+        return handle
 
     def __repr__(self) -> str:
         return f"<{len(self)} live {self._kind.__name__.lower()}s>"

@@ -227,3 +227,15 @@ def test_no_handle_kept_across_a_renumbering_collection_names_any_element():
         with pytest.raises(hx.StaleHandleError):
             int(handle)
     assert all(handle.is_stale for handle in kept)
+
+
+def test_a_list_of_live_elements_kept_across_a_collection_gives_stale_handles():
+    mesh = hx.sample("icosphere")
+    edges = mesh.edges
+    mesh.collapse(3)
+    mesh.garbage_collect()
+    with pytest.raises(hx.StaleHandleError):
+        next(iter(edges)).index
+    with pytest.raises(hx.StaleHandleError):
+        mesh.flip(edges[20])
+    assert not mesh.edges[20].is_stale
