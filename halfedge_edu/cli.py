@@ -13,8 +13,17 @@ Promises, each tested in tests/test_cli.py:
   halfedge mesh, a bad option value, an output folder that is missing or not writable)
   ends with one line on stderr, ``halfedge-edu: error: ...``, and exit status 2, never a
   traceback. Usage errors too.
-- OUT is written to a temporary file beside it and moved into place (``hx.save``), so a
-  failure at any point leaves no partial file, and an existing OUT is left untouched.
+- A file that does not say truthfully what it holds (an STL, PLY or OFF whose counts do
+  not match its records, a truncated file, records after the declared ones) is bad
+  input like any other: exit status 2, never another mesh (``hx.load``).
+- OUT is written to a temporary file beside it, flushed to the disk and moved into place
+  (``hx.save``), so a failure at any point leaves no partial file, and an existing OUT
+  is left untouched. A run killed with SIGKILL cannot remove its temporary file: every
+  writing run first removes ``.halfedge_edu-XXXXXXXX.tmp`` files untouched for 10
+  minutes from OUT's folder (no other files).
+- Error lines stay short: lists name their first few elements and count the rest, a
+  path over 120 characters is shown cut in the middle, and a line is at most about 2000
+  characters. A path too long for the system is bad input (exit status 2).
 - Each result is validated before it is written. A broken result is a bug in
   halfedge_edu, not in the input: one line saying so, exit status 1 (the status ``check``
   gives a broken mesh), and nothing written.
@@ -34,6 +43,7 @@ The library is imported only once a subcommand runs, so ``--help`` is instant.
 from __future__ import annotations
 
 import argparse
+import errno
 import math
 import os
 import signal
@@ -770,31 +780,45 @@ def _progress(args: argparse.Namespace) -> bool:
 
 
 def _check_writable(output: Path) -> None:
-    """Raise ``InputProblem`` if ``output`` cannot be written (suffix, folder, permission)."""
+    """Raise ``InputProblem`` if ``output`` cannot be written (suffix, path, folder, permission)."""
     from halfedge_edu.io import SUFFIXES
+    from halfedge_edu.io.obj import path_error, shown_path
 
     suffix = output.suffix.lower()
     if suffix not in SUFFIXES:
-        raise InputProblem(f"{output}: unknown file type {suffix or '(no suffix)'!r}; use one of {', '.join(SUFFIXES)}")
-    if output.is_dir():
-        raise InputProblem(f"{output}: is a folder, not a file name")
+        raise InputProblem(f"{shown_path(output)}: unknown file type {suffix[:20] or '(no suffix)'!r}; "
+                           f"use one of {', '.join(SUFFIXES)}")
     folder = output.parent
-    if not folder.exists():
-        raise InputProblem(f"{folder}: no such folder")
+    try:
+        os.stat(output)  # refuses a name too long for the system, even for a file not there yet
+    except OSError as error:
+        if error.errno == errno.ENAMETOOLONG:
+            raise InputProblem(str(path_error(output, error, "write"))) from error
+        # any other refusal (no such file yet, a folder that is a file) is named below
+    is_folder, folder_exists = output.is_dir(), folder.exists()
+    if is_folder:
+        raise InputProblem(f"{shown_path(output)}: is a folder, not a file name")
+    if not folder_exists:
+        raise InputProblem(f"{shown_path(folder)}: no such folder")
     if not folder.is_dir():
-        raise InputProblem(f"{folder}: is not a folder")
+        raise InputProblem(f"{shown_path(folder)}: is not a folder")
     if not os.access(folder, os.W_OK | os.X_OK):
-        raise InputProblem(f"{folder}: cannot write in this folder (permission denied)")
+        raise InputProblem(f"{shown_path(folder)}: cannot write in this folder (permission denied)")
 
 
 def _save(mesh, output: Path) -> None:
     """``hx.save`` (temporary file beside OUT, then moved into place), errors as ``InputProblem``.
 
-    A ``MeshInputError`` here is OUT's format refusing the mesh, so it names OUT.
+    A ``MeshInputError`` here is OUT's format refusing the mesh, so it names OUT. First
+    removes temporary files that earlier runs, killed mid-write, left in OUT's folder
+    (only ``.halfedge_edu-XXXXXXXX.tmp`` files untouched for 10 minutes).
     """
     import halfedge_edu as hx
     from halfedge_edu.core.errors import MeshInputError
+    from halfedge_edu.io.obj import remove_stale_temporaries
 
+    # What an earlier run killed mid-write (SIGKILL, a power cut) could not remove itself.
+    remove_stale_temporaries(output.parent)
     try:
         hx.save(mesh, output)
     except (OSError, MeshInputError) as error:
@@ -887,22 +911,33 @@ def _is_input_error(error: Exception) -> bool:
 
 
 def _check_readable(path: Path) -> None:
-    if not path.exists():
-        raise InputProblem(f"{path}: no such file")
-    if path.is_dir():
-        raise InputProblem(f"{path}: is a folder, not a mesh file")
-    if not path.is_file():  # follows symbolic links: a link to /dev/zero is a device
-        raise InputProblem(f"{path}: is not a regular file (a FIFO, device or socket); only mesh files can be read")
+    """Raise ``InputProblem`` unless ``path`` is a regular file this system can name."""
+    from halfedge_edu.io.obj import path_error, shown_path
+
+    try:
+        exists, is_folder, is_file = path.exists(), path.is_dir(), path.is_file()
+    except OSError as error:  # a path too long for the system, say
+        raise InputProblem(str(path_error(path, error, "read"))) from error
+    if not exists:
+        raise InputProblem(f"{shown_path(path)}: no such file")
+    if is_folder:
+        raise InputProblem(f"{shown_path(path)}: is a folder, not a mesh file")
+    if not is_file:  # follows symbolic links: a link to /dev/zero is a device
+        raise InputProblem(f"{shown_path(path)}: is not a regular file (a FIFO, device or socket); "
+                           f"only mesh files can be read")
 
 
 def _with_path(path: Path, error: Exception) -> str:
-    """The error's message, starting with the file (unless it already does)."""
+    """The error's message, starting with the file (unless it already does; a very long path cut short)."""
+    from halfedge_edu.io.obj import shown_path
+
     if isinstance(error, OSError) and error.strerror:
         message = error.strerror
     else:
         message = str(error) or type(error).__name__
-    if not message.startswith((str(path), path.name)):
-        message = f"{path}: {message}"
+    shown = shown_path(path)
+    if not message.startswith((str(path), path.name, shown)):
+        message = f"{shown}: {message}"
     return _one_line(message)
 
 
@@ -919,8 +954,17 @@ def _one_line(text: str) -> str:
     return " ".join(text.split())
 
 
+#: The longest error message printed whole: a message quoting a whole file or a list of
+#: a million faces must not become megabytes on one line.
+MAX_MESSAGE = 2000
+
+
 def _fail(message: str, status: int = EXIT_ERROR) -> int:
-    _print(f"{PROG}: error: {_one_line(message)}", file=sys.stderr)
+    """Print ``message`` as one ``error:`` line on stderr (cut short past ``MAX_MESSAGE``); return ``status``."""
+    message = _one_line(message)
+    if len(message) > MAX_MESSAGE:
+        message = f"{message[:MAX_MESSAGE]} ... ({len(message) - MAX_MESSAGE} more characters cut)"
+    _print(f"{PROG}: error: {message}", file=sys.stderr)
     return status
 
 
