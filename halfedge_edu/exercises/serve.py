@@ -21,17 +21,14 @@ object, so every alias and bound method of it is covered.
 from __future__ import annotations
 
 import importlib
-import signal
 import socket
-import sys
 import sysconfig
-import threading
 import traceback
 import types
-from contextlib import contextmanager
 from pathlib import Path
 
 from . import wire
+from .harness import _time_limit, _TookTooLong
 
 #: Prefix of a ``forbids`` entry that names a function the chapter's own cells define.
 NOTEBOOK = "notebook:"
@@ -150,29 +147,6 @@ def _package_origin(function) -> str | None:
 # The serving loop
 # --------------------------------------------------------------------------------------
 
-class _TookTooLong(BaseException):
-    pass
-
-
-@contextmanager
-def _time_limit(seconds: float):
-    usable = threading.current_thread() is threading.main_thread() and hasattr(signal, "setitimer")
-    if not usable or seconds <= 0:
-        yield
-        return
-
-    def stop(signum, frame):
-        raise _TookTooLong
-
-    previous = signal.signal(signal.SIGALRM, stop)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, previous)
-
-
 def describe(namespace: dict, names: list[str]) -> dict:
     """What the judge needs to know of each function before calling it."""
     found = {}
@@ -254,7 +228,7 @@ def _answer(namespace: dict, request: dict, forbids: dict[str, list[str]]) -> di
     try:
         if origin is not None:
             raise ThisIsTheExercise(f"{name} is {origin}, the package's own function; write it yourself")
-        with _time_limit(float(request.get("seconds", 0))):
+        with _time_limit(float(request.get("seconds", 0)) or 3600.0):
             value = function(*args)
         reply["value"] = wire.encode(value, meshes)
     except _TookTooLong:
