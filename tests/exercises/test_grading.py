@@ -285,3 +285,24 @@ def test_chapter_01s_obj_exercise_earns_nothing_in_the_student_edition_because_i
     obj_io = next(exercise for exercise in grade.exercises if exercise.name == "obj_io")
     assert obj_io.score == 0.0 and obj_io.output.startswith("Not yet.")
     assert "read_obj is not finished yet (NotImplementedError: write read_obj" in obj_io.output
+
+
+# --------------------------------------------------------------------------------------
+# Other courses' right answers, through the sandbox and the judge
+# --------------------------------------------------------------------------------------
+
+def test_right_answers_in_other_conventions_cross_to_the_judge_and_pass(tmp_path):
+    """UChicago's build (3f + c, twins None, vertex halfedges a list) and CMU's clockwise
+    one-ring of Vertex handles: their answers are lists, None and handles, not the
+    package's own types, and must reach the judge as they are."""
+    from . import test_checks
+
+    uchicago = textwrap.dedent(inspect.getsource(test_checks.uchicago_build)).replace("uchicago_build", "build", 1)
+    cmu = ("def one_ring(mesh, v):\n"
+           "    start = v.halfedge\n    ring, h = [], start\n"
+           "    while True:\n        ring.append(h.tip)\n        h = h.twin.next\n"
+           "        if h == start:\n            return ring")
+    build = grade_notebook(submission(tmp_path, uchicago, name="02_building_halfedges.ipynb"))
+    ring = grade_notebook(submission(tmp_path, cmu, name="03_navigating.ipynb"))
+    assert build.score == 1.0, build.exercises[0].output
+    assert ring.score == 1.0 and "clockwise" in ring.exercises[0].output, ring.exercises[0].output
