@@ -18,6 +18,7 @@ from .core import (
     MeshInputError,
     MeshInvariantError,
     MeshWarning,
+    StaleHandleError,
     TopologyError,
     Vertex,
     build_reference,
@@ -46,7 +47,7 @@ __version__ = "0.1.0"
 __all__ = [
     "Edge", "Face", "GarbageCollectMaps", "Halfedge", "HalfedgeMesh", "ManifoldReport",
     "MeshInputError", "MeshInvariantError", "MeshWarning", "RawMesh", "RepairReport",
-    "TopologyError", "Vertex", "bezier_curve", "bezier_surface", "build_reference",
+    "StaleHandleError", "TopologyError", "Vertex", "bezier_curve", "bezier_surface", "build_reference",
     "de_casteljau", "face_normals", "load", "loop_subdivide", "manifold_report", "quality_report", "read_obj", "remesh",
     "repair_faces", "sample", "samples", "save", "simplify", "simplify_sequential", "smooth",
     "vertex_normals", "write_obj",

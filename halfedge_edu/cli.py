@@ -4,7 +4,8 @@
 ``simplify``, ``smooth``, ``remesh`` and ``convert`` read IN, run one algorithm and
 write OUT (the format picked by OUT's suffix), then print a one-line summary.
 ``course DEST`` copies the student edition of the chapters; ``grade`` grades learners'
-chapter notebooks into JSON and JUnit reports (exit 0 whenever grading ran).
+chapter notebooks, each in its own sandbox, into JSON and JUnit reports (exit 0 when every
+report was written, whatever the scores).
 
 Promises, each tested in tests/test_cli.py:
 
@@ -12,8 +13,17 @@ Promises, each tested in tests/test_cli.py:
   halfedge mesh, a bad option value, an output folder that is missing or not writable)
   ends with one line on stderr, ``halfedge-edu: error: ...``, and exit status 2, never a
   traceback. Usage errors too.
-- OUT is written to a temporary file beside it and moved into place (``hx.save``), so a
-  failure at any point leaves no partial file, and an existing OUT is left untouched.
+- A file that does not say truthfully what it holds (an STL, PLY or OFF whose counts do
+  not match its records, a truncated file, records after the declared ones) is bad
+  input like any other: exit status 2, never another mesh (``hx.load``).
+- OUT is written to a temporary file beside it, flushed to the disk and moved into place
+  (``hx.save``), so a failure at any point leaves no partial file, and an existing OUT
+  is left untouched. A run killed with SIGKILL cannot remove its temporary file: every
+  writing run first removes ``.halfedge_edu-XXXXXXXX.tmp`` files untouched for 10
+  minutes from OUT's folder (no other files).
+- Error lines stay short: lists name their first few elements and count the rest, a
+  path over 120 characters is shown cut in the middle, and a line is at most about 2000
+  characters. A path too long for the system is bad input (exit status 2).
 - Each result is validated before it is written. A broken result is a bug in
   halfedge_edu, not in the input: one line saying so, exit status 1 (the status ``check``
   gives a broken mesh), and nothing written.
@@ -33,6 +43,7 @@ The library is imported only once a subcommand runs, so ``--help`` is instant.
 from __future__ import annotations
 
 import argparse
+import errno
 import math
 import os
 import signal
@@ -309,25 +320,42 @@ def _add_grade(commands) -> None:
     """``grade SUBMISSION.ipynb... --out DIR``: see :func:`run_grade`."""
     grade = commands.add_parser(
         "grade",
-        help="run learners' chapter notebooks and grade their exercises (JSON and JUnit reports)",
+        help="run learners' chapter notebooks in a sandbox and grade their exercises (JSON and JUnit reports)",
         description=(
-            "Run each submitted chapter notebook top to bottom in a fresh kernel, check "
-            "each exercise's function with the package's reference tests and write "
-            "DIR/NAME.json (Gradescope/otter results.json) and DIR/NAME.xml (JUnit). "
-            "Exit status 0 when grading ran, whatever the scores; 2 for bad arguments. "
-            "Grading runs the learner's code: run it in your CI's sandbox."
+            "Run each submitted chapter notebook top to bottom in its own sandbox (a private folder, "
+            "limits, and with bubblewrap no network and no view of other submissions), check each "
+            "exercise's function from a separate judge process with the package's public and hidden "
+            "cases, and write DIR/NAME.json (Gradescope/otter results.json) and DIR/NAME.xml (JUnit). "
+            "Every submission gets its report, whatever another one does. Exit status 0 when every "
+            "report was written, whatever the scores; 1 when a report could not be written; 2 for bad "
+            "arguments; 130/143 when interrupted (no report is written for the submission being graded)."
         ),
     )
     grade.add_argument("submissions", type=Path, nargs="+", metavar="SUBMISSION.ipynb",
-                       help="the learners' notebooks (the chapter comes from the notebook or its file name)")
+                       help="the learners' notebooks (the chapter comes from the file name, else the notebook)")
     grade.add_argument("--out", type=Path, required=True, metavar="DIR",
                        help="the folder for the reports (created if missing)")
     grade.add_argument("--chapter", metavar="NN",
-                       help="grade every submission as this chapter (default: from each notebook)")
+                       help="grade every submission as this chapter (default: the file name's NN_, else the "
+                            "notebook's own stamp)")
     grade.add_argument("--cell-timeout", type=_seconds, default=60, metavar="S",
                        help="seconds one cell may run before it is interrupted (default 60)")
     grade.add_argument("--timeout", type=_seconds, default=600, metavar="S",
                        help="seconds a whole notebook may run (default 600)")
+    grade.add_argument("--isolation", choices=("auto", "bubblewrap", "process"), default="auto",
+                       help="bubblewrap: own namespaces, no network, only its own files, a throwaway user when "
+                            "run as root; process: private folder, environment and limits only; auto (default): "
+                            "bubblewrap where it works")
+    grade.add_argument("--memory", type=_whole_number(64), default=2048, metavar="MB",
+                       help="memory of one submission's processes together (default 2048)")
+    grade.add_argument("--processes", type=_whole_number(16), default=256, metavar="N",
+                       help="processes and threads of one submission (default 256)")
+    grade.add_argument("--file-size", type=_whole_number(1), default=64, metavar="MB",
+                       help="the largest file one submission may write (default 64)")
+    grade.add_argument("--output", type=_whole_number(1), default=8, metavar="MB",
+                       help="printed cell output kept per submission; more is dropped (default 8)")
+    grade.add_argument("--seed", type=_whole_number(0), default=None, metavar="N",
+                       help="the hidden cases' seed (default: a new one per run, written in each report)")
     grade.set_defaults(run=run_grade)
 
 
@@ -335,37 +363,98 @@ def run_grade(args: argparse.Namespace) -> int:
     """``grade SUBMISSION.ipynb... --out DIR``: per submission DIR/NAME.json and DIR/NAME.xml and one line.
 
     The JSON follows Gradescope's ``results.json`` schema (otter-grader writes it too),
-    the XML is JUnit (GitHub Classroom, GitLab and Jenkins show it). Exit status 0
-    whenever grading ran, whatever the scores; every argument is checked before the
-    first submission runs, so a bad one costs no grading time. What one grade does:
-    ``halfedge_edu.exercises.grading``.
+    the XML is JUnit (GitHub Classroom, GitLab and Jenkins show it). Every argument is
+    checked before the first submission runs, so a bad one costs no grading time. Then
+    every submission gets its report, written atomically, whatever another one did; the
+    exit status is decided at the end: 0 when every report was written, 1 otherwise.
+    SIGTERM and Ctrl-C stop at once: every process of the submission being graded is
+    ended, no report claims a score for it, and the status is 143 or 130. What one grade
+    does: ``halfedge_edu.exercises.grading``.
     """
     for submission in args.submissions:
-        if not submission.is_file():
-            raise InputProblem(f"{submission}: no such file" if not submission.exists()
-                               else f"{submission}: is not a file")
+        if not submission.exists():
+            raise InputProblem(f"{submission}: no such file")
+        if submission.is_dir():
+            raise InputProblem(f"{submission}: is a folder, not a notebook")
     if args.out.exists() and not args.out.is_dir():
         raise InputProblem(f"{args.out}: exists and is not a folder")
-    stems = [submission.stem for submission in args.submissions]
-    doubled = sorted({stem for stem in stems if stems.count(stem) > 1})
-    if doubled:
-        raise InputProblem(f"two submissions share the name {doubled[0]!r}: their reports would overwrite "
-                           f"each other; give each its own file name")
 
-    from halfedge_edu.exercises.grading import GradingError, grade_notebook, submission_chapter, summary_line
+    from halfedge_edu.exercises.grading import GradingError, Limits, exercises_for, grade_notebook, summary_line
+    from halfedge_edu.exercises.sandbox import choose_isolation
 
     try:
-        chapters = [submission_chapter(submission, args.chapter) for submission in args.submissions]
+        if args.chapter is not None:
+            exercises_for(args.chapter)
+        isolation = choose_isolation(args.isolation)
         args.out.mkdir(parents=True, exist_ok=True)
-    except (GradingError, OSError) as problem:
+    except (GradingError, RuntimeError, OSError) as problem:
         raise InputProblem(str(problem)) from problem
-    for submission, chapter in zip(args.submissions, chapters):
-        grade = grade_notebook(submission, chapter=chapter, cell_timeout=args.cell_timeout,
-                               total_timeout=args.timeout)
-        (args.out / f"{submission.stem}.json").write_text(grade.to_json() + "\n", encoding="utf-8")
-        (args.out / f"{submission.stem}.xml").write_text(grade.to_junit_xml() + "\n", encoding="utf-8")
+    if isolation == "process" and args.isolation == "auto":
+        _warn("bubblewrap is not available here: each submission gets a private folder, environment and limits, "
+              "but can see this machine's files; grade one submission per CI job, or install bubblewrap")
+    limits = Limits(memory_mb=args.memory, processes=args.processes, file_size_mb=args.file_size,
+                    output_mb=args.output)
+    status = EXIT_OK
+    for submission, name in zip(args.submissions, report_names(args.submissions)):
+        try:
+            grade = grade_notebook(submission, chapter=args.chapter, cell_timeout=args.cell_timeout,
+                                   total_timeout=args.timeout, isolation=isolation, limits=limits, seed=args.seed)
+        except Exception as error:  # a bug of the grader: this submission's report says so, the batch goes on
+            from halfedge_edu.exercises.grading import Grade
+
+            grade = Grade(str(submission), args.chapter or "", [], 0.0,
+                          f"the grader failed on this submission ({type(error).__name__}: {error}); "
+                          f"please report it")
+            status = EXIT_INVALID
+        try:
+            _write_report(args.out / f"{name}.json", grade.to_json())
+            _write_report(args.out / f"{name}.xml", grade.to_junit_xml())
+        except OSError as error:
+            _fail(f"{args.out / name}: the report could not be written ({error.strerror or error}); "
+                  f"grading goes on")
+            status = EXIT_INVALID
         _print(summary_line(grade))
-    return EXIT_OK
+    return status
+
+
+def report_names(submissions: Sequence[Path]) -> list[str]:
+    """One report name per submission, never the same twice: the file's stem, with its folders
+    joined in where two stems are alike, with odd characters replaced by ``_``."""
+    import re
+
+    def clean(text: str) -> str:
+        return re.sub(r"[^A-Za-z0-9._-]+", "_", text).strip("._") or "submission"
+
+    stems = [clean(path.stem) for path in submissions]
+    names: list[str] = []
+    for path, stem in zip(submissions, stems):
+        name = stem
+        if stems.count(stem) > 1:
+            name = clean("__".join(path.resolve().parts[-3:-1] + (path.stem,)))
+        base, number = name, 2
+        while name in names:
+            name, number = f"{base}-{number}", number + 1
+        names.append(name)
+    return names
+
+
+def _write_report(path: Path, text: str) -> None:
+    """Write ``text`` to ``path`` atomically: a temporary file beside it, fsync, rename."""
+    import tempfile
+
+    handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(handle, "w", encoding="utf-8") as out:
+            out.write(text + "\n")
+            out.flush()
+            os.fsync(out.fileno())
+        os.replace(temporary, path)
+    except BaseException:
+        try:
+            os.unlink(temporary)
+        except OSError:
+            pass
+        raise
 
 
 def _add_repair(command: argparse.ArgumentParser) -> None:
@@ -713,31 +802,45 @@ def _progress(args: argparse.Namespace) -> bool:
 
 
 def _check_writable(output: Path) -> None:
-    """Raise ``InputProblem`` if ``output`` cannot be written (suffix, folder, permission)."""
+    """Raise ``InputProblem`` if ``output`` cannot be written (suffix, path, folder, permission)."""
     from halfedge_edu.io import SUFFIXES
+    from halfedge_edu.io.obj import path_error, shown_path
 
     suffix = output.suffix.lower()
     if suffix not in SUFFIXES:
-        raise InputProblem(f"{output}: unknown file type {suffix or '(no suffix)'!r}; use one of {', '.join(SUFFIXES)}")
-    if output.is_dir():
-        raise InputProblem(f"{output}: is a folder, not a file name")
+        raise InputProblem(f"{shown_path(output)}: unknown file type {suffix[:20] or '(no suffix)'!r}; "
+                           f"use one of {', '.join(SUFFIXES)}")
     folder = output.parent
-    if not folder.exists():
-        raise InputProblem(f"{folder}: no such folder")
+    try:
+        os.stat(output)  # refuses a name too long for the system, even for a file not there yet
+    except OSError as error:
+        if error.errno == errno.ENAMETOOLONG:
+            raise InputProblem(str(path_error(output, error, "write"))) from error
+        # any other refusal (no such file yet, a folder that is a file) is named below
+    is_folder, folder_exists = output.is_dir(), folder.exists()
+    if is_folder:
+        raise InputProblem(f"{shown_path(output)}: is a folder, not a file name")
+    if not folder_exists:
+        raise InputProblem(f"{shown_path(folder)}: no such folder")
     if not folder.is_dir():
-        raise InputProblem(f"{folder}: is not a folder")
+        raise InputProblem(f"{shown_path(folder)}: is not a folder")
     if not os.access(folder, os.W_OK | os.X_OK):
-        raise InputProblem(f"{folder}: cannot write in this folder (permission denied)")
+        raise InputProblem(f"{shown_path(folder)}: cannot write in this folder (permission denied)")
 
 
 def _save(mesh, output: Path) -> None:
     """``hx.save`` (temporary file beside OUT, then moved into place), errors as ``InputProblem``.
 
-    A ``MeshInputError`` here is OUT's format refusing the mesh, so it names OUT.
+    A ``MeshInputError`` here is OUT's format refusing the mesh, so it names OUT. First
+    removes temporary files that earlier runs, killed mid-write, left in OUT's folder
+    (only ``.halfedge_edu-XXXXXXXX.tmp`` files untouched for 10 minutes).
     """
     import halfedge_edu as hx
     from halfedge_edu.core.errors import MeshInputError
+    from halfedge_edu.io.obj import remove_stale_temporaries
 
+    # What an earlier run killed mid-write (SIGKILL, a power cut) could not remove itself.
+    remove_stale_temporaries(output.parent)
     try:
         hx.save(mesh, output)
     except (OSError, MeshInputError) as error:
@@ -830,22 +933,33 @@ def _is_input_error(error: Exception) -> bool:
 
 
 def _check_readable(path: Path) -> None:
-    if not path.exists():
-        raise InputProblem(f"{path}: no such file")
-    if path.is_dir():
-        raise InputProblem(f"{path}: is a folder, not a mesh file")
-    if not path.is_file():  # follows symbolic links: a link to /dev/zero is a device
-        raise InputProblem(f"{path}: is not a regular file (a FIFO, device or socket); only mesh files can be read")
+    """Raise ``InputProblem`` unless ``path`` is a regular file this system can name."""
+    from halfedge_edu.io.obj import path_error, shown_path
+
+    try:
+        exists, is_folder, is_file = path.exists(), path.is_dir(), path.is_file()
+    except OSError as error:  # a path too long for the system, say
+        raise InputProblem(str(path_error(path, error, "read"))) from error
+    if not exists:
+        raise InputProblem(f"{shown_path(path)}: no such file")
+    if is_folder:
+        raise InputProblem(f"{shown_path(path)}: is a folder, not a mesh file")
+    if not is_file:  # follows symbolic links: a link to /dev/zero is a device
+        raise InputProblem(f"{shown_path(path)}: is not a regular file (a FIFO, device or socket); "
+                           f"only mesh files can be read")
 
 
 def _with_path(path: Path, error: Exception) -> str:
-    """The error's message, starting with the file (unless it already does)."""
+    """The error's message, starting with the file (unless it already does; a very long path cut short)."""
+    from halfedge_edu.io.obj import shown_path
+
     if isinstance(error, OSError) and error.strerror:
         message = error.strerror
     else:
         message = str(error) or type(error).__name__
-    if not message.startswith((str(path), path.name)):
-        message = f"{path}: {message}"
+    shown = shown_path(path)
+    if not message.startswith((str(path), path.name, shown)):
+        message = f"{shown}: {message}"
     return _one_line(message)
 
 
@@ -862,8 +976,17 @@ def _one_line(text: str) -> str:
     return " ".join(text.split())
 
 
+#: The longest error message printed whole: a message quoting a whole file or a list of
+#: a million faces must not become megabytes on one line.
+MAX_MESSAGE = 2000
+
+
 def _fail(message: str, status: int = EXIT_ERROR) -> int:
-    _print(f"{PROG}: error: {_one_line(message)}", file=sys.stderr)
+    """Print ``message`` as one ``error:`` line on stderr (cut short past ``MAX_MESSAGE``); return ``status``."""
+    message = _one_line(message)
+    if len(message) > MAX_MESSAGE:
+        message = f"{message[:MAX_MESSAGE]} ... ({len(message) - MAX_MESSAGE} more characters cut)"
+    _print(f"{PROG}: error: {message}", file=sys.stderr)
     return status
 
 

@@ -1008,3 +1008,119 @@ def test_sigterm_to_a_real_process_leaves_no_temporary_file(tmp_path):
     assert sent, "the temporary file was never seen"
     assert process.returncode == 128 + signal.SIGTERM
     assert sorted(p.name for p in tmp_path.iterdir()) == ["big.obj"]
+
+
+# ---------------------------------------------------------------- issue 25: files that lie, leftovers, long paths
+
+def _binary_stl_with_count(path: Path, mesh: hx.HalfedgeMesh, count: int) -> Path:
+    """``mesh`` as a binary STL whose header declares ``count`` triangles."""
+    data = mesh.to_trimesh().export(file_type="stl")
+    path.write_bytes(data[:80] + count.to_bytes(4, "little") + data[84:])
+    return path
+
+
+@pytest.mark.parametrize("count", [11, 13, 0])
+def test_check_refuses_a_binary_stl_whose_count_is_wrong(capsys, tmp_path, count):
+    damaged = _binary_stl_with_count(tmp_path / "damaged.stl", hx.sample("cube"), count)
+    status, out, err = run(capsys, "check", damaged)
+    assert_one_line_error(status, err)
+    assert f"declares {count} triangles" in err and "room for 12 triangles" in err and out == ""
+
+
+def test_check_refuses_a_truncated_ascii_stl(capsys, tmp_path):
+    text = hx.sample("cube").to_trimesh().export(file_type="stl_ascii")
+    damaged = tmp_path / "cut.stl"
+    damaged.write_text(text[: len(text) // 2])
+    status, _, err = run(capsys, "check", damaged)
+    assert_one_line_error(status, err)
+    assert "cut.stl" in err and "truncated" in err
+
+
+@pytest.mark.parametrize("name, content, expected", [
+    ("issue.off", "OFF\n5 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n",
+     "vertex 4 should have 3 values"),
+    ("hole.off", "OFF\n4 3 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n",
+     "declares 4 vertices and 3 faces"),
+    ("underscore.obj", "v 1_000 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n", "'1_000' is not a number"),
+])
+def test_convert_refuses_a_lying_file_and_leaves_the_output_as_it_was(capsys, tmp_path, old_output,
+                                                                      name, content, expected):
+    (tmp_path / name).write_text(content)
+    status, _, err = run(capsys, "convert", tmp_path / name, old_output)
+    assert_one_line_error(status, err)
+    assert expected in err
+    assert old_output.read_text() == "# an earlier result\n"
+    assert_only(tmp_path, name, old_output.name)
+
+
+def test_convert_of_a_damaged_stl_leaves_the_output_as_it_was(capsys, tmp_path, old_output):
+    damaged = _binary_stl_with_count(tmp_path / "damaged.stl", hx.sample("cube"), 13)
+    status, _, err = run(capsys, "convert", damaged, old_output)
+    assert_one_line_error(status, err)
+    assert old_output.read_text() == "# an earlier result\n"
+
+
+def test_a_later_run_removes_temporary_files_a_killed_run_left(capsys, tmp_path, cube):
+    stale = tmp_path / ".halfedge_edu-0123abcd.tmp"  # what kill -9 during a write leaves
+    fresh = tmp_path / ".halfedge_edu-89abcdef.tmp"  # perhaps another run writing right now
+    others = [tmp_path / name for name in (".halfedge_edu-notmine.tmp", "notes.tmp", ".halfedge_edu-0123abcd.tmp.bak")]
+    for path in [stale, fresh, *others]:
+        path.write_text("partial")
+    an_hour_ago = time.time() - 3600
+    for path in [stale, *others]:
+        os.utime(path, (an_hour_ago, an_hour_ago))
+    status, _, err = run(capsys, "convert", cube, tmp_path / "out.obj")
+    assert status == 0, err
+    assert not stale.exists()
+    assert fresh.exists() and all(path.exists() for path in others)
+
+
+def test_a_cli_write_is_flushed_to_the_disk_before_the_rename(capsys, tmp_path, cube, monkeypatch):
+    events = []
+    real_fsync, real_replace = os.fsync, os.replace
+    monkeypatch.setattr(os, "fsync", lambda fd: (events.append("fsync"), real_fsync(fd))[1])
+    monkeypatch.setattr(os, "replace", lambda *a: (events.append("replace"), real_replace(*a))[1])
+    status, _, err = run(capsys, "convert", cube, tmp_path / "out.ply")
+    assert status == 0, err
+    assert events[:2] == ["fsync", "replace"]
+
+
+@pytest.mark.parametrize("where", ["input", "output"])
+@pytest.mark.parametrize("long_path", [
+    lambda folder: folder / ("n" * 300 + ".obj"),
+    lambda folder: folder.joinpath(*["d" * 200] * 25, "x.obj"),
+], ids=["name-over-255-bytes", "path-over-4096-bytes"])
+def test_a_path_too_long_for_the_system_is_an_input_problem(capsys, tmp_path, cube, where, long_path):
+    path = long_path(tmp_path)
+    argv = ("check", path) if where == "input" else ("convert", cube, path)
+    status, _, err = run(capsys, *argv)
+    assert_one_line_error(status, err)
+    assert "the path is too long for this system" in err and len(err) < 600
+
+
+def test_an_error_listing_a_million_faces_stays_short(capsys, tmp_path):
+    many = tmp_path / "copies.obj"
+    many.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\n" + "f 1 2 3\n" * 100_000)
+    status, _, err = run(capsys, "check", many)
+    assert_one_line_error(status, err)
+    assert "has 100000 faces" in err and "and 99992 more" in err and len(err) < 1000
+
+
+def test_the_temporary_file_of_a_write_killed_with_sigkill_is_removed_by_a_later_run(capsys, tmp_path, cube):
+    killed = subprocess.run(
+        [sys.executable, "-c",
+         "import os, signal, sys\n"
+         "from halfedge_edu.io.obj import atomic_output\n"
+         "with atomic_output(sys.argv[1], 'wb') as file:\n"
+         "    file.write(b'half a mesh'); file.flush()\n"
+         "    os.kill(os.getpid(), signal.SIGKILL)\n",
+         str(tmp_path / "out.obj")],
+        cwd=ROOT,
+    )
+    assert killed.returncode == -9
+    (left,) = tmp_path.glob(".halfedge_edu-*.tmp")  # nothing in a killed process can remove it
+    an_hour_ago = time.time() - 3600
+    os.utime(left, (an_hour_ago, an_hour_ago))
+    status, _, err = run(capsys, "convert", cube, tmp_path / "out.obj")
+    assert status == 0, err
+    assert_only(tmp_path, "cube.obj", "out.obj")

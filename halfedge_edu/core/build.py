@@ -33,7 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .arrays import compact, face_halfedges, sort_undirected
-from .errors import MeshInputError, MeshWarning
+from .errors import MeshInputError, MeshWarning, first_few
 from .rings import ring_lengths
 
 #: Integer type of every topology array. 32 bits hold 2 billion elements and halve the
@@ -559,7 +559,7 @@ def _raise_crowded_edge(order, same_as_next, tail, head, face_lines, source, nam
     members = order[start: end + 1]
     a, b = name(tail[members[0]]), name(head[members[0]])
     faces = [int(p) // 3 for p in members]
-    listed = ", ".join(f"{f}{_where(f, face_lines, source)}" for f in faces)
+    listed = first_few((f"{f}{_where(f, face_lines, source)}" for f in faces), total=len(faces))
     raise MeshInputError(
         f"edge ({min(a, b)}, {max(a, b)}) has {len(faces)} faces ({listed}); "
         f"in a manifold mesh every edge has one or two faces",

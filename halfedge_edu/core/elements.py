@@ -1,9 +1,20 @@
 """Element handles: small objects that make ``h.next.twin.vertex`` read like the notes.
 
-A handle is just ``(mesh, index)``. It stores nothing else, so it never goes stale in
-a confusing way: every attribute reads the mesh's arrays at the moment you ask.
-Two handles are equal when they are of the same kind, on the same mesh, with the same
-index; they hash by kind and index, so they work in sets and as dict keys.
+A handle is ``(mesh, index)`` plus the mesh's *generation* when it was made. Every
+attribute reads the mesh's arrays at the moment you ask, so a handle follows local
+operations (flip, split and collapse keep indices). ``garbage_collect()`` is different:
+it renumbers elements to close the gaps deletions left, so after it index 20 may name
+another edge. It therefore starts a new generation, and a handle from an earlier one
+raises :class:`~halfedge_edu.core.errors.StaleHandleError` on any use (its index,
+navigation, ``int(h)``, passing it to ``mesh.flip``) instead of silently naming
+whatever now has its index; the error points to the maps ``garbage_collect()``
+returned. (As a numpy index, ``mesh.positions[v]``, a stale handle is refused with
+numpy's own ``IndexError``: numpy replaces the handle's message with its generic one.)
+A collection that removes nothing renumbers nothing and keeps the generation.
+
+Two handles are equal when they are of the same kind, on the same mesh, of the same
+generation, with the same index; they hash by kind and index, so they work in sets and
+as dict keys. Comparing, hashing and ``repr`` never raise, also for a stale handle.
 
 Handles convert to their index with ``int(h)`` (and work directly as numpy indices),
 so ``mesh.positions[v]`` and ``mesh.flip(e)`` accept either a handle or a number.
@@ -15,26 +26,45 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .errors import StaleHandleError
+
 if TYPE_CHECKING:
     from .mesh import HalfedgeMesh
 
 
 class _Handle:
-    __slots__ = ("mesh", "index")
+    __slots__ = ("mesh", "_index", "_generation")
+
+    #: "vertex", "halfedge", "edge" or "face": for messages.
+    kind = "element"
 
     def __init__(self, mesh: "HalfedgeMesh", index: int):
         self.mesh = mesh
-        self.index = int(index)
+        self._index = int(index)
+        self._generation = mesh._generation
+
+    @property
+    def index(self) -> int:
+        """The element's index; raises ``StaleHandleError`` after a renumbering ``garbage_collect()``."""
+        if self._generation != self.mesh._generation:
+            raise StaleHandleError(self.kind, self._index, self._generation, self.mesh._generation)
+        return self._index
+
+    @property
+    def is_stale(self) -> bool:
+        """True when ``garbage_collect()`` renumbered the mesh after this handle was made."""
+        return self._generation != self.mesh._generation
 
     def __eq__(self, other: object) -> bool:
         return (
             type(other) is type(self)
             and other.mesh is self.mesh  # type: ignore[attr-defined]
-            and other.index == self.index  # type: ignore[attr-defined]
+            and other._index == self._index  # type: ignore[attr-defined]
+            and other._generation == self._generation  # type: ignore[attr-defined]
         )
 
     def __hash__(self) -> int:
-        return hash((type(self).__name__, self.index))
+        return hash((type(self).__name__, self._index))
 
     def __index__(self) -> int:
         return self.index
@@ -42,11 +72,16 @@ class _Handle:
     def __int__(self) -> int:
         return self.index
 
+    def _stale_repr(self) -> str:
+        """What ``repr`` shows for a stale handle (it must not raise in a notebook)."""
+        return f"{type(self).__name__}({self._index}: stale, taken before garbage_collect())"
+
 
 class Halfedge(_Handle):
     """One side of an edge. It runs from ``vertex`` (its origin, or tail) to ``tip``."""
 
     __slots__ = ()
+    kind = "halfedge"
 
     @property
     def next(self) -> "Halfedge":
@@ -99,6 +134,8 @@ class Halfedge(_Handle):
         return positions[self.mesh._halfedge_vertex[self.index ^ 1]] - positions[self.mesh._halfedge_vertex[self.index]]
 
     def __repr__(self) -> str:
+        if self.is_stale:
+            return self._stale_repr()
         mesh, h = self.mesh, self.index
         face = int(mesh._halfedge_face[h])
         where = "boundary" if face < 0 else f"face {face}"
@@ -109,6 +146,7 @@ class Vertex(_Handle):
     """A point of the mesh, with one outgoing ``halfedge`` to start walks from."""
 
     __slots__ = ()
+    kind = "vertex"
 
     @property
     def halfedge(self) -> Halfedge | None:
@@ -172,6 +210,8 @@ class Vertex(_Handle):
         return len(self.outgoing())
 
     def __repr__(self) -> str:
+        if self.is_stale:
+            return self._stale_repr()
         x, y, z = (float(c) for c in self.mesh._positions[self.index])
         return f"Vertex({self.index}: ({x:.4g}, {y:.4g}, {z:.4g}))"
 
@@ -180,6 +220,7 @@ class Edge(_Handle):
     """An undirected edge. It owns halfedges ``2e`` and ``2e + 1``."""
 
     __slots__ = ()
+    kind = "edge"
 
     @property
     def halfedge(self) -> Halfedge:
@@ -217,6 +258,8 @@ class Edge(_Handle):
         return [f for f in (self.halfedge.face, self.halfedge.twin.face) if f is not None]
 
     def __repr__(self) -> str:
+        if self.is_stale:
+            return self._stale_repr()
         h = 2 * self.index
         side = " boundary" if self.is_boundary else ""
         return f"Edge({self.index}:{side} {int(self.mesh._halfedge_vertex[h])} - {int(self.mesh._halfedge_vertex[h + 1])})"
@@ -226,6 +269,7 @@ class Face(_Handle):
     """A triangle, walked counter-clockwise by ``halfedge.next``."""
 
     __slots__ = ()
+    kind = "face"
 
     @property
     def halfedge(self) -> Halfedge:
@@ -275,6 +319,8 @@ class Face(_Handle):
         return bool(self.mesh._face_deleted[self.index])
 
     def __repr__(self) -> str:
+        if self.is_stale:
+            return self._stale_repr()
         try:
             corners = [v.index for v in self.vertices()]
         except (IndexError, RuntimeError):

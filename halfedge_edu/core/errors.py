@@ -1,12 +1,40 @@
-"""The three error types of halfedge_edu, and the warning for dropped vertices.
+"""The error types of halfedge_edu, and the warning for dropped vertices.
 
 Every error names the element it is about, so that a student can go and look at it:
 ``MeshInputError`` for input that cannot become a halfedge mesh (a file line, a face,
 an edge or a vertex), ``MeshInvariantError`` for a built mesh that breaks one of the
-structure's rules, and ``TopologyError`` for a local operation that is not allowed.
+structure's rules, ``TopologyError`` for a local operation that is not allowed, and
+``StaleHandleError`` for a handle kept across ``garbage_collect()``.
 """
 
 from __future__ import annotations
+
+from typing import Iterable
+
+#: How many elements a message names before it only counts the rest: a message about a
+#: file with a million copies of one face must stay one readable line, not megabytes.
+MAX_NAMED = 8
+
+
+def first_few(items: Iterable, *, total: int | None = None, limit: int = MAX_NAMED) -> str:
+    """``"a, b, c, ... and 997 more"``: a list for a message, cut after ``limit`` items.
+
+    Every message that lists elements goes through this, so that its length does not
+    grow with the input. Items are shown with ``str``; only the first ``limit`` are
+    looked at, so ``items`` may be a generator over a million elements.
+
+    Args:
+        items: the elements, or a generator of their descriptions.
+        total: how many there are in all (default: counted from ``items``).
+    """
+    shown, count = [], 0
+    for count, item in enumerate(items, start=1):
+        if count <= limit:
+            shown.append(str(item))
+        elif total is not None:
+            break
+    total = count if total is None else total
+    return ", ".join(shown) + (f", ... and {total - limit} more" if total > limit else "")
 
 
 class MeshInputError(ValueError):
@@ -82,6 +110,49 @@ class TopologyError(ValueError):
         self.reason = reason
         self.rule = rule
         self.elements = elements
+
+
+class StaleHandleError(IndexError):
+    """A handle taken before ``garbage_collect()`` renumbered its mesh, used after it.
+
+    ``garbage_collect()`` closes the gaps that deletions left, so index 20 may afterwards
+    name another element; a handle remembers the mesh's generation (how many
+    renumbering collections it had seen) and refuses to act for a later one, instead
+    of silently naming whatever now has its index. An ``IndexError``, like the error
+    for an index that names no element.
+
+    Args:
+        kind: ``"vertex"``, ``"halfedge"``, ``"edge"`` or ``"face"``.
+        index: the handle's index, from before the collection.
+        handle_generation, mesh_generation: the mesh's generation when the handle was
+            made, and now.
+
+    Attributes:
+        kind, index, handle_generation, mesh_generation: as given.
+    """
+
+    kind: str
+    index: int
+    handle_generation: int
+    mesh_generation: int
+
+    #: kind -> the field of ``GarbageCollectMaps`` that renumbers it.
+    MAP_FIELDS = {"vertex": "vertices", "halfedge": "halfedges", "edge": "edges", "face": "faces"}
+
+    def __init__(self, kind: str, index: int, handle_generation: int, mesh_generation: int):
+        field = self.MAP_FIELDS[kind]
+        missed = mesh_generation - handle_generation
+        calls = "garbage_collect() renumbered" if missed == 1 else f"{missed} garbage_collect() calls renumbered"
+        through = "" if missed == 1 else " (map it through each call's maps in turn)"
+        super().__init__(
+            f"{kind} {index} is a stale handle: it was taken before {calls} the mesh, so index {index} "
+            f"may now name another {kind}. Use the maps garbage_collect() returned: maps.{field}[{index}] "
+            f"is its new index (-1 if it was deleted){through}, then mesh.{kind}(new_index)"
+        )
+        self.kind = kind
+        self.index = index
+        self.handle_generation = handle_generation
+        self.mesh_generation = mesh_generation
 
 
 class MeshWarning(UserWarning):

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .arrays import face_halfedges, sort_undirected
-from .errors import MeshInputError
+from .errors import MeshInputError, first_few
 
 __all__ = ["ManifoldReport", "manifold_report", "check_faces_array", "corner_fans"]
 
@@ -74,7 +74,7 @@ class ManifoldReport:
             return shown + (f", ... and {len(items) - max_items} more" if len(items) > max_items else "")
 
         edge_items = [
-            f"({a}, {b}) with faces {faces.tolist()}"
+            f"({a}, {b}) with faces [{first_few(faces.tolist())}]"
             for (a, b), faces in zip(self.nonmanifold_edges.tolist(), self.nonmanifold_edge_faces)
         ]
         rows = [

@@ -53,22 +53,32 @@ class GarbageCollectMaps(NamedTuple):
 
 
 class _ElementList:
-    """The live elements of one kind, for ``for v in mesh.vertices`` and ``len(...)``."""
+    """The live elements of one kind, for ``for v in mesh.vertices`` and ``len(...)``.
+
+    A snapshot of the live indices, like the handles it gives: kept across a
+    renumbering ``garbage_collect()``, its handles raise ``StaleHandleError``.
+    """
 
     def __init__(self, mesh: "HalfedgeMesh", kind: type, deleted: np.ndarray):
         self._mesh = mesh
         self._kind = kind
         self._live = np.flatnonzero(~deleted)
+        self._generation = mesh._generation
 
     def __len__(self) -> int:
         return len(self._live)
 
     def __iter__(self):
-        mesh, kind = self._mesh, self._kind
-        return (kind(mesh, int(i)) for i in self._live)
+        return (self._handle(i) for i in self._live.tolist())
 
     def __getitem__(self, position: int):
-        return self._kind(self._mesh, int(self._live[position]))
+        return self._handle(int(self._live[position]))
+
+    def _handle(self, index: int):
+        """The handle of ``index``, of the generation the list was taken in (so stale if that is past)."""
+        handle = self._kind(self._mesh, index)
+        handle._generation = self._generation
+        return handle
 
     def __repr__(self) -> str:
         return f"<{len(self)} live {self._kind.__name__.lower()}s>"
@@ -156,6 +166,7 @@ class HalfedgeMesh:
         self._n_deleted_faces = 0
         #: Bumped by every change of connectivity, so derived arrays know when to refresh.
         self.topology_version = 0
+        self._generation = 0
         self._cache: dict[str, tuple[int, object]] = {}
 
     @classmethod
@@ -314,6 +325,19 @@ class HalfedgeMesh:
     # ----------------------------------------------------------------------------------
     # Element handles
     # ----------------------------------------------------------------------------------
+
+    #: How many times ``garbage_collect()`` renumbered the mesh (a class default, so a
+    #: mesh made without ``__init__`` has one too). Handles remember it: see ``generation``.
+    _generation = 0
+
+    @property
+    def generation(self) -> int:
+        """How many times :meth:`garbage_collect` has renumbered this mesh.
+
+        Every handle remembers the generation it was made in and raises
+        :class:`~halfedge_edu.core.errors.StaleHandleError` when used in a later one.
+        """
+        return self._generation
 
     def _check_index(self, kind: str, index: int, n_slots: int, deleted: np.ndarray) -> int:
         index = int(index)
@@ -604,7 +628,14 @@ class HalfedgeMesh:
 
         After this, indices run 0..n-1 with no gaps and every pointer is renumbered.
         Elements keep their relative order, so an untouched mesh is unchanged.
+
+        Attention: handles taken before a collection that removed something are stale
+        afterwards (their index may name another element): using one raises
+        :class:`~halfedge_edu.core.errors.StaleHandleError`. Take fresh handles, or map
+        old indices with the returned maps: ``mesh.edge(maps.edges[old])``. A collection
+        with nothing to remove renumbers nothing and leaves handles usable.
         """
+        renumbers = bool(self.vertex_deleted.any() or self.edge_deleted.any() or self.face_deleted.any())
         vertex_map = _old_to_new(self.vertex_deleted)
         edge_map = _old_to_new(self.edge_deleted)
         face_map = _old_to_new(self.face_deleted)
@@ -634,6 +665,8 @@ class HalfedgeMesh:
         self._n_edge_slots = len(self._edge_deleted)
         self._n_face_slots = len(self._face_halfedge)
         self._n_deleted_vertices = self._n_deleted_edges = self._n_deleted_faces = 0
+        if renumbers:
+            self._generation += 1  # every handle taken before now is stale
         self._touch()
         return GarbageCollectMaps(vertex_map, halfedge_map, edge_map, face_map)
 

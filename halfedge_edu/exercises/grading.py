@@ -5,22 +5,29 @@
     grade.score, grade.max_score          # e.g. (1.0, 1.0)
     grade.to_json(); grade.to_junit_xml()
 
+A learner's notebook is untrusted code, so the score is computed where it cannot reach.
 What happens, in order:
 
-1. The submission is copied into a fresh temporary folder and run top to bottom in a
-   fresh kernel (``nbclient``), with a time limit per cell and one for the whole run.
-   A cell that raises does not stop the run (a later cell may still define an
-   exercise's function); a cell that runs too long is interrupted.
-2. One more cell, written by the grader, is appended: for each exercise of the chapter
-   it looks the learner's function up by name and runs the package's own ``check_*``
-   helper on it (the same reference tests the chapter's "check yourself" cells use).
-   The learner's cells cannot see that cell or its per-run key, so printing a fake
-   result does not count.
-3. Each exercise earns its points when its check passes; otherwise zero, with the
-   check's first message ("your my_flip raised NotImplementedError ...", "On 'cube':
-   halfedge 4 ...") as the reason. A notebook that cannot be read, whose kernel dies or
-   that runs past the total limit gets zero for what could not run, with the reason;
-   the grader itself never crashes on a submission.
+1. **The chapter** is the one ``chapter=`` says, else the number the file name starts
+   with (``06_...``), else the notebook's own ``halfedge_edu.chapter`` stamp.
+2. **The notebook runs in a sandbox** (:mod:`~halfedge_edu.exercises.sandbox`): a private
+   folder holding only its own copy, private ``HOME``/``TMPDIR``/``IPYTHONDIR``, a reduced
+   environment, limits on memory, processes, file size and printed output, and (with
+   bubblewrap) no network and no view of anything else on the machine. It runs top to
+   bottom in a fresh kernel (:mod:`~halfedge_edu.exercises.runner`), with a time limit
+   per cell and one for the whole run; a cell that raises does not stop the run.
+3. **The judge** (:mod:`~halfedge_edu.exercises.judge`), a separate process outside the
+   sandbox that imports the checks itself, runs each exercise's ``check_*`` helper on the
+   learner's functions, calling them through the kernel as plain data. Nothing printed,
+   patched, hooked or planted in the learner's kernel can change what the judge decides.
+   Each exercise runs its public cases and hidden ones drawn from a seed per grading
+   run, and while the learner's function runs, the package's own answer to that
+   exercise (``Exercise.forbids``) refuses to be called from it.
+4. **Points**: an exercise earns its points when its public and hidden cases pass and the
+   package's answer was not used; otherwise zero, with the reason in words: the check's
+   first message, or the cell's own error when the function never came to exist (a
+   SyntaxError with its line), or the cell in which the kernel died.
+5. Every process the notebook started is ended and its folder removed.
 
 Report formats, chosen to plug into what courses already run:
 
@@ -28,34 +35,39 @@ Report formats, chosen to plug into what courses already run:
   (``score``, ``tests`` with ``name``/``score``/``max_score``/``output``), which
   otter-grader also writes, so a Gradescope or otter workflow can read it unchanged.
 - ``Grade.to_junit_xml()`` writes one ``testcase`` per exercise (``failure`` with the
-  reason when points were lost): GitHub Classroom, GitLab and Jenkins show JUnit.
+  reason when points were lost): GitHub Classroom, GitLab and Jenkins show JUnit. Text
+  that XML cannot hold (NUL, terminal escapes) is shown as ``\\x1b``.
 
-Attention: grading runs the learner's code. Run it in the sandbox your course CI gives
-each submission; the time limits guard against endless loops, not against malice.
+What it does not promise: a learner who copies the package's source text into their
+notebook has written nothing themselves, and no grader can tell; that is a matter for a
+course's policy on copying, like copying from a textbook.
 """
 
 from __future__ import annotations
 
 import json
+import os
 import re
 import secrets
-import shutil
+import socket
 import subprocess
-import tempfile
+import sys
 import time
 import xml.etree.ElementTree as ElementTree
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
+from .sandbox import Limits, Sandbox
+
 __all__ = [
-    "EXERCISES", "Exercise", "ExerciseGrade", "Grade", "GradingError", "chapter_of", "check_function",
+    "EXERCISES", "Exercise", "ExerciseGrade", "Grade", "GradingError", "Limits", "chapter_of", "check_function",
     "exercises_for", "grade_notebook", "submission_chapter",
 ]
 
 
 @dataclass(frozen=True)
 class Exercise:
-    """One graded exercise: where it is taught and how it is checked.
+    """One graded exercise: where it is taught, how it is checked, and what the learner must write.
 
     Attributes:
         name: short id used in reports ("flip").
@@ -63,6 +75,10 @@ class Exercise:
         functions: the names the learner's notebook defines, passed to the check in order.
         check: the name of the ``halfedge_edu.exercises`` helper that judges them.
         points: what a passing check earns.
+        forbids: the package's own answers to this exercise, which the learner's function may
+            not call while it is graded: dotted paths of functions, methods or whole modules,
+            or ``"notebook:NAME"`` for a function the chapter itself defines. Every exercise
+            also forbids the checks' own reference code (:data:`ANSWER_KEYS`).
     """
 
     name: str
@@ -70,28 +86,57 @@ class Exercise:
     functions: tuple[str, ...]
     check: str
     points: float = 1.0
+    forbids: tuple[str, ...] = ()
 
+
+_MESH = "halfedge_edu.core.mesh.HalfedgeMesh"
+_VERTEX = "halfedge_edu.core.elements.Vertex"
+_OPS = "halfedge_edu.core.ops"
+_ONE_RING = (f"{_OPS}.link.one_ring", f"{_OPS}.link.outgoing", f"{_VERTEX}.neighbors", f"{_VERTEX}.outgoing",
+             f"{_VERTEX}.faces", f"{_VERTEX}.edges", f"{_MESH}.one_rings", "halfedge_edu.core.rings")
+_FLIP = (f"{_MESH}.flip", f"{_OPS}.flip.flip")
+_COLLAPSE = (f"{_MESH}.collapse", f"{_OPS}.collapse.collapse", f"{_OPS}.collapse.apply_collapse",
+             f"{_OPS}.collapse.prepare_collapse", f"{_OPS}.collapse._apply", f"{_OPS}.collapse._gather",
+             f"{_OPS}.collapse._take_place")
+_OBJ = ("halfedge_edu.io.obj", "halfedge_edu.io.formats")
+
+#: The checks' own reference code: forbidden to every exercise (``_de_casteljau``, the
+#: debugging lab's right versions, ``smooth_once_in_place`` ...).
+ANSWER_KEYS: tuple[str, ...] = tuple(f"halfedge_edu.exercises.{module}" for module in (
+    "algorithm_checks", "chapter_checks", "checks", "classic_bugs", "io_checks", "ops_checks", "remesh_checks"))
 
 #: Every graded exercise, in chapter order. The function names are the ones each
 #: chapter's exercise cell asks the learner to fill in.
 EXERCISES: tuple[Exercise, ...] = (
-    Exercise("fan", "01", ("fan",), "check_fan"),
-    Exercise("obj_io", "01", ("read_obj", "write_obj"), "check_obj_io"),
-    Exercise("build", "02", ("build",), "check_build"),
-    Exercise("one_ring", "03", ("one_ring",), "check_one_ring"),
-    Exercise("cut", "04", ("cut_bowtie",), "check_cut"),
-    Exercise("laplacian_step", "05", ("laplacian_step",), "check_laplacian_step"),
-    Exercise("flip", "06", ("my_flip",), "check_flip"),
-    Exercise("collapse", "07", ("my_collapse",), "check_collapse"),
-    Exercise("collapse_is_safe", "08", ("collapse_is_safe",), "check_collapse_is_safe"),
-    Exercise("fixed_flip", "08b", ("fixed_flip",), "check_flip"),
-    Exercise("fixed_collapse", "08b", ("fixed_collapse",), "check_collapse"),
-    Exercise("fixed_one_ring", "08b", ("fixed_one_ring",), "check_one_ring"),
-    Exercise("loop_rules", "09", ("edge_point", "vertex_point"), "check_loop_rules"),
-    Exercise("plane_quadric", "10", ("plane_quadric",), "check_plane_quadric"),
-    Exercise("optimal_point", "10", ("optimal_point",), "check_optimal_point"),
-    Exercise("tangential_smoothing", "11", ("my_tangential_smoothing",), "check_tangential_smoothing"),
-    Exercise("de_casteljau", "12", ("my_de_casteljau",), "check_de_casteljau"),
+    Exercise("fan", "01", ("fan",), "check_fan", forbids=_OBJ),
+    Exercise("obj_io", "01", ("read_obj", "write_obj"), "check_obj_io", forbids=_OBJ),
+    Exercise("build", "02", ("build",), "check_build",
+             forbids=("halfedge_edu.core.build", f"{_MESH}.from_faces", f"{_MESH}.from_trimesh", *_OBJ)),
+    Exercise("one_ring", "03", ("one_ring",), "check_one_ring", forbids=_ONE_RING),
+    Exercise("cut", "04", ("cut_bowtie",), "check_cut", forbids=("halfedge_edu.core.repair",)),
+    Exercise("laplacian_step", "05", ("laplacian_step",), "check_laplacian_step",
+             forbids=("halfedge_edu.algorithms.smoothing",)),
+    Exercise("flip", "06", ("my_flip",), "check_flip", forbids=_FLIP),
+    Exercise("collapse", "07", ("my_collapse",), "check_collapse", forbids=_COLLAPSE),
+    Exercise("collapse_is_safe", "08", ("collapse_is_safe",), "check_collapse_is_safe",
+             forbids=(f"{_OPS}.link.link_condition", f"{_OPS}.link.link_of_edge", f"{_OPS}.link.link_of_vertex",
+                      f"{_OPS}.link.link_violation", f"{_OPS}.collapse.can_collapse", f"{_OPS}.collapse._check",
+                      f"{_MESH}.can_collapse", "notebook:rings_only")),
+    Exercise("fixed_flip", "08b", ("fixed_flip",), "check_flip", forbids=_FLIP),
+    Exercise("fixed_collapse", "08b", ("fixed_collapse",), "check_collapse", forbids=_COLLAPSE),
+    Exercise("fixed_one_ring", "08b", ("fixed_one_ring",), "check_one_ring", forbids=_ONE_RING),
+    Exercise("loop_rules", "09", ("edge_point", "vertex_point"), "check_loop_rules",
+             forbids=("halfedge_edu.algorithms.loop",)),
+    Exercise("plane_quadric", "10", ("plane_quadric",), "check_plane_quadric",
+             forbids=("halfedge_edu.algorithms.simplify", "halfedge_edu.algorithms.simplify_queue",
+                      "halfedge_edu.algorithms.collapse_rounds")),
+    Exercise("optimal_point", "10", ("optimal_point",), "check_optimal_point",
+             forbids=("halfedge_edu.algorithms.simplify", "halfedge_edu.algorithms.simplify_queue",
+                      "halfedge_edu.algorithms.collapse_rounds")),
+    Exercise("tangential_smoothing", "11", ("my_tangential_smoothing",), "check_tangential_smoothing",
+             forbids=("halfedge_edu.algorithms.remesh", "halfedge_edu.algorithms.smoothing")),
+    Exercise("de_casteljau", "12", ("my_de_casteljau",), "check_de_casteljau",
+             forbids=("halfedge_edu.algorithms.bezier",)),
 )
 
 
@@ -101,13 +146,15 @@ class GradingError(ValueError):
 
 @dataclass
 class ExerciseGrade:
-    """Points for one exercise and why."""
+    """Points for one exercise and why; ``public``/``hidden`` are (cases passed, cases run)."""
 
     name: str
     chapter: str
     score: float
     max_score: float
     output: str
+    public: tuple[int, int] = (0, 0)
+    hidden: tuple[int, int] = (0, 0)
 
     @property
     def passed(self) -> bool:
@@ -120,7 +167,8 @@ class Grade:
 
     ``problem`` is set when something stopped the run as a whole (unreadable file, dead
     kernel, total time limit); the exercises that could not be checked then carry it as
-    their reason.
+    their reason. ``chapter_from`` says what picked the chapter; ``seed`` is the hidden
+    cases' seed (pass it back as ``seed=`` to reproduce a grade).
     """
 
     submission: str
@@ -129,6 +177,9 @@ class Grade:
     seconds: float
     problem: str | None = None
     cell_errors: list[str] = field(default_factory=list)
+    chapter_from: str = "the file name"
+    seed: int = 0
+    isolation: str = ""
 
     @property
     def score(self) -> float:
@@ -144,34 +195,64 @@ class Grade:
             "score": self.score,
             "max_score": self.max_score,
             "execution_time": round(self.seconds, 2),
-            "output": self.problem or f"{self.submission}: {self.score:g} of {self.max_score:g} points",
+            "output": printable(self.problem or f"{self.submission}: {self.score:g} of {self.max_score:g} points"),
             "tests": [
                 {"name": f"{e.chapter} {e.name}", "score": e.score, "max_score": e.max_score,
-                 "status": "passed" if e.passed else "failed", "output": e.output}
+                 "status": "passed" if e.passed else "failed", "output": printable(e.output),
+                 "visibility": "visible"}
                 for e in self.exercises
             ],
-            "extra_data": {"submission": self.submission, "chapter": self.chapter,
-                           "cell_errors": self.cell_errors},
+            "extra_data": {"submission": printable(self.submission), "chapter": self.chapter,
+                           "chapter_from": self.chapter_from, "seed": self.seed, "isolation": self.isolation,
+                           "cases": {e.name: {"public": list(e.public), "hidden": list(e.hidden)}
+                                     for e in self.exercises},
+                           "cell_errors": [printable(line) for line in self.cell_errors]},
         }
-        return json.dumps(report, indent=2)
+        return json.dumps(report, indent=2, ensure_ascii=False)
 
     def to_junit_xml(self) -> str:
-        """The report as JUnit XML: one ``testcase`` per exercise, ``failure`` when points were lost."""
+        """The report as JUnit XML: one ``testcase`` per exercise, ``failure`` when points were lost.
+
+        Well-formed for strict (xunit2) readers: every text is stripped of what XML 1.0
+        cannot hold, and the counts are attributes of both ``testsuite`` and ``testsuites``.
+        """
         failures = sum(not e.passed for e in self.exercises)
-        suite = ElementTree.Element("testsuite", name=self.submission, tests=str(len(self.exercises)),
-                                    failures=str(failures), errors="0", time=f"{self.seconds:.2f}")
+        name = printable(self.submission)
+        suites = ElementTree.Element("testsuites", name="halfedge_edu grade", tests=str(len(self.exercises)),
+                                     failures=str(failures), errors="0", time=f"{self.seconds:.2f}")
+        suite = ElementTree.SubElement(suites, "testsuite", name=name, tests=str(len(self.exercises)),
+                                       failures=str(failures), errors="0", skipped="0", time=f"{self.seconds:.2f}")
         for exercise in self.exercises:
             case = ElementTree.SubElement(suite, "testcase", classname=f"chapter{exercise.chapter}",
                                           name=exercise.name, time="0")
-            ElementTree.SubElement(case, "properties")
-            for key, value in (("score", exercise.score), ("max_score", exercise.max_score)):
-                ElementTree.SubElement(case.find("properties"), "property", name=key, value=f"{value:g}")
+            properties = ElementTree.SubElement(case, "properties")
+            for key, value in (("score", f"{exercise.score:g}"), ("max_score", f"{exercise.max_score:g}"),
+                               ("public_cases", "{}/{}".format(*exercise.public)),
+                               ("hidden_cases", "{}/{}".format(*exercise.hidden))):
+                ElementTree.SubElement(properties, "property", name=key, value=value)
             if not exercise.passed:
-                failure = ElementTree.SubElement(case, "failure", message=exercise.output[:500])
-                failure.text = exercise.output
-        suites = ElementTree.Element("testsuites")
-        suites.append(suite)
+                text = printable(exercise.output)
+                failure = ElementTree.SubElement(case, "failure", message=text[:500], type="LostPoints")
+                failure.text = text
         return ElementTree.tostring(suites, encoding="unicode", xml_declaration=True)
+
+
+_NOT_PRINTABLE = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\x7f\ud800-\udfff\ufffe\uffff]")
+
+
+def printable(text: str) -> str:
+    """``text`` with what a terminal, JSON reader or XML 1.0 cannot show written as ``\\xNN``.
+
+    Control characters (NUL, ESC ...) and the odd bytes of a file name that is not UTF-8
+    (Python keeps them as lone surrogates) become visible escapes instead of breaking a
+    report or a terminal.
+    """
+    def escape(match: re.Match) -> str:
+        code = ord(match.group())
+        return f"\\x{code - 0xDC00:02x}" if 0xDC80 <= code <= 0xDCFF else f"\\x{code:02x}" if code < 0x100 \
+            else f"\\u{code:04x}"
+
+    return _NOT_PRINTABLE.sub(escape, str(text))
 
 
 def exercises_for(chapter: str) -> list[Exercise]:
@@ -185,42 +266,58 @@ def exercises_for(chapter: str) -> list[Exercise]:
 
 #: A chapter's number as its file name starts: "06", or "08b" for a chapter inserted after 08.
 _CHAPTER = r"\d\d[a-z]?"
+#: Seconds the grader gives a run beyond its total time limit to stop by itself (the
+#: runner stops its kernel at the limit; this covers starting and stopping).
+_GRACE = 15
+#: The largest submission the grader reads (a chapter with its pictures is a few MB).
+MAX_SUBMISSION_BYTES = 50 * 1024 * 1024
 
 
 def chapter_of(notebook: dict, path: Path) -> str | None:
-    """The chapter a submission belongs to: the notebook's ``halfedge_edu.chapter``
-    metadata (the editions stamp it), else the number its file name starts with."""
-    stamped = notebook.get("metadata", {}).get("halfedge_edu", {}).get("chapter")
-    if isinstance(stamped, str) and re.fullmatch(_CHAPTER, stamped):
-        return stamped
-    return _chapter_from_name(path)
+    """The chapter a submission belongs to: the number its file name starts with, else the
+    notebook's ``halfedge_edu.chapter`` metadata (the editions stamp it)."""
+    return _chapter_from_name(path) or _stamped_chapter(notebook)
+
+
+def _stamped_chapter(notebook: dict) -> str | None:
+    metadata = notebook.get("metadata", {}) if isinstance(notebook, dict) else {}
+    stamped = metadata.get("halfedge_edu", {}).get("chapter") if isinstance(metadata, dict) else None
+    return stamped if isinstance(stamped, str) and re.fullmatch(_CHAPTER, stamped) else None
 
 
 def _chapter_from_name(path: Path) -> str | None:
-    match = re.match(rf"({_CHAPTER})_", path.name)
+    match = re.match(rf"({_CHAPTER})_", Path(path).name)
     return match.group(1) if match else None
 
 
+def _chapter_and_source(path: Path, chapter: str | None) -> tuple[str | None, str]:
+    """(chapter, what picked it): ``chapter`` if given, else the file name, else the notebook's stamp."""
+    if chapter is not None:
+        return chapter, "--chapter"
+    named = _chapter_from_name(path)
+    if named is not None:
+        return named, "the file name"
+    try:
+        if path.stat().st_size <= MAX_SUBMISSION_BYTES:
+            import nbformat
+
+            return _stamped_chapter(nbformat.read(path, as_version=4)), "the notebook's metadata"
+    except Exception:  # unreadable: nothing says the chapter
+        pass
+    return None, "nothing"
+
+
 def submission_chapter(path: str | Path, chapter: str | None = None) -> str:
-    """The chapter ``path`` will be graded as (``chapter`` if given), checked to have exercises.
-
-    Raises :class:`GradingError` when it cannot be told (no stamp, no ``NN_`` file name)
-    or has no graded exercises: the grader's arguments are wrong, not the submission.
-    A notebook that cannot be read is graded by its file name.
-    """
-    import nbformat
-
+    """The chapter ``path`` will be graded as (``chapter`` if given, else its file name, else its
+    stamp), checked to have exercises. Raises :class:`GradingError` when it cannot be told or has
+    no graded exercises."""
     path = Path(path)
-    if chapter is None:
-        try:
-            chapter = chapter_of(nbformat.read(path, as_version=4), path)
-        except Exception:  # unreadable: the file name may still say the chapter
-            chapter = _chapter_from_name(path)
-    if chapter is None:
-        raise GradingError(f"{path}: cannot tell the chapter (no halfedge_edu.chapter metadata and the file "
-                           f"name does not start with NN_); give it with --chapter (chapter=...)")
-    exercises_for(chapter)
-    return chapter
+    found, _ = _chapter_and_source(path, chapter)
+    if found is None:
+        raise GradingError(f"{printable(str(path))}: cannot tell the chapter (the file name does not start with "
+                           f"NN_ and the notebook has no halfedge_edu.chapter metadata); give it with --chapter")
+    exercises_for(found)
+    return found
 
 
 def check_function(exercise: Exercise):
@@ -235,186 +332,274 @@ def check_function(exercise: Exercise):
     return found
 
 
-# The cell the grader appends. It runs in the learner's kernel after their cells, so it
-# sees the functions they defined; it prints one line, marked with a per-run key.
-_GRADING_CELL = """\
-def __halfedge_edu_grade():
-    import json
-    from halfedge_edu.exercises.grading import run_checks
-    return json.dumps(run_checks(globals(), {names!r}))
-print({key!r} + __halfedge_edu_grade())
-"""
-
-
-def run_checks(namespace: dict, exercise_names: list[str]) -> dict[str, dict]:
-    """Run each named exercise's check on the functions found in ``namespace``.
-
-    Used inside the learner's kernel by the grading cell; returns, per exercise,
-    ``{"passed": bool, "output": str}``. A missing function or a check that itself
-    fails is reported as a failed exercise with the reason, never raised.
-    """
-    by_name = {exercise.name: exercise for exercise in EXERCISES}
-    results: dict[str, dict] = {}
-    for name in exercise_names:
-        exercise = by_name[name]
-        missing = [f for f in exercise.functions if not callable(namespace.get(f))]
-        if missing:
-            results[name] = {"passed": False, "output": (
-                f"no function named {', '.join(missing)} was defined: the exercise cell defines "
-                f"{' and '.join(exercise.functions)}; keep those names")}
-            continue
-        try:
-            result = check_function(exercise)(*(namespace[f] for f in exercise.functions))
-        except BaseException as error:  # the check ran the learner's code; report, never crash
-            results[name] = {"passed": False, "output": f"the check stopped: {type(error).__name__}: {error}"}
-            continue
-        results[name] = {"passed": bool(result), "output": str(result.message)}
-    return results
-
-
-def _text_of(outputs: list) -> str:
-    parts = []
-    for output in outputs:
-        if output.get("output_type") == "stream":
-            parts.append(output.get("text", ""))
-    return "".join(parts)
-
-
-def _cell_errors(cells: list) -> list[str]:
-    """One line per learner cell that raised: 'cell 12: NameError: ...'."""
-    found = []
-    for number, cell in enumerate(cells):
-        if cell.get("cell_type") != "code":
-            continue
-        for output in cell.get("outputs", []):
-            if output.get("output_type") == "error":
-                found.append(f"cell {number}: {output.get('ename')}: {output.get('evalue')}"[:300])
-    return found
-
+# --------------------------------------------------------------------------------------
+# One submission
+# --------------------------------------------------------------------------------------
 
 def grade_notebook(path: str | Path, *, chapter: str | None = None, cell_timeout: float = 60,
-                   total_timeout: float = 600, kernel_name: str = "python3") -> Grade:
-    """Run the notebook at ``path`` in a fresh kernel and grade its exercises.
+                   total_timeout: float = 600, kernel_name: str = "python3", isolation: str = "auto",
+                   limits: Limits = Limits(), seed: int | None = None) -> Grade:
+    """Run the notebook at ``path`` in a sandbox and grade its exercises from outside it.
 
     Args:
         path: the learner's ``.ipynb``.
-        chapter: "06" and so on; by default from the notebook (see :func:`submission_chapter`).
+        chapter: "06" and so on; by default the file name's number, else the notebook's stamp.
         cell_timeout: seconds one cell may run before it is interrupted.
-        total_timeout: seconds the whole run may take; past that the kernel is stopped
-            and what was not checked scores zero.
+        total_timeout: seconds the whole run may take; past that every process of it is
+            ended and what was not checked scores zero.
         kernel_name: the Jupyter kernel to run it in (the course environment's).
+        isolation: "auto" (bubblewrap where it works, else "process"), "bubblewrap" or
+            "process"; see :mod:`halfedge_edu.exercises.sandbox`.
+        limits: memory, processes, file size and output of the run.
+        seed: the hidden cases' seed; by default a fresh one per call.
 
     Returns:
-        A :class:`Grade`. Raises :class:`GradingError` only for the grader's own
-        arguments (a chapter that cannot be told or has no exercises); every problem of
-        the submission is reported inside the grade.
+        A :class:`Grade`. Raises :class:`GradingError` only for the grader's own arguments
+        (a ``chapter`` with no exercises); every problem of the submission, including one
+        whose chapter cannot be told, is reported inside the grade.
     """
-    import nbformat
-
     path = Path(path)
     started = time.monotonic()
-    chosen = submission_chapter(path, chapter)
+    seed = secrets.randbits(31) if seed is None else int(seed)
+    if chapter is not None:
+        exercises_for(chapter)
+    chosen, chosen_from = _chapter_and_source(path, chapter)
+    if chosen is None:
+        return Grade(str(path), "", [], time.monotonic() - started,
+                     "cannot tell the chapter: the file name does not start with NN_ (like 06_flip.ipynb) and the "
+                     "notebook has no halfedge_edu.chapter metadata; the grader's --chapter can say it",
+                     chapter_from=chosen_from, seed=seed)
     try:
-        notebook = nbformat.read(path, as_version=4)
-    except Exception as error:  # any unreadable file is the submission's problem
-        return _zero(path, chosen, f"the submission is not a readable notebook: {type(error).__name__}: {error}",
-                     started)
-    exercises = exercises_for(chosen)
+        exercises = exercises_for(chosen)
+    except GradingError as error:
+        return Grade(str(path), chosen, [], time.monotonic() - started, f"{error} (chosen by {chosen_from})",
+                     chapter_from=chosen_from, seed=seed)
 
-    key = f"@@halfedge_edu-grade-{secrets.token_hex(8)}@@"
-    names = [exercise.name for exercise in exercises]
-    notebook.cells.append(nbformat.v4.new_code_cell(_GRADING_CELL.format(names=names, key=key)))
-    problem = _execute(notebook, path, cell_timeout, total_timeout, kernel_name)
+    def zero(reason: str, cell_errors: list[str] | None = None, isolation_used: str = "") -> Grade:
+        graded = [ExerciseGrade(e.name, e.chapter, 0.0, e.points, reason) for e in exercises]
+        return Grade(str(path), chosen, graded, time.monotonic() - started, reason, cell_errors or [],
+                     chosen_from, seed, isolation_used)
 
-    found = None
-    for output in notebook.cells[-1].get("outputs", []):
-        if output.get("output_type") == "stream":
-            for line in output.get("text", "").splitlines():
-                if line.startswith(key):
-                    found = json.loads(line[len(key):])
-    if found is None:
-        reason = problem or "the grading cell did not run (the kernel stopped before it)"
-        return _zero(path, chosen, reason, started, _cell_errors(notebook.cells[:-1]))
-    graded = [ExerciseGrade(e.name, e.chapter, e.points if found[e.name]["passed"] else 0.0, e.points,
-                            found[e.name]["output"]) for e in exercises]
-    return Grade(str(path), chosen, graded, time.monotonic() - started, problem,
-                 _cell_errors(notebook.cells[:-1]))
+    try:
+        if not path.is_file():
+            return zero("the submission is not a file")
+        if path.stat().st_size > MAX_SUBMISSION_BYTES:
+            return zero(f"the submission is larger than {MAX_SUBMISSION_BYTES // 2**20} MB")
+        data = path.read_bytes()
+    except OSError as error:
+        return zero(f"the submission cannot be read: {error.strerror or error}")
+
+    with Sandbox(isolation, limits) as sandbox:
+        return _grade_in(sandbox, data, path, chosen, chosen_from, exercises, cell_timeout, total_timeout,
+                         kernel_name, seed, started, zero)
 
 
-def _zero(path: Path, chapter: str, reason: str, started: float, cell_errors: list[str] | None = None) -> Grade:
-    exercises = [ExerciseGrade(e.name, e.chapter, 0.0, e.points, reason) for e in exercises_for(chapter)]
-    return Grade(str(path), chapter, exercises, time.monotonic() - started, reason, cell_errors or [])
-
-
-def _execute(notebook, path: Path, cell_timeout: float, total_timeout: float, kernel_name: str) -> str | None:
-    """Run ``notebook`` in place in a temporary copy of its folder; a problem in words, or None."""
-    import asyncio
-
-    from nbclient import NotebookClient
-    from nbclient.exceptions import DeadKernelError
-
-    with tempfile.TemporaryDirectory(prefix="halfedge_edu-grade-") as folder:
-        # The learner's notebook may read files beside it (their own OBJ, say).
-        for sibling in path.parent.iterdir() if path.parent.is_dir() else []:
-            if sibling.is_file() and sibling.suffix != ".ipynb" and sibling.stat().st_size < 50_000_000:
-                shutil.copy2(sibling, Path(folder) / sibling.name)
-        grading_cell = notebook.cells[-1]
-
-        def timeout_of(cell) -> int:
-            # The learner's cells get cell_timeout; the grader's own cell runs every check
-            # (each learner call already has its own limit), so only the total bounds it.
-            return int(total_timeout) if cell.source == grading_cell.source else int(cell_timeout)
-
-        client = NotebookClient(
-            notebook, timeout_func=timeout_of, interrupt_on_timeout=True, allow_errors=True,
-            kernel_name=kernel_name, resources={"metadata": {"path": folder}},
+def _grade_in(sandbox: Sandbox, data: bytes, path: Path, chapter: str, chapter_from: str, exercises: list,
+              cell_timeout: float, total_timeout: float, kernel_name: str, seed: int, started: float, zero) -> Grade:
+    """Run the notebook (its bytes ``data``) in ``sandbox`` and the judge beside it."""
+    notebook = sandbox.work / "submission.ipynb"
+    notebook.write_bytes(data)
+    if sandbox.uid is not None:
+        os.chown(notebook, sandbox.uid, sandbox.uid)
+    address = str(sandbox.exchange / "judge.sock")
+    listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+    # The judge starts at once (its imports overlap the notebook's run) and waits on
+    # ``handoff`` for the kernel's connection, which the grader accepts and passes on. A
+    # run that ends without connecting closes ``handoff``, and the judge stops at once.
+    handoff, judge_end = socket.socketpair()
+    judge = None
+    try:
+        listener.bind(address)
+        os.chmod(address, 0o666)
+        listener.listen(1)
+        judge = subprocess.Popen(
+            [sys.executable, "-m", "halfedge_edu.exercises.judge", "--handoff-fd", str(judge_end.fileno()),
+             "--exercises", ",".join(e.name for e in exercises), "--seed", str(seed)],
+            pass_fds=(judge_end.fileno(),), stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+            stderr=subprocess.DEVNULL, start_new_session=True,
         )
-
-        async def run() -> bool:
-            """Run the notebook; False when the total time ran out first."""
-            # The kernel process's own stderr (not the cells') would only add noise to a CI log.
-            task = asyncio.ensure_future(client.async_execute(stderr=subprocess.DEVNULL))
-            done, _ = await asyncio.wait({task}, timeout=total_timeout)
-            if not done:
-                task.cancel()
-                try:
-                    await task
-                except BaseException:  # the cancelled run's own clean-up errors do not matter
-                    pass
-                return False
-            task.result()  # raises what the run raised
-            return True
-
+        judge_end.close()
+        functions = sorted({name for e in exercises for name in e.functions})
+        forbids = {e.name: [*e.forbids, *ANSWER_KEYS] for e in exercises}
+        runner_out = sandbox.root / "runner.out"
+        with open(runner_out, "wb") as out:
+            runner = sandbox.start(
+                [sys.executable, "-m", "halfedge_edu.exercises.runner", str(notebook), "--socket", address,
+                 "--functions", ",".join(functions), "--forbids", json.dumps(forbids),
+                 "--cell-timeout", str(cell_timeout), "--total-timeout", str(total_timeout),
+                 "--kernel", kernel_name, "--max-output", str(sandbox.limits.output_mb * 2**20)],
+                stdout=out,
+            )
+            deadline = time.monotonic() + total_timeout + _GRACE
+            _hand_over_connection(listener, handoff, runner, deadline)
+            try:
+                runner.wait(timeout=max(0.0, deadline - time.monotonic()))
+                stopped = None
+            except subprocess.TimeoutExpired:
+                stopped = f"the notebook did not finish within {total_timeout:g} s and was stopped"
+        sandbox.end_processes()
         try:
-            if not asyncio.run(run()):
-                return f"the notebook did not finish within {total_timeout:g} s and was stopped"
-        except DeadKernelError:
-            return "the kernel died while running the notebook (a crash, os._exit or running out of memory)"
-        except Exception as error:  # nbclient's own failures: report, the grade goes on
-            return f"the notebook could not be run: {type(error).__name__}: {error}"
-        finally:
-            _stop_kernel(client)
+            # With the notebook's processes gone, the judge finishes at once (every call left fails).
+            judged, _ = judge.communicate(timeout=30)
+        except subprocess.TimeoutExpired:
+            judge.kill()
+            judged, _ = judge.communicate()
+        report = _runner_report(runner_out)
+    finally:
+        listener.close()
+        handoff.close()
+        judge_end.close()
+        if judge is not None and judge.poll() is None:
+            judge.kill()
+            judge.wait()
+    out_of_memory = sandbox.out_of_memory()
+    verdict = _judge_verdict(judged, exercises)
+    cell_errors = [f"cell {e['cell']}: {e['error']} (the cell that starts {e['first_line']!r})"
+                   for e in report.get("cell_errors", [])]
+    problem = stopped or _run_problem(report, out_of_memory, sandbox.limits)
+    if verdict is None:
+        reason = problem or ("the notebook's run was killed before its functions could be checked (by the "
+                             "notebook's own code, or a limit on memory, processes or time)" if not report
+                             else "the grading cell did not run (the kernel stopped before it)")
+        return zero(reason, cell_errors, sandbox.isolation)
+    graded = []
+    for exercise in exercises:
+        entry = verdict[exercise.name]
+        output = entry["output"]
+        if entry["missing"]:
+            output = _why_missing(entry["missing"], exercise, report) or output
+        graded.append(ExerciseGrade(exercise.name, exercise.chapter, exercise.points if entry["passed"] else 0.0,
+                                    exercise.points, output, tuple(entry["public"]), tuple(entry["hidden"])))
+    return Grade(str(path), chapter, graded, time.monotonic() - started, problem, cell_errors, chapter_from, seed,
+                 sandbox.isolation)
+
+
+def _hand_over_connection(listener: socket.socket, handoff: socket.socket, runner: subprocess.Popen,
+                          deadline: float) -> None:
+    """Wait for the kernel's one connection (or the run's end) and pass it to the judge."""
+    listener.settimeout(0.2)
+    try:
+        while runner.poll() is None and time.monotonic() < deadline:
+            try:
+                connection, _ = listener.accept()
+            except TimeoutError:
+                continue
+            with connection:
+                socket.send_fds(handoff, [b"k"], [connection.fileno()])
+            return
+    finally:
+        listener.close()
+        handoff.close()   # no connection came: the judge reads the end of the pipe and stops
+
+
+def _runner_report(path: Path) -> dict:
+    """The runner's account of the run (the learner's side: used for reasons, never for points)."""
+    from .runner import REPORT_PREFIX
+
+    try:
+        with open(path, "rb") as handle:
+            handle.seek(max(0, path.stat().st_size - 2**20))
+            text = handle.read().decode("utf-8", "replace")
+    except OSError:
+        return {}
+    for line in reversed(text.splitlines()):
+        if line.startswith(REPORT_PREFIX):
+            try:
+                report = json.loads(line[len(REPORT_PREFIX):])
+            except json.JSONDecodeError:
+                return {}
+            if not isinstance(report, dict):
+                return {}
+            errors = report.get("cell_errors")
+            report["cell_errors"] = [
+                {"cell": int(e.get("cell", 0)), "first_line": str(e.get("first_line", ""))[:60],
+                 "error": str(e.get("error", ""))[:500], "traceback": str(e.get("traceback", ""))[-3000:]}
+                for e in (errors if isinstance(errors, list) else [])[:50] if isinstance(e, dict)]
+            return report
+    return {}
+
+
+def _run_problem(report: dict, out_of_memory: bool, limits: Limits) -> str | None:
+    """The run as a whole, in words (None when it ran to the end)."""
+    if out_of_memory:
+        return f"the notebook ran out of memory (the limit is {limits.memory_mb} MiB) and its kernel was stopped"
+    problem = report.get("problem") if isinstance(report.get("problem"), str) else None
+    if problem == "the kernel died":
+        cell = report.get("dead_cell")
+        where = f" while running cell {int(cell)}" if isinstance(cell, int) else ""
+        return (f"the kernel died{where} (a crash, os._exit, running out of memory, or a limit on processes or "
+                f"file size)")
+    return problem[:500] if problem else None
+
+
+def _why_missing(missing: list[str], exercise: Exercise, report: dict) -> str | None:
+    """The real reason a function does not exist: the error of the cell that should define it."""
+    defines = report.get("defines") if isinstance(report.get("defines"), dict) else {}
+    errors = {e["cell"]: e for e in report.get("cell_errors", [])}
+    for name in missing:
+        cell = defines.get(name)
+        if isinstance(cell, int) and cell in errors:
+            error = errors[cell]
+            where = _error_line(error["traceback"])
+            return (f"your {name} was never defined: cell {cell} ({error['first_line']}) raised "
+                    f"{error['error']}{where}. Fix that cell and run the notebook top to bottom.")
+        if isinstance(cell, int):
+            return (f"your {name} was defined in cell {cell}, but it did not exist at the end of the notebook "
+                    f"(a later cell deleted or replaced it).")
     return None
 
 
-def _stop_kernel(client) -> None:
-    """Make sure no kernel outlives a grade (after a time-out, nbclient may leave one running)."""
-    import asyncio
+def _error_line(traceback_text: str) -> str:
+    """' (line 3: def my_flip(mesh, e)' ...)' from a cell's traceback, when it names a line."""
+    lines = [line for line in traceback_text.splitlines() if line.strip()]
+    numbered = [line for line in lines if re.search(r"line \d+", line)]
+    if not numbered:
+        return ""
+    at = re.search(r"line (\d+)", numbered[-1]).group(1)
+    index = lines.index(numbered[-1])
+    code = lines[index + 1].strip() if index + 1 < len(lines) and not lines[index + 1].strip().startswith("^") \
+        else ""
+    return f" at line {at}" + (f": {code[:80]}" if code and not code.startswith(("File ", "Cell ")) else "")
 
-    manager = getattr(client, "km", None)
-    if manager is None or not manager.has_kernel:
-        return
+
+def _judge_verdict(output: bytes, exercises: list) -> dict | None:
+    """The judge's results, validated: one entry per exercise with the right types, or None."""
+    lines = output.decode("utf-8", "replace").strip().splitlines()
+    if not lines:
+        return None
     try:
-        asyncio.run(manager.shutdown_kernel(now=True))
-    except Exception:  # already gone, or its process group ended with it
-        pass
+        result = json.loads(lines[-1])
+    except json.JSONDecodeError:
+        return None
+    found = result.get("exercises") if isinstance(result, dict) else None
+    if not isinstance(found, dict):
+        return None
+    verdict = {}
+    for exercise in exercises:
+        entry = found.get(exercise.name)
+        if not isinstance(entry, dict) or not isinstance(entry.get("output"), str):
+            return None
+        counts = [entry.get("public"), entry.get("hidden")]
+        if not all(isinstance(c, list) and len(c) == 2 and all(isinstance(n, int) and 0 <= n < 10**6 for n in c)
+                   for c in counts):
+            return None
+        missing = entry.get("missing")
+        verdict[exercise.name] = {
+            "passed": entry.get("passed") is True,   # exactly True: "no", 1 or "yes" are not a pass
+            "output": entry["output"][:4000], "public": counts[0], "hidden": counts[1],
+            "missing": [m for m in missing if isinstance(m, str)] if isinstance(missing, list) else [],
+        }
+    return verdict
 
 
 def summary_line(grade: Grade) -> str:
     """One line for a terminal: 'alice.ipynb  chapter 06  2/3  (collapse: Not yet. ...)'."""
     lost = [f"{e.name}: {e.output[:80]}" for e in grade.exercises if not e.passed]
+    if grade.problem and not grade.exercises:
+        lost = [grade.problem[:120]]
     tail = f"  ({'; '.join(lost)})" if lost else ""
-    return f"{Path(grade.submission).name}  chapter {grade.chapter}  {grade.score:g}/{grade.max_score:g}{tail}"
+    return printable(f"{Path(grade.submission).name}  chapter {grade.chapter or '?'}  "
+                     f"{grade.score:g}/{grade.max_score:g}{tail}")
 
 
 def as_dict(grade: Grade) -> dict:

@@ -1,8 +1,13 @@
 """``load`` and ``save``: one entry point for every file format.
 
 ``.obj`` goes through the package's own reader and writer (``halfedge_edu.io.obj``), so
-errors name the line of the file. ``.ply``, ``.stl``, ``.off``, ``.glb`` and ``.gltf``
-go through trimesh.
+errors name the line of the file; so does ``.stl`` (``halfedge_edu.io.stl``: trimesh
+reads a damaged STL as the empty mesh). ``.ply`` and ``.off`` are read by trimesh after
+their header's counts are checked against what the file holds
+(``halfedge_edu.io.headers``: trimesh believes the header, so a lying one gave another
+mesh); ``.glb``, ``.gltf`` and ``.dae`` go through trimesh as they are. Every format is
+written by trimesh but ``.obj``. A file that does not say truthfully what it holds is
+refused, never loaded as another mesh.
 
 What each format can hold decides what ``save`` refuses, so that a file never loads
 back as a different mesh: no format takes a non-finite coordinate; the float32 formats
@@ -15,6 +20,8 @@ copies.
 
 from __future__ import annotations
 
+import errno
+import io
 import os
 import warnings
 from pathlib import Path
@@ -24,7 +31,11 @@ import numpy as np
 from halfedge_edu.core.errors import MeshInputError, MeshWarning
 from halfedge_edu.core.mesh import HalfedgeMesh
 from halfedge_edu.core.repair import repair_faces
-from halfedge_edu.io.obj import atomic_output, checked_arrays, read_obj, require_regular_file, write_obj
+from halfedge_edu.io.headers import check_off, check_ply
+from halfedge_edu.io.obj import (
+    atomic_output, checked_arrays, path_error, read_obj, require_regular_file, shown_path, write_obj,
+)
+from halfedge_edu.io.stl import read_stl
 
 __all__ = ["load", "load_arrays", "save", "SUFFIXES"]
 
@@ -70,8 +81,10 @@ def load(path: str | os.PathLike, *, repair: bool = False, triangulate: bool = T
 
     Raises:
         FileNotFoundError: the file does not exist (the standard error for that).
-        MeshInputError: an unknown suffix, a file that cannot be read, or triangles
-            that cannot form a halfedge mesh (for ``.obj`` the message names the line).
+        MeshInputError: an unknown suffix, a path too long for the system, a file that
+            cannot be read, a file whose contents do not match what it declares (an
+            STL, PLY or OFF count; see the module docstring), or triangles that cannot
+            form a halfedge mesh (for ``.obj`` the message names the line).
     """
     path = Path(path)
     vertices, faces, face_lines = load_arrays(path, triangulate=triangulate)
@@ -103,29 +116,50 @@ def load_arrays(path: str | os.PathLike, *, triangulate: bool = True) -> tuple[n
 
     Raises:
         FileNotFoundError: the file does not exist.
-        MeshInputError: an unknown suffix, a path that is not a regular file, or a file
-            that cannot be read.
+        MeshInputError: an unknown suffix, a path that is not a regular file or too long
+            for the system, a file that cannot be read, or one whose contents do not
+            match what it declares (an STL, PLY or OFF count).
     """
     path = Path(path)
     suffix = _suffix(path)
-    if not path.exists():
-        raise FileNotFoundError(f"no such file: {str(path)!r}")
+    try:
+        exists = path.exists()
+    except OSError as error:  # a path too long for the system, say
+        raise path_error(path, error, "read") from error
+    if not exists:
+        raise FileNotFoundError(f"no such file: {shown_path(path)!r}")
     require_regular_file(path)
     if suffix == ".obj":
         data = read_obj(path, triangulate=triangulate)
         return data.vertices, data.faces, data.face_lines
-    vertices, faces = _load_with_trimesh(path)
+    vertices, faces = _load_other_format(path)
     return vertices, faces, None
 
 
-def _load_with_trimesh(path: Path) -> tuple[np.ndarray, np.ndarray]:
-    """(vertices, faces) of a non-OBJ file, with trimesh's failures as MeshInputError."""
+def _load_other_format(path: Path) -> tuple[np.ndarray, np.ndarray]:
+    """(vertices, faces) of a non-OBJ file, with every failure as MeshInputError.
+
+    ``.stl`` is read by ``read_stl``; ``.ply`` and ``.off`` are checked against their
+    headers first (see the module docstring), then read from the same bytes.
+    """
     import trimesh
 
+    suffix = path.suffix.lower()
+    if suffix == ".stl":
+        # STL stores each triangle's three corners by value, with no shared vertices:
+        # corners at exactly the same position are one vertex.
+        return _merge_identical_vertices(*read_stl(path))
+    source: Path | io.BytesIO = path
+    if suffix in (".ply", ".off"):
+        data = _read_bytes(path)
+        (check_ply if suffix == ".ply" else check_off)(data, path.name)
+        source = io.BytesIO(data)
     try:
-        loaded = trimesh.load(path, force="mesh", process=False)
+        loaded = trimesh.load(source, file_type=suffix[1:], force="mesh", process=False)
     except Exception as error:  # trimesh raises many kinds; all mean "cannot read this file"
-        raise MeshInputError(f"{path.name}: trimesh could not read the file ({type(error).__name__}: {error})") from error
+        raise MeshInputError(
+            f"{path.name}: trimesh could not read the file ({type(error).__name__}: {_bounded(str(error))})"
+        ) from error
     faces = np.asarray(getattr(loaded, "faces", np.zeros((0, 3))), dtype=np.int64).reshape(-1, 3)
     vertices = np.asarray(getattr(loaded, "vertices", np.zeros((0, 3))), dtype=np.float64).reshape(-1, 3)
     if len(faces) == 0:
@@ -135,11 +169,20 @@ def _load_with_trimesh(path: Path) -> tuple[np.ndarray, np.ndarray]:
         points = len(getattr(trimesh.load(path, process=False), "vertices", ()))
         if points:
             raise MeshInputError(f"{path.name}: {points} vertices but no triangles: a point cloud, not a mesh")
-    if path.suffix.lower() == ".stl":
-        # STL stores each triangle's three corners by value, with no shared vertices:
-        # corners at exactly the same position are one vertex.
-        vertices, faces = _merge_identical_vertices(vertices, faces)
     return vertices, faces
+
+
+def _read_bytes(path: Path) -> bytes:
+    """The whole file, with a failure to read it as ``MeshInputError``."""
+    try:
+        return path.read_bytes()
+    except OSError as error:
+        raise MeshInputError(f"{path.name}: cannot read the file ({error.strerror or error})") from error
+
+
+def _bounded(text: str, limit: int = 300) -> str:
+    """``text`` cut to ``limit`` characters: a library's message can quote a whole file."""
+    return text if len(text) <= limit else text[: limit - 3] + "..."
 
 
 def _merge_identical_vertices(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -162,9 +205,11 @@ def save(mesh: HalfedgeMesh, path: str | os.PathLike) -> None:
     float32, rounded to about 7 digits.
 
     Raises:
-        MeshInputError: an unknown suffix, or a mesh the format cannot hold (see the
-            module docstring): a non-finite coordinate, one beyond float32's range, or
-            for ``.stl`` two vertices at the same position.
+        MeshInputError: an unknown suffix, a path too long for the system, or a mesh the
+            format cannot hold (see the module docstring): a non-finite coordinate, one
+            beyond float32's range, or for ``.stl`` two vertices at the same position.
+        OSError: the file cannot be written (no such folder, permission, disk full);
+            the message names ``path``.
     """
     path = Path(path)
     suffix = _suffix(path)
@@ -173,6 +218,16 @@ def save(mesh: HalfedgeMesh, path: str | os.PathLike) -> None:
         _check_fits_float32(vertices, suffix)
     if suffix == ".stl":
         _check_no_shared_positions(vertices)
+    try:
+        _write(mesh, path, suffix, vertices, faces)
+    except OSError as error:
+        if error.errno == errno.ENAMETOOLONG:
+            raise path_error(path, error, "write") from error
+        raise
+
+
+def _write(mesh: HalfedgeMesh, path: Path, suffix: str, vertices: np.ndarray, faces: np.ndarray) -> None:
+    """Write the checked arrays (``.obj``) or trimesh's export of ``mesh`` to ``path``, atomically."""
     if suffix == ".obj":
         write_obj(path, vertices, faces)
         return

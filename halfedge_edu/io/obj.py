@@ -26,6 +26,13 @@ Encodings and line endings, each decided on purpose:
 - UTF-16 and UTF-32 text (with or without a byte-order mark) is refused by name, and
   any other file with NUL bytes as binary: their records cannot be read line by line.
 
+Numbers are read with OBJ's own syntax, as other OBJ readers read them, not Python's:
+a coordinate is an optional sign, digits with an optional decimal point, and an
+optional exponent (``1``, ``-0.5``, ``.5``, ``2.``, ``1e-3``, ``+1.5E+2``); an index is an
+optional sign and digits. Anything else is an error naming its line: ``1_000`` (Python
+reads it as 1000, other readers stop or refuse), ``nan`` and ``inf`` (not numbers a mesh
+can use), ``0x10``, digits of other scripts.
+
 The reader checks everything before it returns: a bad line raises ``MeshInputError``
 whose ``.line`` is the 1-based line number and whose message quotes the line, and
 nothing is half-loaded. Only regular files are read (a FIFO would block, a link to
@@ -35,10 +42,12 @@ nothing is half-loaded. Only regular files are read (a FIFO would block, a link 
 from __future__ import annotations
 
 import codecs
+import errno
 import os
 import re
 import secrets
 import stat
+import time
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -48,7 +57,8 @@ import numpy as np
 
 from halfedge_edu.core.errors import MeshInputError
 
-__all__ = ["ObjData", "read_obj", "write_obj", "atomic_output", "checked_arrays", "require_regular_file"]
+__all__ = ["ObjData", "read_obj", "write_obj", "atomic_output", "checked_arrays", "parse_coordinates",
+           "path_error", "remove_stale_temporaries", "require_regular_file", "shown_path"]
 
 
 @dataclass
@@ -82,6 +92,16 @@ SKIPPED_KEYWORDS = frozenset({
 #: One line break of any of the three conventions (Windows first, so \r\n is one break).
 _LINE_BREAK = re.compile(r"\r\n|\r|\n")
 
+#: A coordinate in OBJ's number syntax: optional sign, digits with an optional decimal
+#: point (or a point then digits), optional exponent. ASCII only.
+OBJ_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+
+#: A vertex index in OBJ's syntax: optional sign, ASCII digits.
+OBJ_INDEX = re.compile(r"[+-]?[0-9]+")
+
+#: Any character that cannot appear in an OBJ number: the fast check before numpy parses.
+_NOT_A_NUMBER_CHARACTER = re.compile(r"[^0-9eE.+-]")
+
 #: Larger positive indices are rejected while parsing (the range check proper is at the end,
 #: since a positive index may name a vertex defined further down the file).
 _MAX_INDEX = 2**40
@@ -104,12 +124,46 @@ def require_regular_file(path: str | os.PathLike) -> None:
     except FileNotFoundError:
         raise
     except OSError as error:
-        raise MeshInputError(f"{Path(path).name}: cannot read the file ({error.strerror})") from error
+        raise path_error(path, error, "read") from error
     if stat.S_ISDIR(mode):
         raise MeshInputError(f"{Path(path).name}: cannot read the file (it is a folder, not a file)")
     if not stat.S_ISREG(mode):
         kind = "a FIFO (named pipe)" if stat.S_ISFIFO(mode) else "a device or socket"
         raise MeshInputError(f"{Path(path).name}: is {kind}, not a regular file; only mesh files can be read")
+
+
+#: The longest path a message shows whole; a longer one is cut in the middle.
+MAX_SHOWN_PATH = 120
+
+
+def shown_path(path: str | os.PathLike) -> str:
+    """``path`` for a message: whole, or if very long its start and end and its length.
+
+    A path can be thousands of characters long; a message that quotes it whole is not
+    one readable line any more.
+    """
+    text = os.fsdecode(path)
+    if len(text) <= MAX_SHOWN_PATH:
+        return text
+    return f"{text[:60]}...{text[-40:]} ({len(text)} characters)"
+
+
+def path_error(path: str | os.PathLike, error: OSError, action: str) -> MeshInputError:
+    """The ``MeshInputError`` for a path the system refuses to ``action`` ("read" or "write").
+
+    An over-long path (``ENAMETOOLONG``: a name over 255 bytes, or a whole path over
+    the system's limit, 4096 bytes on Linux) is named as such, with the lengths; any
+    other refusal gives the system's reason.
+    """
+    if error.errno == errno.ENAMETOOLONG:
+        encoded = os.fsencode(path)
+        longest = max((len(part) for part in encoded.split(b"/")), default=0)
+        return MeshInputError(
+            f"{shown_path(path)}: cannot {action} the file: the path is too long for this system "
+            f"({len(encoded)} bytes, its longest name {longest} bytes; most systems allow names of up to "
+            f"255 bytes and paths of up to 4096); use a shorter name or folder"
+        )
+    return MeshInputError(f"{shown_path(Path(path).name)}: cannot {action} the file ({error.strerror or error})")
 
 
 def _read_text(path_or_file) -> tuple[str, str]:
@@ -217,9 +271,15 @@ def read_obj(path_or_file: str | os.PathLike | IO, *, triangulate: bool = True) 
             vertex_lines.append(line_no)
         elif keyword == "f":
             corners = []
+            # int() alone would also take Python's "1_0" and digits of other scripts: one
+            # look at the whole line, then a token-by-token one only if it has either.
+            python_only = "_" in line or not line.isascii()
             for token in tokens[1:]:
+                vertex_part = token.split("/", 1)[0]
                 try:
-                    index = int(token.split("/", 1)[0])
+                    if python_only and not OBJ_INDEX.fullmatch(vertex_part):
+                        raise ValueError(vertex_part)
+                    index = int(vertex_part)
                 except ValueError:
                     raise _fail(source, line_no, line, f"{token!r} is not a vertex index") from None
                 if index > _MAX_INDEX:  # would not fit an int64 array; no file has this many vertices
@@ -254,7 +314,7 @@ def read_obj(path_or_file: str | os.PathLike | IO, *, triangulate: bool = True) 
                 f"{keyword[:20]!r} is not an OBJ record (v and f are read; vt, vn, g, o, s, usemtl ... are skipped)",
             )
 
-    vertices = _parse_coordinates(coordinates, vertex_lines, text, source)
+    vertices = parse_coordinates(coordinates, vertex_lines, text, source)
     if not faces:
         _refuse_faceless(text, len(vertices), source)
     faces_array = np.array(faces, dtype=np.int64).reshape(-1, 3)  # (m, 3)
@@ -288,33 +348,40 @@ def _refuse_faceless(text: str, n_vertices: int, source: str) -> None:
         )
 
 
-def _parse_coordinates(coordinates: list[list[str]], vertex_lines: list[int], text: str, source: str) -> np.ndarray:
+def parse_coordinates(coordinates: list[list[str]], vertex_lines: list[int], text: str, source: str) -> np.ndarray:
     """Turn the x y z tokens into an (n, 3) float64 array, all at once.
 
-    numpy parses the strings in one call (much faster than ``float()`` per token); only
-    if that fails do we go back line by line to find the bad one.
+    Every token must be an ``OBJ_NUMBER`` and finite. numpy parses the strings in one
+    call (much faster than ``float()`` per token) after one search for a character no
+    OBJ number has; only if either fails do we go back line by line to name the bad one.
+    (numpy alone would take ``1_000``, ``nan`` and ``inf``.) Also used for ASCII STL.
     """
     if not coordinates:
         return np.zeros((0, 3))
     try:
+        if _NOT_A_NUMBER_CHARACTER.search("".join(map("".join, coordinates))):
+            raise ValueError("a character no number has")
         vertices = np.array(coordinates, dtype=np.str_).astype(np.float64)  # (n, 3)
     except ValueError:
         vertices = np.array([_parse_row(row, line_no, text, source) for row, line_no in zip(coordinates, vertex_lines)])
     not_finite = np.flatnonzero(~np.isfinite(vertices).all(axis=1))
-    if len(not_finite):
+    if len(not_finite):  # e.g. 1e999, which overflows to inf
         line_no = vertex_lines[not_finite[0]]
-        raise _fail(source, line_no, _physical_line(text, line_no), "a coordinate is not finite (nan or inf)")
+        raise _fail(source, line_no, _physical_line(text, line_no), "a coordinate is not finite (too large for float64)")
     return vertices
 
 
 def _parse_row(row: list[str], line_no: int, text: str, source: str) -> list[float]:
-    """The slow path: parse one v record's tokens, naming the line if one is not a number."""
+    """The slow path: parse one record's tokens, naming the line if one is not an OBJ number."""
     values = []
     for token in row:
-        try:
-            values.append(float(token))
-        except ValueError:
-            raise _fail(source, line_no, _physical_line(text, line_no), f"{token!r} is not a number") from None
+        if not OBJ_NUMBER.fullmatch(token):
+            if token.lower().lstrip("+-") in ("nan", "inf", "infinity"):
+                problem = f"{token!r} is not finite: no position"
+            else:
+                problem = f"{token[:40]!r} is not a number (sign, digits, decimal point, exponent: e.g. -1.5e3)"
+            raise _fail(source, line_no, _physical_line(text, line_no), problem)
+        values.append(float(token))
     return values
 
 
@@ -335,9 +402,14 @@ def atomic_output(path: str | os.PathLike, mode: str = "w") -> Iterator[IO]:
     name plus a suffix, so that an output name near the file system's limit of 255
     bytes can still be written. An error in creating or moving it names ``path``, the
     file the caller asked for, not the temporary.
+
+    The data is flushed to the disk (``fsync``) before the rename, and the folder after
+    it, so that after a crash ``path`` is the old file or the whole new one. A process
+    killed with SIGKILL cannot remove its temporary file; the command line removes such
+    leftovers later (``remove_stale_temporaries``).
     """
     path = Path(path)
-    temporary = path.with_name(f".halfedge_edu-{secrets.token_hex(4)}.tmp")
+    temporary = path.with_name(f"{TEMPORARY_PREFIX}{secrets.token_hex(4)}{TEMPORARY_SUFFIX}")
     # One try from the moment the file may exist: a signal (Ctrl-C, SIGTERM) that lands
     # just after os.open made it must still remove it. ``ours`` is False only when
     # os.open itself failed, so a file we did not make is never removed.
@@ -351,14 +423,73 @@ def atomic_output(path: str | os.PathLike, mode: str = "w") -> Iterator[IO]:
             raise OSError(error.errno, error.strerror, str(path)) from None
         with os.fdopen(descriptor, mode, **({} if "b" in mode else {"encoding": "utf-8", "newline": "\n"})) as file:
             yield file
+            # On the disk before the rename: else a crash soon after can leave the new name
+            # pointing at an empty or partial file (the rename reached the disk, the data not).
+            file.flush()
+            os.fsync(file.fileno())
         try:
             os.replace(temporary, path)
         except OSError as error:
             raise OSError(error.errno, error.strerror, str(path)) from None
+        _sync_folder(path.parent)
     except BaseException:
         if ours:
             temporary.unlink(missing_ok=True)
         raise
+
+
+#: The names of ``atomic_output``'s temporary files: prefix, 8 hex digits, suffix.
+TEMPORARY_PREFIX = ".halfedge_edu-"
+TEMPORARY_SUFFIX = ".tmp"
+_TEMPORARY_NAME = re.compile(re.escape(TEMPORARY_PREFIX) + r"[0-9a-f]{8}" + re.escape(TEMPORARY_SUFFIX))
+
+#: A temporary file untouched this long (seconds) belongs to no running write: a write
+#: changes its file all the time, and takes seconds even for millions of faces.
+STALE_AFTER_SECONDS = 600
+
+
+def _sync_folder(folder: Path) -> None:
+    """Flush the folder's entry list (the rename) to the disk, where the system allows it."""
+    try:
+        descriptor = os.open(folder, os.O_RDONLY)
+    except OSError:
+        return  # e.g. Windows cannot open a folder; its rename is as durable as it gets
+    try:
+        os.fsync(descriptor)
+    except OSError:
+        pass  # some file systems refuse fsync on a folder: nothing more can be done
+    finally:
+        os.close(descriptor)
+
+
+def remove_stale_temporaries(folder: str | os.PathLike, *, older_than: float = STALE_AFTER_SECONDS) -> list[Path]:
+    """Remove ``atomic_output``'s temporary files in ``folder`` untouched for ``older_than`` seconds.
+
+    A write killed with SIGKILL (or a power cut) leaves its ``.halfedge_edu-XXXXXXXX.tmp``
+    behind: nothing in the process runs to remove it. Only regular files with exactly
+    that name pattern are removed (never a link, never another program's file), and
+    only old ones, so a write still running in another process keeps its file.
+
+    Returns:
+        The files removed. A file that cannot be removed is left, silently: cleaning
+        up is a courtesy, and must never stop the command that does it.
+    """
+    removed = []
+    now = time.time()
+    try:
+        entries = list(os.scandir(folder))
+    except OSError:
+        return removed
+    for entry in entries:
+        if not _TEMPORARY_NAME.fullmatch(entry.name):
+            continue
+        try:
+            if entry.is_file(follow_symlinks=False) and now - entry.stat(follow_symlinks=False).st_mtime > older_than:
+                os.unlink(entry.path)
+                removed.append(Path(entry.path))
+        except OSError:
+            continue
+    return removed
 
 
 def checked_arrays(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
