@@ -57,6 +57,9 @@ autodoc_member_order = "bysource"
 autodoc_typehints = "description"
 # Attributes as :ivar: fields: as directives they would document each dataclass field twice.
 napoleon_use_ivar = True
+# An :ivar: names its attribute, and element types share attribute names (Vertex.kind,
+# Edge.kind ...): Sphinx then finds "more than one target" and links the first. Harmless.
+suppress_warnings = ["ref.python"]
 
 html_theme = "alabaster"
 html_title = "halfedge_edu" if EDITION == "student" else "halfedge_edu, solution edition (instructors only)"

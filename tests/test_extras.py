@@ -83,15 +83,33 @@ def run_cli_without(blocked: tuple[str, ...], *arguments: str, cwd: Path = ROOT)
                           cwd=cwd, timeout=120)
 
 
-def test_grade_without_the_notebooks_extra_names_the_extra_not_an_internal_error(tmp_path):
-    submission = tmp_path / "03_navigating.ipynb"
-    submission.write_text((ROOT / "notebooks" / "student" / "03_navigating.ipynb").read_text(encoding="utf-8"),
-                          encoding="utf-8")
-    result = run_cli_without(("nbformat", "nbclient"), "grade", str(submission), "--out", str(tmp_path / "out"))
-    assert result.returncode == 2, result.stderr
-    (line,) = result.stderr.splitlines()
-    assert line.startswith("halfedge-edu: error: grade needs nbformat") and INSTALL_HINT in line
-    assert "internal error" not in line
+def test_a_command_missing_a_module_of_the_notebooks_extra_names_the_extra_not_an_internal_error(capsys):
+    """What ``grade`` gave without the notebooks extra: "internal error (ModuleNotFoundError
+    ...)". Any command that meets a module an extra brings now names the extra."""
+    import argparse
+
+    from halfedge_edu import cli
+
+    def needs_nbclient(args):
+        raise ModuleNotFoundError("No module named 'nbclient'", name="nbclient")
+
+    args = argparse.Namespace(run=needs_nbclient, command="grade", debug=False, file=None)
+    assert cli._run(args) == cli.EXIT_ERROR
+    (line,) = capsys.readouterr().err.splitlines()
+    assert line == f"halfedge-edu: error: grade needs nbclient, which is not installed: {INSTALL_HINT}"
+
+
+def test_a_missing_module_no_extra_brings_is_still_an_internal_error(capsys):
+    import argparse
+
+    from halfedge_edu import cli
+
+    def needs_something_else(args):
+        raise ModuleNotFoundError("No module named 'left_pad'", name="left_pad")
+
+    args = argparse.Namespace(run=needs_something_else, command="grade", debug=False, file=None)
+    assert cli._run(args) == cli.EXIT_ERROR
+    assert "internal error" in capsys.readouterr().err
 
 
 TETRAHEDRON = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n"
