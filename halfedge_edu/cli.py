@@ -379,6 +379,11 @@ def run_grade(args: argparse.Namespace) -> int:
     if args.out.exists() and not args.out.is_dir():
         raise InputProblem(f"{args.out}: exists and is not a folder")
 
+    import importlib.util
+
+    for module in ("nbformat", "nbclient", "ipykernel"):  # the sandboxed run needs them: say so before it starts
+        if importlib.util.find_spec(module) is None:
+            raise ModuleNotFoundError(f"No module named {module!r}", name=module)
     from halfedge_edu.exercises.grading import GradingError, Limits, exercises_for, grade_notebook, summary_line
     from halfedge_edu.exercises.sandbox import choose_isolation
 

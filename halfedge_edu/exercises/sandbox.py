@@ -335,9 +335,8 @@ class Sandbox:
 
 def _python_folders() -> list[str]:
     """The folders a sandboxed Python needs: the environment, its base, and the package itself."""
-    import halfedge_edu
-
-    folders = {sys.prefix, sys.base_prefix, sys.exec_prefix, str(Path(halfedge_edu.__file__).resolve().parent)}
+    package = Path(__file__).resolve().parents[1]   # halfedge_edu/, wherever it is installed
+    folders = {sys.prefix, sys.base_prefix, sys.exec_prefix, str(package)}
     folders |= {sysconfig.get_paths()[key] for key in ("stdlib", "platstdlib", "purelib", "platlib")}
     kept: list[str] = []
     for folder in sorted(folders, key=len):
