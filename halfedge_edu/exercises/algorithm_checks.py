@@ -39,8 +39,8 @@ from halfedge_edu.algorithms.simplify import face_quadrics, optimal_points
 from halfedge_edu.core.mesh import HalfedgeMesh
 from halfedge_edu.data import sample
 
-from . import harness
-from .harness import CheckResult
+from . import harness, hidden
+from .harness import CheckResult, hidden_name
 
 
 __all__ = ["check_loop_rules", "check_plane_quadric", "check_optimal_point", "check_de_casteljau",
@@ -80,8 +80,26 @@ def _jittered(mesh: HalfedgeMesh, seed: int, amount: float = 0.08) -> HalfedgeMe
     return mesh
 
 
-def loop_cases() -> list[tuple[str, HalfedgeMesh]]:
-    """The meshes ``check_loop_rules`` uses, in order: degree 3, 4, 5-6, mixed, boundary."""
+def loop_cases(seed: int | None = None) -> list[tuple[str, HalfedgeMesh]]:
+    """The meshes ``check_loop_rules`` uses, in order: degree 3, 4, 5-6, mixed, boundary.
+
+    With a ``seed``, the hidden cases: two closed meshes after random flips (degrees
+    from 3 to 8 or so), nudged, and a nudged grid patch (a boundary).
+    """
+    if seed is not None:
+        rng = harness.hidden_rng(seed)
+        first, second = (str(name) for name in rng.choice(["tetrahedron", "cube", "octahedron", "icosphere(1)"], 2,
+                                                          replace=False))
+        flips = [int(n) for n in rng.integers(2, 8, 2)]
+        rows, columns = (int(n) for n in rng.integers(2, 4, 2))
+        return [
+            (hidden_name(1, f"{first} after {flips[0]} random flips, nudged"),
+             hidden.jittered(hidden.flipped(hidden.closed_mesh(first), flips[0], rng), rng, 0.05)),
+            (hidden_name(2, f"{second} after {flips[1]} random flips, nudged"),
+             hidden.jittered(hidden.flipped(hidden.closed_mesh(second), flips[1], rng), rng, 0.05)),
+            (hidden_name(3, f"a {rows} x {columns} grid patch (a boundary)"),
+             HalfedgeMesh.from_faces(*hidden.grid(rows, columns, rng))),
+        ]
     return [
         ("tetrahedron (every vertex of degree 3)", _jittered(sample("tetrahedron"), 1)),
         ("octahedron (degree 4)", _jittered(sample("octahedron"), 2)),
@@ -166,13 +184,16 @@ def _vertex_problem(mesh: HalfedgeMesh, v: int, yours: np.ndarray, wanted: np.nd
     return text
 
 
-def check_loop_rules(edge_point: Callable | None = None, vertex_point: Callable | None = None) -> CheckResult:
+def check_loop_rules(edge_point: Callable | None = None, vertex_point: Callable | None = None, *,
+                     seed: int | None = None) -> CheckResult:
     """Compare the learner's Loop rules with ``loop_positions`` on six small meshes.
 
     Args:
         edge_point: ``edge_point(mesh, edge) -> (3,)`` the new vertex on ``edge``.
         vertex_point: ``vertex_point(mesh, vertex) -> (3,)`` where old ``vertex`` moves.
             Either may be None, to check only the other one.
+        seed: None for the public cases (the chapter's); an int for only the hidden
+            cases made from it.
 
     Returns:
         A :class:`CheckResult`; on the first difference it names the mesh and element,
@@ -186,8 +207,15 @@ def check_loop_rules(edge_point: Callable | None = None, vertex_point: Callable 
         unfinished = harness.unfinished(function, name)
         if unfinished:
             return harness.failed(label, [], None, unfinished)
+    cases = loop_cases(seed)
+    return harness.counted(_check_loop_rules(functions, label, cases), len(cases))
+
+
+def _check_loop_rules(functions: list[tuple[str, Callable]], label: str,
+                      cases: list[tuple[str, HalfedgeMesh]]) -> CheckResult:
+    """:func:`check_loop_rules` on the given cases."""
     checked: list[str] = []
-    for case, mesh in loop_cases():
+    for case, mesh in cases:
         vertex_points, edge_points = loop_positions(mesh)
         before = mesh.positions.copy()
         for name, function in functions:
@@ -212,7 +240,7 @@ def check_loop_rules(edge_point: Callable | None = None, vertex_point: Callable 
                 if not harness.close(yours, wanted):
                     explain = _edge_problem if name == "edge_point" else _vertex_problem
                     return harness.failed(label, checked, case, explain(mesh, element.index, yours, wanted), kind, mesh)
-        checked.append(case.split(" (")[0])
+        checked.append(case if case.startswith("hidden") else case.split(" (")[0])
     return harness.all_good(label, checked, "meshes", "Together they are one level of Loop's positions; the connectivity is "
                    "the 4-to-1 split you stepped through.")
 
@@ -221,8 +249,24 @@ def check_loop_rules(edge_point: Callable | None = None, vertex_point: Callable 
 # Chapter 10: the plane quadric of a face, and the optimal point
 # --------------------------------------------------------------------------------------
 
-def _quadric_cases() -> list[tuple[str, np.ndarray]]:
-    """Triangles (3, 3) for ``check_plane_quadric``: easy planes first."""
+def _quadric_cases(seed: int | None = None) -> list[tuple[str, np.ndarray]]:
+    """Triangles (3, 3) for ``check_plane_quadric``: easy planes first; with a ``seed``,
+    the hidden cases: random triangles (not too thin), one far from the origin."""
+    if seed is not None:
+        rng = harness.hidden_rng(seed)
+        cases = []
+        for number, (what, offset) in enumerate([("a random triangle", 0.0), ("a random triangle", 1.0),
+                                                 ("a random triangle far from the origin", 20.0),
+                                                 ("a random small triangle", 0.5)], start=1):
+            while True:
+                triangle = rng.uniform(-1.0, 1.0, (3, 3)) * (0.05 if "small" in what else 1.0) + offset * rng.standard_normal(3)
+                a, b, c = triangle
+                area = 0.5 * np.linalg.norm(np.cross(b - a, c - a))
+                longest = max(np.linalg.norm(b - a), np.linalg.norm(c - b), np.linalg.norm(a - c))
+                if area > 0.1 * longest ** 2:                       # not a sliver: the plane is well defined
+                    break
+            cases.append((hidden_name(number, what), triangle))
+        return cases
     return [
         ("a triangle in the plane z = 0", np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=float)),
         ("a triangle in the plane z = 2", np.array([[0, 0, 2], [2, 0, 2], [0, 3, 2]], dtype=float)),
@@ -241,18 +285,26 @@ def _plain_quadric(a, b, c) -> tuple[np.ndarray, np.ndarray, float]:
     return quadric, np.append(n, -n @ a), area
 
 
-def check_plane_quadric(plane_quadric: Callable) -> CheckResult:
+def check_plane_quadric(plane_quadric: Callable, *, seed: int | None = None) -> CheckResult:
     """Compare ``plane_quadric(a, b, c)`` with the library's face quadric (without its area weight).
 
     Args:
         plane_quadric: ``(a, b, c) -> (4, 4)``, ``K = p p^T`` with ``p = [n, d]``,
             ``n`` the unit normal, ``d = -n . a``.
+        seed: None for the public cases (the chapter's); an int for only the hidden
+            cases made from it.
     """
     unfinished = harness.unfinished(plane_quadric, "plane_quadric")
     if unfinished:
         return harness.failed("plane_quadric", [], None, unfinished)
+    cases = _quadric_cases(seed)
+    return harness.counted(_check_plane_quadric(plane_quadric, cases), len(cases))
+
+
+def _check_plane_quadric(plane_quadric: Callable, cases: list[tuple[str, np.ndarray]]) -> CheckResult:
+    """:func:`check_plane_quadric` on the given triangles."""
     checked: list[str] = []
-    for case, triangle in _quadric_cases():
+    for case, triangle in cases:
         a, b, c = triangle.copy()
         status, answer = harness.run(plane_quadric, a, b, c)
         trouble = harness.trouble(status, answer, "plane_quadric")
@@ -295,12 +347,46 @@ def check_plane_quadric(plane_quadric: Callable) -> CheckResult:
     return harness.all_good("plane_quadric", checked, "triangles", "[x, 1] K [x, 1]^T is now the squared distance from x to the face's plane.")
 
 
-def _optimal_cases() -> list[tuple[str, np.ndarray, np.ndarray, np.ndarray, bool]]:
-    """``(name, Q, a, b, well_posed)`` for ``check_optimal_point``."""
-    def plane(n, point):
-        n = np.asarray(n, dtype=float) / np.linalg.norm(n)
-        p = np.append(n, -n @ np.asarray(point, dtype=float))
-        return np.outer(p, p)
+def _plane(n, point) -> np.ndarray:
+    """(4, 4) the quadric of the plane through ``point`` with normal ``n`` (any length)."""
+    n = np.asarray(n, dtype=float) / np.linalg.norm(n)
+    p = np.append(n, -n @ np.asarray(point, dtype=float))
+    return np.outer(p, p)
+
+
+def _hidden_optimal_cases(seed: int) -> list[tuple[str, np.ndarray, np.ndarray, np.ndarray, bool]]:
+    """The hidden cases of ``check_optimal_point``: sums of random planes, three or more
+    (one best point) and one or two (a plane or a line of best points: the midpoint)."""
+    rng = harness.hidden_rng(seed)
+    cases = []
+    for number, (what, count, well_posed) in enumerate([
+            ("four random planes", 4, True), ("three random planes", 3, True),
+            ("one random plane, counted twice (A is singular)", 1, False),
+            ("two random planes meeting in a line (A is singular)", 2, False)], start=1):
+        while True:
+            normals = rng.standard_normal((count, 3))
+            through = rng.uniform(-1.0, 1.0, (count, 3))
+            weights = rng.uniform(0.5, 2.0, count)
+            Q = sum(w * _plane(n, x) for w, n, x in zip(weights, normals, through))
+            if count == 1:
+                Q = 2.0 * Q
+            singular_values = np.linalg.svd(Q[:3, :3], compute_uv=False)
+            if not well_posed or singular_values[-1] > 0.05 * singular_values[0]:
+                break                                                # well posed: not nearly singular either
+        a, b = rng.uniform(-1.5, 1.5, (2, 3))
+        if not well_posed:                                           # both ends on the planes, as on a mesh
+            A, q = Q[:3, :3], Q[:3, 3]
+            projector = np.linalg.pinv(A) @ A
+            a, b = (x - projector @ x - np.linalg.pinv(A) @ q for x in (a, b))
+        cases.append((hidden_name(number, what), Q, a, b, well_posed))
+    return cases
+
+
+def _optimal_cases(seed: int | None = None) -> list[tuple[str, np.ndarray, np.ndarray, np.ndarray, bool]]:
+    """``(name, Q, a, b, well_posed)`` for ``check_optimal_point``; hidden ones with a ``seed``."""
+    if seed is not None:
+        return _hidden_optimal_cases(seed)
+    plane = _plane
 
     corner = plane([1, 0, 0], [1, 0, 0]) + plane([0, 1, 0], [0, 2, 0]) + plane([0, 0, 1], [0, 0, 3])
     tilted = plane([1, 1, 0], [1, 0, 0]) + plane([0, 1, 1], [0, 1, 1]) + 0.5 * plane([1, -1, 2], [0.5, 0.5, 0.2])
@@ -325,17 +411,25 @@ def _optimal_cases() -> list[tuple[str, np.ndarray, np.ndarray, np.ndarray, bool
     ]
 
 
-def check_optimal_point(optimal_point: Callable) -> CheckResult:
+def check_optimal_point(optimal_point: Callable, *, seed: int | None = None) -> CheckResult:
     """Compare ``optimal_point(Q, a, b)`` with the solution of ``A x = -q`` (midpoint when singular).
 
     Args:
         optimal_point: ``(Q (4, 4), a (3,), b (3,)) -> (3,)``.
+        seed: None for the public cases (the chapter's); an int for only the hidden
+            cases made from it.
     """
     unfinished = harness.unfinished(optimal_point, "optimal_point")
     if unfinished:
         return harness.failed("optimal_point", [], None, unfinished)
+    cases = _optimal_cases(seed)
+    return harness.counted(_check_optimal_point(optimal_point, cases), len(cases))
+
+
+def _check_optimal_point(optimal_point: Callable, cases: list) -> CheckResult:
+    """:func:`check_optimal_point` on the given cases."""
     checked: list[str] = []
-    for case, Q, a, b, well_posed in _optimal_cases():
+    for case, Q, a, b, well_posed in cases:
         status, answer = harness.run(optimal_point, Q.copy(), a.copy(), b.copy())
         if status == "error" and isinstance(answer, np.linalg.LinAlgError):
             return harness.failed("optimal_point", checked, case, f"np.linalg.solve raised LinAlgError ({answer}). A is "
@@ -355,7 +449,7 @@ def check_optimal_point(optimal_point: Callable) -> CheckResult:
             wanted = midpoint
         library = optimal_points(Q[None], a[None], b[None])[0][0]
         if harness.close(yours, wanted):
-            checked.append(case.split(" (")[0])
+            checked.append(case if case.startswith("hidden") else case.split(" (")[0])
             continue
         cost = lambda x: float(np.append(x, 1.0) @ Q @ np.append(x, 1.0))  # noqa: E731
         text = f"the best point is {harness.point_text(wanted)} (cost {cost(wanted):.3g}); yours is {harness.point_text(yours)} (cost {cost(yours):.3g})."
@@ -382,7 +476,20 @@ def check_optimal_point(optimal_point: Callable) -> CheckResult:
 # Chapter 12: de Casteljau
 # --------------------------------------------------------------------------------------
 
-def _casteljau_cases() -> list[tuple[str, np.ndarray, float]]:
+def _casteljau_cases(seed: int | None = None) -> list[tuple[str, np.ndarray, float]]:
+    """``(name, control points, t)`` for ``check_de_casteljau``; with a ``seed``, the
+    hidden cases: random control points of degree 1 to 6 in 2D and 3D, random t (and t = 1)."""
+    if seed is not None:
+        rng = harness.hidden_rng(seed)
+        cases = []
+        for number, (degree, dimension, t) in enumerate([
+                (int(rng.integers(2, 4)), 2, float(rng.uniform(0.05, 0.45))),
+                (int(rng.integers(3, 7)), 3, float(rng.uniform(0.55, 0.95))),
+                (int(rng.integers(1, 5)), 2, 1.0),
+                (int(rng.integers(2, 6)), 3, float(rng.uniform(0.0, 1.0)))], start=1):
+            points = rng.uniform(-2.0, 2.0, (degree + 1, dimension))
+            cases.append((hidden_name(number, f"random degree {degree} curve in {dimension}D at a t of its own"), points, t))
+        return cases
     quadratic = np.array([[0.0, 0.0], [1.0, 2.0], [2.0, 0.0]])
     cubic = np.array([[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]])
     space = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 1.0], [1.0, 1.0, 2.0], [0.0, 2.0, 1.0], [1.0, 3.0, 0.0]])
@@ -396,18 +503,26 @@ def _casteljau_cases() -> list[tuple[str, np.ndarray, float]]:
     ]
 
 
-def check_de_casteljau(de_casteljau: Callable) -> CheckResult:
+def check_de_casteljau(de_casteljau: Callable, *, seed: int | None = None) -> CheckResult:
     """Compare the learner's ``de_casteljau(points, t)`` (every level) with the library's.
 
     Args:
         de_casteljau: ``(points (n + 1, d), t) -> list`` of ``n + 1`` levels, level k
             holding ``n + 1 - k`` points.
+        seed: None for the public cases (the chapter's); an int for only the hidden
+            cases made from it.
     """
     unfinished = harness.unfinished(de_casteljau, "de_casteljau")
     if unfinished:
         return harness.failed("de_casteljau", [], None, unfinished)
+    cases = _casteljau_cases(seed)
+    return harness.counted(_check_de_casteljau(de_casteljau, cases), len(cases))
+
+
+def _check_de_casteljau(de_casteljau: Callable, cases: list[tuple[str, np.ndarray, float]]) -> CheckResult:
+    """:func:`check_de_casteljau` on the given cases."""
     checked: list[str] = []
-    for case, points, t in _casteljau_cases():
+    for case, points, t in cases:
         given = points.copy()
         status, answer = harness.run(de_casteljau, given, t)
         trouble = harness.trouble(status, answer, "de_casteljau")

@@ -31,7 +31,8 @@ from halfedge_edu.core.repair import repair_faces
 from halfedge_edu.data import sample
 from halfedge_edu.io import read_obj
 
-from .harness import TIME_LIMIT, CheckResult, failed, passed, run, trouble, unfinished
+from . import hidden
+from .harness import TIME_LIMIT, CheckResult, counted, failed, hidden_name, hidden_rng, passed, run, trouble, unfinished
 from .io_checks import check_obj_io, check_obj_reader, check_obj_writer
 
 __all__ = ["BOWTIE_FACES", "BOWTIE_VERTICES", "check_collapse_is_safe", "check_cut", "check_fan",
@@ -60,16 +61,38 @@ def _call(exercise: str, name: str, function: Callable, *args, mesh_name: str | 
     return value, None
 
 
-def check_fan(fan: Callable) -> CheckResult:
-    """``fan(corners) -> [(a, b, c), ...]`` against the OBJ reader's fans of 3 to 8 corners."""
+def fan_cases(seed: int | None = None) -> list[tuple[str, list[int]]]:
+    """``(name, corners)`` for :func:`check_fan`: 3 to 8 corners numbered 0, 1, 2, ...;
+    with a ``seed``, the hidden cases: polygons of 3 to 12 corners with other vertex numbers."""
+    if seed is None:
+        return [(f"{n} corners", list(range(n))) for n in range(3, 9)]
+    rng = hidden_rng(seed)
+    cases = []
+    for number, n in enumerate([3, *rng.integers(4, 13, 3).tolist()], start=1):
+        corners = rng.choice(40, size=n, replace=False).tolist()
+        cases.append((hidden_name(number, f"a face of {n} corners with other vertex numbers"), corners))
+    return cases
+
+
+def check_fan(fan: Callable, *, seed: int | None = None) -> CheckResult:
+    """``fan(corners) -> [(a, b, c), ...]`` against the OBJ reader's fans of 3 to 8 corners.
+
+    ``seed``: None for the public cases (the chapter's); an int for only the hidden cases made from it.
+    """
     if (blanks := _blanks_left("fan", "fan", fan)) is not None:
         return blanks
+    cases = fan_cases(seed)
+    return counted(_check_fan(fan, cases), len(cases))
+
+
+def _check_fan(fan: Callable, cases: list[tuple[str, list[int]]]) -> CheckResult:
+    """:func:`check_fan` on the given cases."""
     checked: list[str] = []
-    for n in range(3, 9):
-        text = "v 0 0 0\n" * n + "f " + " ".join(str(i) for i in range(1, n + 1)) + "\n"
+    for name, corners in cases:
+        n_vertices = max(corners) + 1
+        text = "v 0 0 0\n" * n_vertices + "f " + " ".join(str(c + 1) for c in corners) + "\n"
         expected = read_obj(io.StringIO(text)).faces.tolist()
-        name = f"{n} corners"
-        answer, failure = _call("fan", "fan", fan, list(range(n)), mesh_name=name, checked=checked)
+        answer, failure = _call("fan", "fan", fan, list(corners), mesh_name=name, checked=checked)
         if failure is not None:
             return failure
         try:
@@ -84,29 +107,60 @@ def check_fan(fan: Callable) -> CheckResult:
     return passed("fan", checked, "Your fan matches the reader.")
 
 
-def check_cut(cut_bowtie: Callable) -> CheckResult:
-    """``cut_bowtie(vertices, faces) -> (vertices, faces)`` against ``repair_faces`` on the bowtie."""
+def cut_cases(seed: int | None = None) -> list[tuple[str, np.ndarray]]:
+    """``(name, vertices)`` for :func:`check_cut`: the bowtie's faces on these positions.
+
+    Public: chapter 04's bowtie. With a ``seed``, the hidden cases: the same two
+    triangles touching at vertex 0, stretched, turned and moved at random.
+    """
+    if seed is None:
+        return [("bowtie", BOWTIE_VERTICES.copy())]
+    rng = hidden_rng(seed)
+    cases = []
+    for number in range(1, 4):
+        rotation, _ = np.linalg.qr(rng.standard_normal((3, 3)))
+        stretched = BOWTIE_VERTICES * rng.uniform(0.5, 2.0, 3)
+        stretched[1:] += 0.2 * rng.uniform(-1.0, 1.0, (4, 3)) * [1, 1, 0]
+        vertices = stretched @ rotation.T + rng.uniform(-3.0, 3.0, 3)
+        cases.append((hidden_name(number, "a bowtie of another shape, turned and moved"), vertices))
+    return cases
+
+
+def check_cut(cut_bowtie: Callable, *, seed: int | None = None) -> CheckResult:
+    """``cut_bowtie(vertices, faces) -> (vertices, faces)`` against ``repair_faces`` on the bowtie.
+
+    ``seed``: None for the public cases (the chapter's); an int for only the hidden cases made from it.
+    """
     if (blanks := _blanks_left("cut", "cut_bowtie", cut_bowtie)) is not None:
         return blanks
-    answer, failure = _call("cut", "cut_bowtie", cut_bowtie, BOWTIE_VERTICES.copy(), BOWTIE_FACES.copy(),
-                            mesh_name="bowtie")
-    if failure is not None:
-        return failure
-    try:
-        cut_vertices, cut_faces = answer
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", MeshWarning)   # an unused copy is dropped: still a mesh
-            mesh = HalfedgeMesh.from_faces(cut_vertices, cut_faces)
-    except MeshInputError as error:
-        return failed("cut", [], "bowtie", f"your faces do not build a halfedge mesh: {error}")
-    except (TypeError, ValueError) as error:
-        return failed("cut", [], "bowtie", f"cut_bowtie should return (vertices, faces); building from "
-                       f"yours failed: {type(error).__name__}: {error}")
-    _, repaired, _ = repair_faces(BOWTIE_VERTICES, BOWTIE_FACES)
-    if np.array_equal(np.asarray(cut_faces), repaired):
-        return passed("cut", ["bowtie"], f"{mesh}: the same faces as repair_faces.")
-    return failed("cut", [], "bowtie", f"it builds ({mesh}), but repair_faces gives {repaired.tolist()} "
-                   f"and yours {np.asarray(cut_faces).tolist()}: give the second fan the copy, vertex 5.")
+    cases = cut_cases(seed)
+    return counted(_check_cut(cut_bowtie, cases), len(cases))
+
+
+def _check_cut(cut_bowtie: Callable, cases: list[tuple[str, np.ndarray]]) -> CheckResult:
+    """:func:`check_cut` on the given cases."""
+    checked: list[str] = []
+    for name, vertices in cases:
+        answer, failure = _call("cut", "cut_bowtie", cut_bowtie, vertices.copy(), BOWTIE_FACES.copy(),
+                                mesh_name=name, checked=checked)
+        if failure is not None:
+            return failure
+        try:
+            cut_vertices, cut_faces = answer
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", MeshWarning)   # an unused copy is dropped: still a mesh
+                mesh = HalfedgeMesh.from_faces(cut_vertices, cut_faces)
+        except MeshInputError as error:
+            return failed("cut", checked, name, f"your faces do not build a halfedge mesh: {error}")
+        except (TypeError, ValueError) as error:
+            return failed("cut", checked, name, f"cut_bowtie should return (vertices, faces); building from "
+                           f"yours failed: {type(error).__name__}: {error}")
+        _, repaired, _ = repair_faces(vertices, BOWTIE_FACES)
+        if not np.array_equal(np.asarray(cut_faces), repaired):
+            return failed("cut", checked, name, f"it builds ({mesh}), but repair_faces gives {repaired.tolist()} "
+                           f"and yours {np.asarray(cut_faces).tolist()}: give the second fan the copy, vertex 5.")
+        checked.append(name)
+    return passed("cut", checked, f"{mesh}: the same faces as repair_faces.")
 
 
 def smooth_once_in_place(mesh: HalfedgeMesh, order) -> np.ndarray:
@@ -123,13 +177,39 @@ def smooth_once_in_place(mesh: HalfedgeMesh, order) -> np.ndarray:
     return positions
 
 
-def check_laplacian_step(step: Callable) -> CheckResult:
-    """``step(mesh) -> (V, 3)`` positions against ``smooth(mesh, 1)`` on three meshes."""
+def laplacian_cases(seed: int | None = None) -> dict[str, HalfedgeMesh]:
+    """The meshes of :func:`check_laplacian_step` by name: a cube, a patch with one vertex
+    raised, an icosphere; with a ``seed``, the hidden cases: a jittered closed mesh, a
+    jittered grid patch and a closed mesh after random flips (other degrees)."""
+    if seed is None:
+        patch = sample("open_patch")
+        patch.vertex(5).position = [1.0, 1.0, 0.5]        # something to smooth
+        return {"cube": sample("cube"), "open_patch": patch, "icosphere": sample("icosphere", subdivisions=1)}
+    rng = hidden_rng(seed)
+    shape, other = (str(name) for name in rng.choice(["cube", "octahedron", "icosphere(1)", "icosphere(2)"], 2,
+                                                      replace=False))
+    rows, columns = (int(n) for n in rng.integers(2, 5, 2))
+    flips = int(rng.integers(3, 9))
+    return {
+        hidden_name(1, f"{shape}, every vertex nudged"): hidden.jittered(hidden.closed_mesh(shape), rng, 0.05),
+        hidden_name(2, f"a {rows} x {columns} grid patch, nudged"): HalfedgeMesh.from_faces(*hidden.grid(rows, columns, rng)),
+        hidden_name(3, f"{other} after {flips} random flips"): hidden.flipped(hidden.closed_mesh(other), flips, rng),
+    }
+
+
+def check_laplacian_step(step: Callable, *, seed: int | None = None) -> CheckResult:
+    """``step(mesh) -> (V, 3)`` positions against ``smooth(mesh, 1)`` on three meshes.
+
+    ``seed``: None for the public cases (the chapter's); an int for only the hidden cases made from it.
+    """
     if (blanks := _blanks_left("laplacian_step", "laplacian_step", step)) is not None:
         return blanks
-    patch = sample("open_patch")
-    patch.vertex(5).position = [1.0, 1.0, 0.5]        # something to smooth
-    meshes = {"cube": sample("cube"), "open_patch": patch, "icosphere": sample("icosphere", subdivisions=1)}
+    meshes = laplacian_cases(seed)
+    return counted(_check_laplacian_step(step, meshes), len(meshes))
+
+
+def _check_laplacian_step(step: Callable, meshes: dict[str, HalfedgeMesh]) -> CheckResult:
+    """:func:`check_laplacian_step` on the given meshes."""
     checked: list[str] = []
     for name, mesh in meshes.items():
         before = mesh.positions.copy()
@@ -185,6 +265,34 @@ _BOUNDARY_NOTE = (
 )
 
 
+def _hidden_collapse_meshes(seed: int, with_boundary: bool) -> dict[str, HalfedgeMesh]:
+    """The hidden meshes of :func:`check_collapse_is_safe`: closed meshes after random
+    collapses and flips (low degrees, where the link condition fails), and with
+    ``with_boundary`` a grid patch after random collapses."""
+    rng = hidden_rng(seed)
+
+    def collapsed(mesh: HalfedgeMesh, count: int) -> HalfedgeMesh:
+        for _ in range(count):
+            allowed = [e.index for e in mesh.edges if can_collapse(mesh, e)]
+            if not allowed:
+                break
+            collapse(mesh, int(rng.choice(allowed)))
+        return HalfedgeMesh.from_faces(*mesh.to_arrays())
+
+    first, second = int(rng.integers(15, 30)), int(rng.integers(2, 5))
+    flips = int(rng.integers(3, 8))
+    meshes = {
+        f"icosphere(1) after {first} random collapses": collapsed(sample("icosphere", subdivisions=1), first),
+        f"octahedron after {flips} random flips": hidden.flipped(sample("octahedron"), flips, rng),
+        f"cube after {second} random collapses": collapsed(sample("cube"), second),
+    }
+    if with_boundary:
+        rows, columns = (int(n) for n in rng.integers(2, 4, 2))
+        patch = HalfedgeMesh.from_faces(*hidden.grid(rows, columns, rng))
+        meshes[f"a {rows} x {columns} grid patch after 2 random collapses"] = collapsed(patch, 2)
+    return {hidden_name(number, name): mesh for number, (name, mesh) in enumerate(meshes.items(), start=1)}
+
+
 def _collapse_meshes(with_boundary: bool) -> dict[str, HalfedgeMesh]:
     """The meshes of :func:`check_collapse_is_safe`: four closed ones, and four with boundary on request."""
     sphere = sample("icosphere", subdivisions=1)
@@ -223,7 +331,7 @@ def _unsafe_words(lc, on_boundary: bool) -> str:
     return words + " Only the vertices opposite the edge may be shared."
 
 
-def check_collapse_is_safe(is_safe: Callable, *, with_boundary: bool = False) -> CheckResult:
+def check_collapse_is_safe(is_safe: Callable, *, with_boundary: bool = False, seed: int | None = None) -> CheckResult:
     """``is_safe(mesh, e) -> bool`` against ``link_condition`` on every edge of four closed meshes.
 
     The last closed mesh is an icosphere after 25 random collapses, which leaves
@@ -243,12 +351,21 @@ def check_collapse_is_safe(is_safe: Callable, *, with_boundary: bool = False) ->
     Everything else must agree with ``link_condition`` (the boundary counted as ∂):
     a shared neighbour besides the opposite vertices, an interior edge with both ends
     on the boundary, a lone triangle are each named when called safe.
+
+    ``seed``: None for the public cases (the chapter's); an int for only the hidden cases
+    made from it (closed meshes after random collapses and flips).
     """
     if (blanks := _blanks_left("collapse_is_safe", "collapse_is_safe", is_safe)) is not None:
         return blanks
+    meshes = _collapse_meshes(with_boundary) if seed is None else _hidden_collapse_meshes(seed, with_boundary)
+    return counted(_check_collapse_is_safe(is_safe, meshes), len(meshes))
+
+
+def _check_collapse_is_safe(is_safe: Callable, meshes: dict[str, HalfedgeMesh]) -> CheckResult:
+    """:func:`check_collapse_is_safe` on the given meshes."""
     checked: list[str] = []
     notes: dict[str, None] = {}   # the course rules the learner's function followed, in order, once each
-    for name, mesh in _collapse_meshes(with_boundary).items():
+    for name, mesh in meshes.items():
         for edge in mesh.edges:
             answer, failure = _call("collapse_is_safe", "collapse_is_safe", is_safe, mesh, edge.index,
                                     mesh_name=name, checked=checked)

@@ -46,7 +46,7 @@ from halfedge_edu.core.build import build_reference
 from halfedge_edu.core.mesh import HalfedgeMesh
 from halfedge_edu.data import sample
 
-from . import harness
+from . import harness, hidden
 from .harness import TIME_LIMIT, CheckResult
 
 __all__ = ["check_build", "check_one_ring", "build_cases", "one_ring_cases"]
@@ -99,12 +99,24 @@ def _annulus():
     return outer + inner, faces
 
 
-def build_cases() -> list[tuple[str, np.ndarray, np.ndarray]]:
+def build_cases(seed: int | None = None) -> list[tuple[str, np.ndarray, np.ndarray]]:
     """The meshes ``check_build`` uses, in order: ``(name, vertices, faces)``.
 
     Small and open first (where mistakes are easy to read), then closed, several
-    boundary loops, and a shuffled numbering.
+    boundary loops, and a shuffled numbering. With a ``seed``, the hidden cases instead:
+    a jittered grid, a closed mesh and a second grid, each renumbered at random.
     """
+    if seed is not None:
+        rng = harness.hidden_rng(seed)
+        rows, columns = rng.integers(1, 4, 2)
+        shape = str(rng.choice(list(hidden.CLOSED_SHAPES)))
+        other_rows, other_columns = rng.integers(2, 5, 2)
+        hidden_cases = [
+            (f"a {rows} x {columns} grid patch, renumbered at random", *hidden.renumbered(*hidden.grid(rows, columns, rng), rng)),
+            (f"{shape}, renumbered at random", *hidden.renumbered(*hidden.closed_mesh(shape).to_arrays(), rng)),
+            (f"a {other_rows} x {other_columns} grid patch", *hidden.grid(other_rows, other_columns, rng)),
+        ]
+        return [(harness.hidden_name(k, name), v, f) for k, (name, v, f) in enumerate(hidden_cases, start=1)]
     cases = [("two triangles", [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], [[0, 1, 2], [0, 2, 3]])]
     for name in ("lone_triangle", "strip", "tetrahedron", "cube", "open_patch"):
         cases.append((name.replace("_", " "), *sample(name).to_arrays()))
@@ -435,7 +447,7 @@ def _judge_structure(arrays: dict[str, np.ndarray], faces: np.ndarray,
     return None
 
 
-def check_build(learner_build: Callable) -> CheckResult:
+def check_build(learner_build: Callable, *, seed: int | None = None) -> CheckResult:
     """Run ``learner_build(faces)`` on several meshes and compare with ``build_reference``.
 
     Args:
@@ -443,6 +455,8 @@ def check_build(learner_build: Callable) -> CheckResult:
             ``"next"`` (one entry per halfedge, any numbering) and optionally ``"prev"``,
             ``"vertex_halfedge"`` and ``"twin"`` (without it the twin is ``h ^ 1``).
             ``faces`` is an (m, 3) int array; rows are triangles counter-clockwise.
+        seed: None for the public cases (the chapter's); an int for only the hidden
+            cases made from it (see :mod:`halfedge_edu.exercises.hidden`).
 
     Returns:
         A :class:`CheckResult`: on the first difference, what it is in words and which
@@ -451,8 +465,14 @@ def check_build(learner_build: Callable) -> CheckResult:
     unfinished = harness.unfinished(learner_build, "build")
     if unfinished:
         return harness.failed("build", [], None, unfinished)
+    cases = build_cases(seed)
+    return harness.counted(_check_build(learner_build, cases), len(cases))
+
+
+def _check_build(learner_build: Callable, cases: list[tuple[str, np.ndarray, np.ndarray]]) -> CheckResult:
+    """:func:`check_build` on the given cases."""
     checked: list[str] = []
-    for name, vertices, faces in build_cases():
+    for name, vertices, faces in cases:
         status, answer = harness.run(learner_build, faces.copy())
         mesh = HalfedgeMesh.from_faces(vertices, faces)
         intro = f"faces {faces.tolist()}: " if len(faces) <= 4 else ""
@@ -476,12 +496,25 @@ def check_build(learner_build: Callable) -> CheckResult:
 # check_one_ring
 # --------------------------------------------------------------------------------------
 
-def one_ring_cases() -> list[tuple[str, HalfedgeMesh]]:
+def one_ring_cases(seed: int | None = None) -> list[tuple[str, HalfedgeMesh]]:
     """The meshes ``check_one_ring`` walks around, every vertex of each, in order.
 
     A flat patch comes first: its pictures are the easiest to read, and it has corner,
-    rim and interior vertices.
+    rim and interior vertices. With a ``seed``, the hidden cases instead: a renumbered
+    grid patch, a closed mesh after random flips (degrees from 3 up), and another grid.
     """
+    if seed is not None:
+        rng = harness.hidden_rng(seed)
+        rows, columns = rng.integers(2, 4, 2)
+        shape = str(rng.choice(["cube", "octahedron", "icosphere(1)", "icosphere(2)"]))
+        flips = int(rng.integers(4, 12))
+        hidden_cases = [
+            (f"a {rows} x {columns} grid patch, renumbered at random",
+             HalfedgeMesh.from_faces(*hidden.renumbered(*hidden.grid(rows, columns, rng), rng))),
+            (f"{shape} after {flips} random flips", hidden.flipped(hidden.closed_mesh(shape), flips, rng)),
+            ("a 1 x 3 grid patch (every vertex on the boundary)", HalfedgeMesh.from_faces(*hidden.grid(1, 3, rng))),
+        ]
+        return [(harness.hidden_name(k, name), mesh) for k, (name, mesh) in enumerate(hidden_cases, start=1)]
     cases = [(name.replace("_", " "), sample(name)) for name in ("open_patch", "strip", "tetrahedron", "cube",
                                                                "single_collapse")]
     cases.append(("octahedron, shuffled", HalfedgeMesh.from_faces(*_shuffled(*sample("octahedron").to_arrays(), 3))))
@@ -565,7 +598,7 @@ _CLOCKWISE_PRAISE = (
     "sign flip; reverse ring[1:] (or step with h.prev.twin) when you use the library's rings.")
 
 
-def check_one_ring(learner_one_ring: Callable) -> CheckResult:
+def check_one_ring(learner_one_ring: Callable, *, seed: int | None = None) -> CheckResult:
     """Run ``learner_one_ring(mesh, v)`` on every vertex of several meshes.
 
     Args:
@@ -574,6 +607,8 @@ def check_one_ring(learner_one_ring: Callable) -> CheckResult:
             ``v.halfedge``, counter-clockwise (the chapter's ``h.prev.twin``) or clockwise
             (the CMU notes' ``h.twin.next``), the same way at every vertex. Vertex
             handles or ints in the list.
+        seed: None for the public cases (the chapter's); an int for only the hidden
+            cases made from it.
 
     Returns:
         A :class:`CheckResult` naming the first vertex whose ring differs and why
@@ -582,9 +617,15 @@ def check_one_ring(learner_one_ring: Callable) -> CheckResult:
     unfinished = harness.unfinished(learner_one_ring, "one_ring")
     if unfinished:
         return harness.failed("one_ring", [], None, unfinished)
+    cases = one_ring_cases(seed)
+    return harness.counted(_check_one_ring(learner_one_ring, cases), len(cases))
+
+
+def _check_one_ring(learner_one_ring: Callable, cases: list[tuple[str, HalfedgeMesh]]) -> CheckResult:
+    """:func:`check_one_ring` on the given cases."""
     checked: list[str] = []
     turns: tuple[str, int] | None = None  # which way the learner's rings go, and where that was first seen
-    for name, mesh in one_ring_cases():
+    for name, mesh in cases:
         for vertex in mesh.vertices:
             status, answer = harness.run(learner_one_ring, mesh, vertex)
             v = vertex.index

@@ -27,7 +27,8 @@ import numpy as np
 from halfedge_edu.core.mesh import HalfedgeMesh
 
 __all__ = [
-    "CheckResult", "TIME_LIMIT", "all_good", "close", "failed", "passed", "point_text", "run", "trouble", "unfinished",
+    "CheckResult", "TIME_LIMIT", "all_good", "close", "counted", "failed", "hidden_name", "hidden_rng", "passed",
+    "point_text", "run", "trouble", "unfinished",
 ]
 
 #: Seconds a learner's function may run on one small mesh before the check gives up.
@@ -46,7 +47,9 @@ class CheckResult:
         exercise: which exercise was checked ("build" or "one_ring").
         passed: True when the learner's function agreed on every mesh.
         message: the explanation (for a failure: the first difference, in words).
-        checked: names of the meshes the function agreed on before it stopped.
+        checked: names of the cases the function agreed on before it stopped.
+        total: how many cases the check runs (public or hidden), so that a report can say
+            "3 of 5 public cases"; 0 when the check stopped before running any (blanks left).
         mesh_name: the mesh where the first difference was found (None if passed).
         element: ``(kind, index)`` of the offending element, e.g. ``("halfedge", 4)``.
         mesh: that mesh as a ``HalfedgeMesh`` (the reference), for :meth:`show`.
@@ -59,6 +62,7 @@ class CheckResult:
     mesh_name: str | None = None
     element: tuple | None = None
     mesh: HalfedgeMesh | None = field(default=None, repr=False)
+    total: int = 0
 
     def __bool__(self) -> bool:
         return self.passed
@@ -113,6 +117,30 @@ def failed(exercise: str, checked: list[str], mesh_name: str | None, text: str,
         text = text[:1].upper() + text[1:]
     before = f" (It agreed on {', '.join(checked)} first.)" if checked else ""
     return CheckResult(exercise, False, f"Not yet. {where}{text}{before}", list(checked), mesh_name, element, mesh)
+
+
+def counted(result: CheckResult, total: int) -> CheckResult:
+    """``result`` with ``total`` set: how many cases its check runs. Returns the same object."""
+    result.total = total
+    return result
+
+
+# --------------------------------------------------------------------------------------
+# Hidden cases: what a grader runs and the chapter's check cell never shows
+# --------------------------------------------------------------------------------------
+
+def hidden_rng(seed: int) -> np.random.Generator:
+    """The random source of one grading run's hidden cases: the same seed, the same cases."""
+    return np.random.default_rng(seed)
+
+
+def hidden_name(number: int, what: str) -> str:
+    """The name a hidden case is reported under, e.g. ``"hidden case 2: icosphere(2), 8 random flips"``.
+
+    It says what kind of case failed, so that a learner knows where to look, without
+    giving the grader's exact mesh or numbers away.
+    """
+    return f"hidden case {number}: {what}"
 
 
 # --------------------------------------------------------------------------------------

@@ -38,7 +38,7 @@ import numpy as np
 from halfedge_edu.core.errors import MeshInputError
 from halfedge_edu.io import read_obj as reference_read_obj
 
-from .harness import CheckResult, all_good, failed, run, trouble, unfinished
+from .harness import CheckResult, all_good, counted, failed, hidden_name, hidden_rng, run, trouble, unfinished
 
 __all__ = ["READER_CASES", "ReaderCase", "check_obj_io", "check_obj_reader", "check_obj_writer"]
 
@@ -241,9 +241,69 @@ def _judge_reader_answer(case: ReaderCase, answer) -> str | None:
             + _face_mistake(case, lines[k], reference[k], faces[k]))
 
 
-def _reader_failure(read_obj: Callable, checked: list[str]) -> CheckResult | None:
+def _random_polygons(rng: np.random.Generator, n_vertices: int, count: int, largest: int) -> list[list[int]]:
+    """``count`` faces of 3 to ``largest`` distinct corners each (0-based), at random."""
+    return [rng.choice(n_vertices, size=int(rng.integers(3, largest + 1)), replace=False).tolist()
+            for _ in range(count)]
+
+
+def _random_vertices(rng: np.random.Generator, count: int) -> np.ndarray:
+    """(count, 3) coordinates with four decimals, some negative."""
+    return np.round(rng.uniform(-5.0, 5.0, (count, 3)), 4)
+
+
+def _hidden_reader_cases(rng: np.random.Generator) -> list[ReaderCase]:
+    """OBJ texts of the same kinds as :data:`READER_CASES`, with other numbers: comments and
+    blank lines; ``v/vt/vn`` corners past vertex 9; negative indices; polygons."""
+    cases = []
+    n = int(rng.integers(12, 20))
+    vertices = _random_vertices(rng, n)
+    v_lines = [f"v {x} {y} {z}" for x, y, z in vertices.tolist()]
+
+    triangles = _random_polygons(rng, n, 4, 3)
+    lines = ["# a random soup", ""] + [line + ("   # a vertex" if k == 2 else "") for k, line in enumerate(v_lines)]
+    lines += ["", *(f"f {' '.join(str(c + 1) for c in face)}" + ("  # a face" if k == 0 else "")
+                    for k, face in enumerate(triangles))]
+    cases.append(ReaderCase("comments and blank lines", "\n".join(lines) + "\n", READER_CASES[1].rule))
+
+    faces = [[c for c in face] for face in _random_polygons(rng, n, 4, 3)]
+    faces[0][0] = max(faces[0][0], 10)                           # a vertex number of two digits
+    corners = "\n".join("f " + " ".join(f"{c + 1}/{int(rng.integers(1, 4))}/1" for c in face) for face in faces)
+    text = "\n".join(v_lines) + "\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\n" + corners + "\n"
+    cases.append(ReaderCase("vt/vn records and v/vt/vn corners", text, READER_CASES[3].rule))
+
+    first = int(rng.integers(4, n - 3))
+    negative = rng.choice(first, size=3, replace=False).tolist()   # among the vertices above the face
+    face_line = "f " + " ".join(str(c - first) for c in negative)  # c - first counts back from vertex first - 1
+    text = "\n".join(v_lines[:first]) + "\n" + face_line + "\n" + "\n".join(v_lines[first:]) + \
+        "\nf " + " ".join(str(c + 1) for c in _random_polygons(rng, n, 1, 3)[0]) + "\n"
+    cases.append(ReaderCase("negative indices", text, READER_CASES[5].rule))
+
+    polygons = _random_polygons(rng, n, 3, 6)
+    polygons[0] = polygons[0] + [c for c in range(n) if c not in polygons[0]][: 4 - len(polygons[0])] \
+        if len(polygons[0]) < 4 else polygons[0]                    # at least one polygon of 4 or more corners
+    text = "\n".join(v_lines) + "\n" + "\n".join("f " + " ".join(str(c + 1) for c in face) for face in polygons) + "\n"
+    cases.append(ReaderCase("polygons", text, READER_CASES[6].rule))
+    return [ReaderCase(hidden_name(number, f"a random OBJ text with {case.name}"), case.text, case.rule)
+            for number, case in enumerate(cases, start=1)]
+
+
+def _hidden_writer_cases(rng: np.random.Generator) -> tuple:
+    """Writer cases like :data:`WRITER_CASES`: random vertices, random triangles (as an
+    array) and random polygons (as lists)."""
+    n = int(rng.integers(5, 14))
+    triangles = np.asarray(_random_polygons(rng, n, int(rng.integers(2, 6)), 3))
+    m = int(rng.integers(6, 12))
+    return ((hidden_name(5, f"{n} random vertices and {len(triangles)} triangles"), rng.uniform(-1.0, 1.0, (n, 3)),
+             triangles),
+            (hidden_name(6, f"{m} random vertices and polygons of 3 to 6 corners"), _random_vertices(rng, m),
+             _random_polygons(rng, m, 4, 6)))
+
+
+def _reader_failure(read_obj: Callable, checked: list[str], cases: tuple[ReaderCase, ...] = READER_CASES,
+                    with_real_file: bool = True) -> CheckResult | None:
     """Run ``read_obj`` on every case and on a real file; the first failure, or None."""
-    for case in READER_CASES:
+    for case in cases:
         status, answer = run(read_obj, case.text)
         problem = trouble(status, answer, "read_obj")
         if problem is not None:
@@ -254,6 +314,8 @@ def _reader_failure(read_obj: Callable, checked: list[str]) -> CheckResult | Non
         if words is not None:
             return failed("obj_io", checked, case.name, words)
         checked.append(case.name)
+    if not with_real_file:
+        return None
     with resources.as_file(resources.files("halfedge_edu.data").joinpath("spot.obj")) as spot:
         status, answer = run(read_obj, Path(spot))
         name = "spot.obj, given as a pathlib.Path"
@@ -283,9 +345,9 @@ def _fans(faces) -> list[list[int]]:
     return [[int(face[0]), int(face[k]), int(face[k + 1])] for face in faces for k in range(1, len(face) - 1)]
 
 
-def _writer_failure(write_obj: Callable, checked: list[str]) -> CheckResult | None:
+def _writer_failure(write_obj: Callable, checked: list[str], cases: tuple = WRITER_CASES) -> CheckResult | None:
     """Run ``write_obj`` on every case and read its text with ``hx.read_obj``; the first failure, or None."""
-    for name, vertices, faces in WRITER_CASES:
+    for name, vertices, faces in cases:
         status, text = run(write_obj, vertices.copy(), [list(face) for face in faces]
                            if isinstance(faces, list) else faces.copy())
         problem = trouble(status, text, "write_obj")
@@ -326,48 +388,87 @@ def _writer_failure(write_obj: Callable, checked: list[str]) -> CheckResult | No
     return None
 
 
-def _check_one(function: Callable, name: str, find_failure: Callable, praise: str) -> CheckResult:
-    """Run one of the two finders (``_reader_failure``, ``_writer_failure``) on ``function``."""
+def _check_one(function: Callable, name: str, find_failure: Callable, praise: str, total: int) -> CheckResult:
+    """Run one of the two finders (``_reader_failure``, ``_writer_failure``, already given
+    their cases) on ``function``; ``total`` is how many cases that runs."""
     if words := unfinished(function, name):
         return failed("obj_io", [], None, words)
     checked: list[str] = []
     failure = find_failure(function, checked)
-    return failure if failure is not None else all_good("obj_io", checked, "cases", praise)
+    return counted(failure if failure is not None else all_good("obj_io", checked, "cases", praise), total)
 
 
-def check_obj_reader(read_obj: Callable) -> CheckResult:
-    """``read_obj(text or Path) -> (vertices, faces)`` against ``hx.read_obj`` on the cases of this module."""
-    return _check_one(read_obj, "read_obj", _reader_failure, "Your reader reads what hx.read_obj reads.")
+def _io_cases(seed: int | None) -> tuple[tuple[ReaderCase, ...], bool, tuple, tuple[np.ndarray, list[list[int]]], str]:
+    """Everything the OBJ checks run: reader cases, whether to read spot.obj, writer cases,
+    the round trip's (vertices, polygons) and its name. Hidden ones with a ``seed``."""
+    if seed is None:
+        pyramid_vertices, pyramid_polygons, _ = _reference(_PYRAMID)
+        return (READER_CASES, True, WRITER_CASES, (pyramid_vertices, [corners for _, corners in pyramid_polygons]),
+                "round trip: the pyramid through your write_obj and your read_obj")
+    rng = hidden_rng(seed)
+    readers, writers = _hidden_reader_cases(rng), _hidden_writer_cases(rng)
+    n = int(rng.integers(5, 10))
+    return (tuple(readers), False, writers, (_random_vertices(rng, n), _random_polygons(rng, n, 3, 5)),
+            hidden_name(7, "random polygons through your write_obj and your read_obj"))
 
 
-def check_obj_writer(write_obj: Callable) -> CheckResult:
-    """``write_obj(vertices, faces) -> str`` read back with ``hx.read_obj``: the same vertices and faces."""
-    return _check_one(write_obj, "write_obj", _writer_failure, "hx.read_obj reads your files back as they were written.")
+def check_obj_reader(read_obj: Callable, *, seed: int | None = None) -> CheckResult:
+    """``read_obj(text or Path) -> (vertices, faces)`` against ``hx.read_obj`` on the cases of this module.
+
+    ``seed``: None for the public cases (the chapter's); an int for only the hidden cases made from it.
+    """
+    readers, real_file, _, _, _ = _io_cases(seed)
+    return _check_one(read_obj, "read_obj", lambda f, checked: _reader_failure(f, checked, readers, real_file),
+                      "Your reader reads what hx.read_obj reads.", len(readers) + real_file)
 
 
-def check_obj_io(read_obj: Callable, write_obj: Callable) -> CheckResult:
-    """The reader, the writer, then the writer's text read back by the learner's own reader."""
+def check_obj_writer(write_obj: Callable, *, seed: int | None = None) -> CheckResult:
+    """``write_obj(vertices, faces) -> str`` read back with ``hx.read_obj``: the same vertices and faces.
+
+    ``seed``: None for the public cases (the chapter's); an int for only the hidden cases made from it.
+    """
+    _, _, writers, _, _ = _io_cases(seed)
+    return _check_one(write_obj, "write_obj", lambda f, checked: _writer_failure(f, checked, writers),
+                      "hx.read_obj reads your files back as they were written.", len(writers))
+
+
+def check_obj_io(read_obj: Callable, write_obj: Callable, *, seed: int | None = None) -> CheckResult:
+    """The reader, the writer, then the writer's text read back by the learner's own reader.
+
+    ``seed``: None for the public cases (the chapter's); an int for only the hidden cases made from it.
+    """
     for name, function in (("read_obj", read_obj), ("write_obj", write_obj)):
         if words := unfinished(function, name):
             return failed("obj_io", [], None, words)
+    readers, real_file, writers, round_trip, name = _io_cases(seed)
+    total = len(readers) + real_file + len(writers) + 1
+    return counted(_check_obj_io(read_obj, write_obj, readers, real_file, writers, round_trip, name), total)
+
+
+def _check_obj_io(read_obj: Callable, write_obj: Callable, readers: tuple[ReaderCase, ...], real_file: bool,
+                  writers: tuple, round_trip: tuple[np.ndarray, list[list[int]]], name: str) -> CheckResult:
+    """:func:`check_obj_io` on the given cases."""
     checked: list[str] = []
-    for find_failure, function in ((_reader_failure, read_obj), (_writer_failure, write_obj)):
-        failure = find_failure(function, checked)
-        if failure is not None:
-            return failure
-    name = "round trip: the pyramid through your write_obj and your read_obj"
-    pyramid_vertices, pyramid_polygons, _ = _reference(_PYRAMID)
-    pyramid_faces = [corners for _, corners in pyramid_polygons]
-    status, answer = run(write_obj, pyramid_vertices.copy(), [list(face) for face in pyramid_faces])
+    failure = _reader_failure(read_obj, checked, readers, real_file)   # a failed result is falsy: test for None
+    if failure is None:
+        failure = _writer_failure(write_obj, checked, writers)
+    if failure is not None:
+        return failure
+    trip_vertices, trip_faces = round_trip
+    status, answer = run(write_obj, trip_vertices.copy(), [list(face) for face in trip_faces])
     if status == "ok":
         status, answer = run(read_obj, answer)
     if (problem := trouble(status, answer, "read_obj or write_obj")) is not None:
         return failed("obj_io", checked, name, problem)
-    vertices, faces = answer
+    try:
+        vertices, faces = answer
+    except (TypeError, ValueError):
+        return failed("obj_io", checked, name, f"read_obj should return (vertices, faces); on your writer's text "
+                      f"it returned {answer!r:.80}.")
     faces = _faces_of(faces)
-    same = np.allclose(np.asarray(vertices, dtype=float), pyramid_vertices, rtol=0, atol=COORDINATE_TOLERANCE)
-    if not same or faces not in (pyramid_faces, _fans(pyramid_faces)):
-        return failed("obj_io", checked, name, f"writing the pyramid and reading it back gives {faces} (faces), "
-                      f"not {pyramid_faces}: the writer and the reader should be inverses.")
+    same = np.allclose(np.asarray(vertices, dtype=float), trip_vertices, rtol=0, atol=COORDINATE_TOLERANCE)
+    if not same or faces not in (trip_faces, _fans(trip_faces)):
+        return failed("obj_io", checked, name, f"writing these faces and reading them back gives {faces} (faces), "
+                      f"not {trip_faces}: the writer and the reader should be inverses.")
     checked.append("round trip")
     return all_good("obj_io", checked, "cases", "Your reader and writer agree with hx.read_obj and with each other.")

@@ -47,7 +47,7 @@ from halfedge_edu.core.mesh import HalfedgeMesh
 from halfedge_edu.core.ops import OperationLog, can_collapse, can_flip, collapse, flip
 from halfedge_edu.data import sample
 
-from . import harness
+from . import harness, hidden
 from .harness import TIME_LIMIT, CheckResult
 
 
@@ -82,12 +82,44 @@ def _random_steps(mesh: HalfedgeMesh, allowed, operate, count: int, seed: int, *
     return steps
 
 
-def flip_cases() -> list[tuple[str, HalfedgeMesh, list[int]]]:
+def _hidden_step_cases(seed: int, allowed, operate, *, halfedges: bool, with_boundary: bool,
+                       what: str) -> list[tuple[str, HalfedgeMesh, list[int]]]:
+    """The hidden cases of ``check_flip`` / ``check_collapse``: random allowed steps on a
+    closed mesh, on a jittered grid patch (a boundary nearby; ``with_boundary``) or a
+    closed mesh after random flips (other degrees), and on an icosphere(2).
+
+    ``check_collapse``'s contract has no boundary (the chapter's collapse is for closed
+    meshes), so its hidden cases are all closed.
+    """
+    rng = harness.hidden_rng(seed)
+    shape, other = (str(name) for name in rng.choice(["cube", "octahedron", "icosphere(1)"], 2, replace=False))
+    rows, columns = (int(n) for n in rng.integers(3, 5, 2))
+    flips = int(rng.integers(3, 8))
+    second = ((f"a {rows} x {columns} grid patch", HalfedgeMesh.from_faces(*hidden.grid(rows, columns, rng)), 3)
+              if with_boundary else
+              (f"{other} after {flips} random flips", hidden.flipped(hidden.closed_mesh(other), flips, rng), 3))
+    meshes = [
+        (shape, hidden.closed_mesh(shape), int(rng.integers(3, 6))),
+        second,
+        ("icosphere(2)", sample("icosphere", subdivisions=2), int(rng.integers(6, 11))),
+    ]
+    cases = []
+    for number, (name, mesh, count) in enumerate(meshes, start=1):
+        steps = _random_steps(mesh, allowed, operate, count, int(rng.integers(2**31)), halfedges=halfedges)
+        cases.append((harness.hidden_name(number, f"{name}, {len(steps)} random {what}"), mesh, steps))
+    return cases
+
+
+def flip_cases(seed: int | None = None) -> list[tuple[str, HalfedgeMesh, list[int]]]:
     """What ``check_flip`` runs: ``(name, mesh, edges)``, the edges flipped one after another.
 
     Small meshes first, where a mistake is easy to draw, then a run of random flips on
-    an icosphere. Every listed flip is allowed at the moment it is made.
+    an icosphere. Every listed flip is allowed at the moment it is made. With a
+    ``seed``, the hidden cases instead (random flips on other meshes).
     """
+    if seed is not None:
+        return _hidden_step_cases(seed, can_flip, lambda mesh, e: flip(mesh, e), halfedges=False,
+                                  with_boundary=True, what="flips")
     strip = sample("strip")
     cube = sample("cube")
     single = sample("single_collapse")
@@ -101,14 +133,18 @@ def flip_cases() -> list[tuple[str, HalfedgeMesh, list[int]]]:
     ]
 
 
-def collapse_cases() -> list[tuple[str, HalfedgeMesh, list[int]]]:
+def collapse_cases(seed: int | None = None) -> list[tuple[str, HalfedgeMesh, list[int]]]:
     """What ``check_collapse`` runs: ``(name, mesh, halfedges)``, collapsed one after another.
 
     Each halfedge runs from the vertex that goes (vB) to the one that stays (vA). The
     cube's halfedge 0 removes vertex 0, of degree 3 (the case where the faces beyond
     both removed edges are one and the same face); halfedge 1 removes vertex 4, of
-    degree 5; ``single_collapse`` removes a vertex of degree 6.
+    degree 5; ``single_collapse`` removes a vertex of degree 6. With a ``seed``, the
+    hidden cases instead (random collapses on other meshes).
     """
+    if seed is not None:
+        return _hidden_step_cases(seed, can_collapse, lambda mesh, h: collapse(mesh, mesh.halfedge(h)),
+                                  halfedges=True, with_boundary=False, what="collapses")
     single = sample("single_collapse")
     sphere = sample("icosphere", subdivisions=1)
     collapse_halfedge = lambda mesh, h: collapse(mesh, mesh.halfedge(h))  # noqa: E731
@@ -313,23 +349,26 @@ def _flip_problem(before: HalfedgeMesh, yours: HalfedgeMesh, e: int) -> tuple[st
     return None
 
 
-def check_flip(learner_flip: Callable) -> CheckResult:
+def check_flip(learner_flip: Callable, *, seed: int | None = None) -> CheckResult:
     """Run ``learner_flip(mesh, e)`` on copies of small meshes and compare with the library's flip.
 
     Args:
         learner_flip: a function ``(mesh, e) -> anything`` that flips edge ``e`` (an int)
             of ``mesh`` in place. It is only called on edges that may be flipped.
+        seed: None for the public cases (the chapter's); an int for only the hidden
+            cases made from it.
 
     Returns:
         A :class:`~halfedge_edu.exercises.CheckResult`: at the first difference, what it
         is in words and which element (``result.show()`` draws it on the mesh as it was
         before that flip); otherwise a short congratulation.
     """
-    return _check_steps(
-        "flip", learner_flip, flip_cases(), "flipping edge {}", lambda e: ("halfedge", 2 * e),
+    cases = flip_cases(seed)
+    return harness.counted(_check_steps(
+        "flip", learner_flip, cases, "flipping edge {}", lambda e: ("halfedge", 2 * e),
         "A flip is a fixed number of pointer writes; look for a loop that never ends.",
         _flip_problem, flip, "Every pointer ends up where it should, and the mesh is still valid.",
-    )
+    ), len(cases))
 
 
 # --------------------------------------------------------------------------------------
@@ -416,7 +455,7 @@ def _collapse_problem(before: HalfedgeMesh, yours: HalfedgeMesh, h: int) -> tupl
     return None
 
 
-def check_collapse(learner_collapse: Callable) -> CheckResult:
+def check_collapse(learner_collapse: Callable, *, seed: int | None = None) -> CheckResult:
     """Run ``learner_collapse(mesh, h)`` on copies of small meshes and compare with the library's collapse.
 
     Args:
@@ -424,16 +463,19 @@ def check_collapse(learner_collapse: Callable) -> CheckResult:
             halfedge ``h`` (an int) in place: ``h.vertex`` (vB) goes, ``h.tip`` (vA) stays
             and moves to the midpoint. It is only called on interior edges that may be
             collapsed, some of them on meshes that already have deleted elements.
+        seed: None for the public cases (the chapter's); an int for only the hidden
+            cases made from it.
 
     Returns:
         A :class:`~halfedge_edu.exercises.CheckResult`: at the first difference, what it
         is in words and which element (``result.show()`` draws it on the mesh as it was
         before that collapse); otherwise a short congratulation.
     """
-    return _check_steps(
-        "collapse", learner_collapse, collapse_cases(), "collapsing halfedge {}", lambda h: ("halfedge", h),
+    cases = collapse_cases(seed)
+    return harness.counted(_check_steps(
+        "collapse", learner_collapse, cases, "collapsing halfedge {}", lambda h: ("halfedge", h),
         "The walk around vB (h = twin(prev(h))) probably never comes back to its start: compare halfedge "
         "indices, and stop before you change the pointers you walk along.",
         _collapse_problem, lambda mesh, h: collapse(mesh, mesh.halfedge(h)),
         "Both cases work, degree 3 and higher, and the mesh stays valid.",
-    )
+    ), len(cases))

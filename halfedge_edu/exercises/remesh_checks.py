@@ -34,7 +34,7 @@ from halfedge_edu.algorithms.remesh import tangential_smoothing
 from halfedge_edu.core.mesh import HalfedgeMesh
 from halfedge_edu.data import sample
 
-from . import harness
+from . import harness, hidden
 from .harness import CheckResult
 
 
@@ -49,8 +49,22 @@ def _bumpy(mesh: HalfedgeMesh, seed: int, amount: float) -> HalfedgeMesh:
     return mesh
 
 
-def smoothing_cases() -> list[tuple[str, HalfedgeMesh]]:
-    """The meshes ``check_tangential_smoothing`` uses, in order."""
+def smoothing_cases(seed: int | None = None) -> list[tuple[str, HalfedgeMesh]]:
+    """The meshes ``check_tangential_smoothing`` uses, in order; with a ``seed``, the
+    hidden cases: two nudged closed meshes (one after random flips) and a grid patch."""
+    if seed is not None:
+        rng = harness.hidden_rng(seed)
+        shape, other = (str(name) for name in rng.choice(["cube", "octahedron", "icosphere(1)", "icosphere(2)"], 2,
+                                                          replace=False))
+        flips = int(rng.integers(3, 9))
+        rows, columns = (int(n) for n in rng.integers(2, 5, 2))
+        return [
+            (harness.hidden_name(1, f"{shape}, nudged"), hidden.jittered(hidden.closed_mesh(shape), rng, 0.04)),
+            (harness.hidden_name(2, f"{other} after {flips} random flips, nudged"),
+             hidden.jittered(hidden.flipped(hidden.closed_mesh(other), flips, rng), rng, 0.04)),
+            (harness.hidden_name(3, f"a {rows} x {columns} grid patch (a boundary)"),
+             HalfedgeMesh.from_faces(*hidden.grid(rows, columns, rng))),
+        ]
     patch = sample("open_patch")
     bumpy_patch = _bumpy(patch, 3, 0.05)
     return [
@@ -183,12 +197,14 @@ def _explain(mesh: HalfedgeMesh, v: int, yours: np.ndarray, wanted: np.ndarray) 
     return text
 
 
-def check_tangential_smoothing(tangential_smoothing: Callable) -> CheckResult:
+def check_tangential_smoothing(tangential_smoothing: Callable, *, seed: int | None = None) -> CheckResult:
     """Compare the learner's ``tangential_smoothing(mesh)`` with the remesher's smoothing phase.
 
     Args:
         tangential_smoothing: ``(mesh) -> (n_vertex_slots, 3)`` the new positions; the
             mesh must not change.
+        seed: None for the public cases (the chapter's); an int for only the hidden
+            cases made from it.
 
     Returns:
         A :class:`~halfedge_edu.exercises.harness.CheckResult`; at the first vertex that
@@ -199,9 +215,16 @@ def check_tangential_smoothing(tangential_smoothing: Callable) -> CheckResult:
     unfinished = harness.unfinished(tangential_smoothing, name)
     if unfinished:
         return harness.failed(name, [], None, unfinished)
+    cases = smoothing_cases(seed)
+    return harness.counted(_check_tangential_smoothing(tangential_smoothing, cases), len(cases))
+
+
+def _check_tangential_smoothing(tangential_smoothing: Callable, cases: list[tuple[str, HalfedgeMesh]]) -> CheckResult:
+    """:func:`check_tangential_smoothing` on the given cases."""
+    name = "tangential_smoothing"
     checked: list[str] = []
     weights: list[float] = []  # the learner's damping weight w, if they damp the step (CMU's notes)
-    for case, mesh in smoothing_cases():
+    for case, mesh in cases:
         before = mesh.positions.copy()
         status, answer = harness.run(tangential_smoothing, mesh)
         trouble = harness.trouble(status, answer, name)
@@ -226,11 +249,11 @@ def check_tangential_smoothing(tangential_smoothing: Callable) -> CheckResult:
                                   f"{_weight_text(weights[0])} before: use one weight for every step.")
         if damping is not None:
             weights.append(damping)
-            checked.append(case.split(" (")[0])
+            checked.append(case if case.startswith("hidden") else case.split(" (")[0])
             continue
         wrong = np.flatnonzero(~np.isclose(yours, wanted, rtol=1e-7, atol=1e-9).all(axis=1))
         if len(wrong) == 0:
-            checked.append(case.split(" (")[0])
+            checked.append(case if case.startswith("hidden") else case.split(" (")[0])
             continue
         v = int(wrong[0])
         kept_normal = _damping(before, yours, _plain_centroids(mesh))
