@@ -90,3 +90,16 @@ def blank_fan(corners):
 def test_a_blank_left_in_the_function_is_named_before_it_runs():
     result = check_fan(blank_fan)
     assert not result and "still has blanks (...)" in result.message
+
+
+def test_check_cut_accepts_a_triangle_written_from_another_corner():
+    """[5, 3, 4] is the triangle [3, 4, 5] started at its third corner: the same face."""
+    rotated = check_cut(lambda vertices, faces: (np.vstack([vertices, vertices[0]]), [[0, 1, 2], [3, 4, 5]]))
+    assert rotated.passed, rotated.message
+
+
+def test_check_cut_names_a_turned_face_as_an_orientation_slip():
+    turned = check_cut(lambda vertices, faces: (np.vstack([vertices, vertices[0]]), [[0, 1, 2], [5, 4, 3]]))
+    assert not turned.passed
+    assert "runs the other way round" in turned.message
+    assert "give the second fan the copy" not in turned.message
