@@ -280,11 +280,14 @@ def _check_steps(exercise: str, learner: Callable, cases: list, doing: str, elem
         doing: what one step is, with ``{}`` for the step, e.g. ``"flipping edge {}"``.
         element_of: step -> the ``(kind, index)`` to draw when the learner's function fails.
         timeout_hint: what to look for when the function does not finish.
-        problem_of: ``(before, yours, step) -> (words, element) | None``, the comparison.
+        problem_of: ``(before, yours, step, notes) -> (words, element) | None``, the
+            comparison; it may add to ``notes`` (a dict used as an ordered set) the
+            sentence naming a course's convention it recognised, said once on success.
         library: ``(mesh, step)``, the package's operation, which moves the case on.
         praise: the last sentence of the congratulation.
     """
     checked: list[str] = []
+    notes: dict[str, None] = {}
     for name, mesh, steps in cases:
         for step in steps:
             before = mesh.copy()
@@ -296,7 +299,7 @@ def _check_steps(exercise: str, learner: Callable, cases: list, doing: str, elem
                 text = _describe_error(exercise, answer)
             else:
                 yours.topology_changed()  # the learner wrote the arrays by hand
-                problem = problem_of(before, yours, step)
+                problem = problem_of(before, yours, step, notes)
                 if problem is None:
                     library(mesh, step)
                     continue
@@ -304,14 +307,15 @@ def _check_steps(exercise: str, learner: Callable, cases: list, doing: str, elem
                 return harness.failed(exercise, checked, name, text, _shown(element), before)
             return harness.failed(exercise, checked, name, f"{doing.format(step)}, {text}", element_of(step), before)
         checked.append(name)
-    return harness.passed(exercise, checked, praise)
+    return harness.passed(exercise, checked, " ".join([praise, *notes]))
 
 
 # --------------------------------------------------------------------------------------
 # check_flip
 # --------------------------------------------------------------------------------------
 
-def _flip_problem(before: HalfedgeMesh, yours: HalfedgeMesh, e: int) -> tuple[str, tuple | None] | None:
+def _flip_problem(before: HalfedgeMesh, yours: HalfedgeMesh, e: int,
+                  notes: dict[str, None] | None = None) -> tuple[str, tuple | None] | None:
     """None if ``yours`` is ``before`` with edge ``e`` flipped; else (words, element)."""
     log = OperationLog()
     wanted = before.copy()
@@ -381,8 +385,35 @@ def _deleted(before: HalfedgeMesh, yours: HalfedgeMesh, kind: str) -> set[int]:
     return {int(i) for i in np.flatnonzero(new[: len(old)] & ~old)}
 
 
-def _collapse_problem(before: HalfedgeMesh, yours: HalfedgeMesh, h: int) -> tuple[str, tuple | None] | None:
-    """None if ``yours`` is ``before`` with halfedge ``h`` collapsed; else (words, element)."""
+#: Said once when a learner's collapse keeps ``h.vertex`` instead of ``h.tip``.
+_KEPT_OTHER_END_NOTE = (
+    "Your collapse keeps the other endpoint, h.vertex, and deletes h.tip: UChicago's assignment leaves the "
+    "choice of which vertex to keep free, so that is accepted (judged as the collapse of h.twin). The chapter "
+    "keeps vA = h.tip so that its pictures and pointer tables have one name for each element.")
+
+
+def _kept_end(before: HalfedgeMesh, yours: HalfedgeMesh, h: int) -> int:
+    """The halfedge whose collapse ``yours`` matches in which endpoint survives: ``h`` when
+    ``h.tip`` survives (the chapter's convention), ``h ^ 1`` when only ``h.vertex`` does."""
+    tip, origin = int(before.halfedge_vertex[h ^ 1]), int(before.halfedge_vertex[h])
+    gone = _deleted(before, yours, "vertex")
+    live_halfedges = np.repeat(~yours.edge_deleted, 2)                       # (n_halfedge_slots,) bool
+    tip_still_used = bool(np.any(yours.halfedge_vertex[live_halfedges] == tip))
+    return h ^ 1 if gone == {tip} and origin not in gone and not tip_still_used else h
+
+
+def _collapse_problem(before: HalfedgeMesh, yours: HalfedgeMesh, h: int,
+                      notes: dict[str, None] | None = None) -> tuple[str, tuple | None] | None:
+    """None if ``yours`` is ``before`` with halfedge ``h`` collapsed; else (words, element).
+
+    Either endpoint may survive (UChicago leaves it free): when only ``h.tip`` is
+    deleted, the answer is judged as the collapse of ``h.twin`` and ``notes`` says so.
+    """
+    if _kept_end(before, yours, h) != h:
+        problem = _collapse_problem(before, yours, h ^ 1)
+        if problem is None and notes is not None:
+            notes[_KEPT_OTHER_END_NOTE] = None
+        return problem
     log = OperationLog()
     wanted = before.copy()
     collapse(wanted, wanted.halfedge(h), log=log)
@@ -397,8 +428,10 @@ def _collapse_problem(before: HalfedgeMesh, yours: HalfedgeMesh, h: int) -> tupl
                 f"reused.", ("halfedge", h))
     gone = {kind: _deleted(before, yours, kind) for kind in ("vertex", "edge", "face")}
     if vA in gone["vertex"]:
-        return (f"{doing} {picture} deleted vertex {vA}, vA. Halfedge {h} runs from vB to vA: vA = h.tip survives "
-                f"(at the midpoint) and vB = h.vertex goes.", ("vertex", vA))
+        return (f"{doing} {picture} deleted vertex {vA}, vA, but its halfedges still start at it. Halfedge {h} runs "
+                f"from vB to vA: the chapter keeps vA = h.tip (at the midpoint) and deletes vB = h.vertex. Keeping "
+                f"vB instead is fine too (UChicago leaves it free), but then every halfedge that left vA must "
+                f"leave vB.", ("vertex", vA))
     if gone["vertex"] != {vB}:
         if not gone["vertex"]:
             text = f"{doing} {picture} deleted no vertex; vB = {vB} must go (mesh.delete_vertex(vB))."

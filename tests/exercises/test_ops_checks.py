@@ -326,3 +326,10 @@ def test_show_draws_the_offending_element():
     result = check_collapse(lambda mesh, h: student_collapse(mesh, h, delete_faces=False))
     picture = result.show(window_size=(200, 150))
     assert picture is not None and picture.data[:4] == b"\x89PNG"
+
+
+def test_a_collapse_that_keeps_the_other_endpoint_is_accepted_and_the_convention_named():
+    """UChicago's P6: 'which vertex to keep will be ambiguous'; keeping h.vertex is right there."""
+    result = check_collapse(lambda mesh, h: collapse(mesh, mesh.halfedge(h ^ 1)))
+    assert result.passed, result.message
+    assert "UChicago's assignment leaves the choice of which vertex to keep free" in result.message
