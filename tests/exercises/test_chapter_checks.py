@@ -103,3 +103,33 @@ def test_check_cut_names_a_turned_face_as_an_orientation_slip():
     assert not turned.passed
     assert "runs the other way round" in turned.message
     assert "give the second fan the copy" not in turned.message
+
+
+def uchicago_laplacian_step(mesh):
+    """UChicago's P5, written as its assignment says ('you will not need to worry about checking
+    boundaries'): every vertex to the mean of its neighbours."""
+    old = mesh.positions
+    return np.array([old[[u.index for u in v.neighbors()]].mean(axis=0) for v in mesh.vertices])
+
+
+def test_uchicagos_smoothing_that_ignores_boundaries_is_judged_on_the_closed_meshes_and_said():
+    result = check_laplacian_step(uchicago_laplacian_step)
+    assert result.passed, result.message
+    assert "UChicago's assignment says not to worry about boundaries" in result.message
+    assert "'open_patch'" in result.message
+    assert result.total == len(result.checked) == 3
+
+
+def test_uchicagos_smoothing_passes_the_hidden_cases_too():
+    assert check_laplacian_step(uchicago_laplacian_step, seed=4).passed
+
+
+def test_moving_only_some_boundary_vertices_is_still_a_slip():
+    def moves_one_boundary_vertex(mesh):
+        new = right_laplacian_step(mesh)
+        boundary = [v.index for v in mesh.vertices if v.is_boundary]
+        if boundary:
+            new[boundary[0]] += 0.1
+        return new
+    result = check_laplacian_step(moves_one_boundary_vertex)
+    assert not result.passed and "is on the boundary and should stay" in result.message
