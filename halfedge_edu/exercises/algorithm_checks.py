@@ -44,7 +44,7 @@ from .harness import CheckResult, hidden_name
 
 
 __all__ = ["check_loop_rules", "check_plane_quadric", "check_optimal_point", "check_de_casteljau",
-           "loop_cases", "warren_beta"]
+           "loop_cases", "loop_original_beta", "warren_beta"]
 
 
 
@@ -167,12 +167,8 @@ def _vertex_problem(mesh: HalfedgeMesh, v: int, yours: np.ndarray, wanted: np.nd
     text = (f"vertex {v} is inside with degree n = {n} (neighbours {ring}); Warren's beta is "
             f"{'3/16' if n == 3 else f'3/(8 * {n})'} = {beta:.6g}, so it moves to (1 - n beta) v + beta * "
             f"(sum of the neighbours) = {harness.point_text(wanted)}; yours is {harness.point_text(yours)}.")
-    loop_beta = (5.0 / 8.0 - (3.0 / 8.0 + 0.25 * np.cos(2.0 * np.pi / n)) ** 2) / n
     if n == 3 and harness.close(yours, (1 - 3 * (1.0 / 8.0)) * P[v] + (1.0 / 8.0) * ring_sum):
         text += " You used 3/(8n) = 1/8, but for degree 3 Warren's rule has its own value, beta = 3/16."
-    elif harness.close(yours, (1 - n * loop_beta) * P[v] + loop_beta * ring_sum):
-        text += (f" That is Loop's original beta ({loop_beta:.6g}); the course uses Warren's simpler one "
-                 f"(3/16 for n = 3, 3/(8n) otherwise).")
     elif harness.close(yours, P[v]):
         text += " The old vertices move too: each becomes a weighted average of itself and its ring."
     elif harness.close(yours, ring_sum / n):
@@ -211,10 +207,39 @@ def check_loop_rules(edge_point: Callable | None = None, vertex_point: Callable 
     return harness.counted(_check_loop_rules(functions, label, cases), len(cases))
 
 
+def loop_original_beta(n: int) -> float:
+    """Loop's own weight of each neighbour of an interior vertex of degree ``n`` (the cos rule)."""
+    return (5.0 / 8.0 - (3.0 / 8.0 + 0.25 * np.cos(2.0 * np.pi / n)) ** 2) / n
+
+
+def _vertex_point_with(mesh: HalfedgeMesh, v: int, beta: Callable[[int], float]) -> np.ndarray:
+    """(3,) where interior vertex ``v`` moves with the neighbour weight ``beta(n)``."""
+    ring = [u.index for u in mesh.vertex(v).neighbors()]
+    n = len(ring)
+    return (1.0 - n * beta(n)) * mesh.positions[v] + beta(n) * mesh.positions[ring].sum(axis=0)
+
+
+#: The two weightings the Loop assignment lets a student choose ("document which one you used").
+_BETAS = {"Warren's": warren_beta, "Loop's original": loop_original_beta}
+
+_CLOSED_ONLY_NOTE = (
+    "Your rules were judged on the closed meshes only: the Loop assignment asks only for meshes without "
+    "boundary, so rules that do not handle one are right there. On {case}, at the boundary, {words} "
+    "(Chapter 09's boundary rules are what you need for open meshes.)")
+
+
 def _check_loop_rules(functions: list[tuple[str, Callable]], label: str,
                       cases: list[tuple[str, HalfedgeMesh]]) -> CheckResult:
-    """:func:`check_loop_rules` on the given cases."""
+    """:func:`check_loop_rules` on the given cases.
+
+    Two conventions of the Loop assignment are recognised and said: Loop's original
+    beta instead of Warren's (the same choice at every vertex), and rules for closed
+    meshes only (a boundary element that disagrees or raises does not fail the check; the
+    mesh is judged on its interior and the congratulation says what the boundary got).
+    """
     checked: list[str] = []
+    beta_rule: tuple[str, str] | None = None     # (which beta, where it was first told apart)
+    boundary_note: str | None = None             # the first boundary element that used a closed-only rule
     for case, mesh in cases:
         vertex_points, edge_points = loop_positions(mesh)
         before = mesh.positions.copy()
@@ -225,6 +250,10 @@ def _check_loop_rules(functions: list[tuple[str, Callable]], label: str,
                 trouble = harness.trouble(status, answer, name)
                 kind = ("halfedge", 2 * element.index) if name == "edge_point" else ("vertex", element.index)
                 what = f"edge {element.index}" if name == "edge_point" else f"vertex {element.index}"
+                on_boundary = element.is_boundary
+                if trouble and on_boundary and status == "error" and not trouble.startswith(name):
+                    boundary_note = boundary_note or _CLOSED_ONLY_NOTE.format(case=repr(case), words=f"on {what}, {trouble}")
+                    continue
                 if trouble:
                     return harness.failed(label, checked, case, f"on {what}, {trouble}", kind, mesh)
                 if not np.array_equal(mesh.positions, before):
@@ -237,12 +266,36 @@ def _check_loop_rules(functions: list[tuple[str, Callable]], label: str,
                     return harness.failed(label, checked, case, f"your {name} should return 3 numbers (a position), but for "
                                    f"{what} it returned {answer!r:.80}.", kind, mesh)
                 wanted = edge_points[element.index] if name == "edge_point" else vertex_points[element.index]
+                if name == "vertex_point" and not on_boundary:
+                    matching = [rule for rule, beta in _BETAS.items()
+                                if harness.close(yours, _vertex_point_with(mesh, element.index, beta))]
+                    if len(matching) == 1:                # the two rules differ here (degree not 3 or 6)
+                        if beta_rule and beta_rule[0] != matching[0]:
+                            return harness.failed(label, checked, case, (
+                                f"at {what} your vertex point uses {matching[0]} beta, but at {beta_rule[1]} it "
+                                f"used {beta_rule[0]}: choose one weighting and use it at every vertex."), kind, mesh)
+                        beta_rule = beta_rule or (matching[0], f"{what} of {case!r}")
+                    if matching:
+                        continue
                 if not harness.close(yours, wanted):
                     explain = _edge_problem if name == "edge_point" else _vertex_problem
-                    return harness.failed(label, checked, case, explain(mesh, element.index, yours, wanted), kind, mesh)
+                    words = explain(mesh, element.index, yours, wanted)
+                    if on_boundary:
+                        boundary_note = boundary_note or _CLOSED_ONLY_NOTE.format(case=repr(case), words=words)
+                        continue
+                    return harness.failed(label, checked, case, words, kind, mesh)
         checked.append(case if case.startswith("hidden") else case.split(" (")[0])
-    return harness.all_good(label, checked, "meshes", "Together they are one level of Loop's positions; the connectivity is "
-                   "the 4-to-1 split you stepped through.")
+    praise = "Together they are one level of Loop's positions; the connectivity is the 4-to-1 split you stepped through."
+    if beta_rule and beta_rule[0] != "Warren's":
+        praise += (f" Your vertex points use Loop's original beta, (5/8 - (3/8 + 1/4 cos(2 pi / n))^2) / n, which "
+                   f"the Loop assignment lets you choose (document it in your README); the chapter and the library "
+                   f"use Warren's simpler 3/16 for n = 3 and 3/(8n) otherwise. The two agree at degrees 3 and 6.")
+    if boundary_note:
+        if all(any(mesh.vertex(v.index).is_boundary for v in mesh.vertices) for _, mesh in cases):
+            return harness.failed(label, [], None, "every mesh here has a boundary and your rules do not handle "
+                                  "it, so they cannot be judged on a closed one. " + boundary_note)
+        praise += " " + boundary_note
+    return harness.all_good(label, checked, "meshes", praise)
 
 
 # --------------------------------------------------------------------------------------

@@ -69,14 +69,51 @@ def test_loop_degree_three_beta_slip_is_named():
     assert "for degree 3 Warren's rule has its own value, beta = 3/16" in result.message
 
 
-def test_loop_interior_rule_on_the_boundary_is_named():
+def test_loop_interior_rule_on_the_boundary_is_judged_on_closed_meshes_and_the_slip_still_named():
+    """The Loop assignment asks for closed meshes only: an interior rule used everywhere is right
+    there, so the check passes on the closed meshes and says what the boundary got."""
     def everywhere(mesh, vertex):
         ring = [u.position for u in vertex.neighbors()]
         beta = warren_beta(len(ring))
         return (1 - len(ring) * beta) * vertex.position + beta * np.sum(ring, axis=0)
 
     result = check_loop_rules(edge_point, everywhere)
+    assert result.passed, result.message
+    assert "judged on the closed meshes only" in result.message
     assert "On 'open patch (a boundary)'" in result.message and "interior rule" in result.message
+
+
+def closed_only_edge_point(mesh, edge):
+    """The Loop assignment's edge point, written for closed meshes: both opposite corners exist."""
+    h = edge.halfedge
+    a, b = h.vertex.position, h.tip.position
+    c, d = h.prev.vertex.position, h.twin.prev.vertex.position
+    return 3 / 8 * (a + b) + 1 / 8 * (c + d)
+
+
+def loop_original_vertex_point(mesh, vertex):
+    """The Loop assignment's other choice of weights: Loop's own beta with the cosine."""
+    ring = [u.position for u in vertex.neighbors()]
+    n = len(ring)
+    beta = (5 / 8 - (3 / 8 + 1 / 4 * np.cos(2 * np.pi / n)) ** 2) / n
+    return (1 - n * beta) * vertex.position + beta * np.sum(ring, axis=0)
+
+
+def test_loop_original_beta_and_closed_only_rules_are_accepted_and_the_conventions_said():
+    result = check_loop_rules(closed_only_edge_point, loop_original_vertex_point)
+    assert result.passed, result.message
+    assert "Loop's original beta" in result.message and "judged on the closed meshes only" in result.message
+    assert check_loop_rules(closed_only_edge_point, loop_original_vertex_point, seed=3).passed
+
+
+def test_switching_between_the_two_betas_is_refused():
+    def mixed(mesh, vertex):
+        ring = [u.position for u in vertex.neighbors()]
+        chosen = vertex_point if len(ring) == 4 else loop_original_vertex_point
+        return chosen(mesh, vertex)
+
+    result = check_loop_rules(vertex_point=mixed)
+    assert not result.passed and "choose one weighting" in result.message
 
 
 def test_loop_writing_positions_is_refused():
