@@ -176,3 +176,31 @@ def test_a_learner_function_that_overwrites_the_control_points_is_told():
         return levels
 
     assert "changed the control points" in check_de_casteljau(in_place).message
+
+
+def cmu_optimal_point(Q, a, b):
+    """CMU's notes: x = A.inv() * b with b = -Q[:3, 3], and the midpoint when A cannot be inverted."""
+    A, minus_q = Q[:3, :3], -Q[:3, 3]
+    if abs(np.linalg.det(A)) < 1e-10:
+        return (a + b) / 2
+    return np.linalg.inv(A) @ minus_q
+
+
+def exact_determinant_test(Q, a, b):
+    A, q = Q[:3, :3], Q[:3, 3]
+    if np.linalg.det(A) == 0:
+        return (a + b) / 2
+    return np.linalg.solve(A, -q)
+
+
+def test_cmus_inverse_with_the_midpoint_fallback_is_accepted_on_every_flat_region():
+    assert check_optimal_point(cmu_optimal_point).passed
+    for seed in (1, 2, 3):
+        assert check_optimal_point(cmu_optimal_point, seed=seed).passed
+
+
+def test_an_exact_determinant_test_is_rejected_on_a_meshs_flat_region_and_the_slip_named():
+    result = check_optimal_point(exact_determinant_test)
+    assert not result.passed
+    assert "a tilted flat region of a mesh" in result.message
+    assert "det(A) == 0 misses it" in result.message
