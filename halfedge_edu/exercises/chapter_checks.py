@@ -324,11 +324,21 @@ def _vertex_set(vertices) -> str:
 #: What the check adds when a learner's answer follows a course's own rule where the package's differs.
 _TETRAHEDRON_NOTE = (
     "On the tetrahedron your function calls the collapse safe: that is the link condition as UChicago's "
-    "assignment states it (the one-rings of a and b share exactly two vertices), and it is accepted. This "
+    "assignment states it (the one-rings of a and b share exactly two vertices), and with vertices_only=True "
+    "it is accepted. This "
     "package also compares the links' edges and refuses it (can_collapse's rule 'tetrahedron'): the edge "
     "between the two opposite vertices lies in both links, and the collapse would leave two triangles glued "
     "back to back on three vertices, a two-face 'pillow' with no inside on which no flip, split or collapse "
     "works any more (pmp-library and OpenMesh allow it)."
+)
+#: The failure's words when the vertex part holds but the links share an edge, and the full condition is asked.
+_LINK_EDGE_WORDS = (
+    ", exactly the vertices opposite the edge, so the vertex part holds; but the edge {l} - {r} between those "
+    "two opposite vertices lies in both links, so the collapse is NOT safe: it would leave two triangles glued "
+    "back to back on three vertices, a two-face 'pillow' with no inside. The link condition compares the "
+    "links' edges too, and this chapter asks for all of it. (Only the vertex part is the link condition as "
+    "UChicago's assignment states it: if you follow that assignment, check_collapse_is_safe(your_function, "
+    "vertices_only=True) judges it that way.)"
 )
 _BOUNDARY_NOTE = (
     "Your function refuses boundary edges that the link condition allows, as CMU's assignment asks (ignore "
@@ -403,7 +413,8 @@ def _unsafe_words(lc, on_boundary: bool) -> str:
     return words + " Only the vertices opposite the edge may be shared."
 
 
-def check_collapse_is_safe(is_safe: Callable, *, with_boundary: bool = False, seed: int | None = None) -> CheckResult:
+def check_collapse_is_safe(is_safe: Callable, *, with_boundary: bool = False, vertices_only: bool = False,
+                           seed: int | None = None) -> CheckResult:
     """``is_safe(mesh, e) -> bool`` against ``link_condition`` on every edge of four closed meshes.
 
     The last closed mesh is an icosphere after 25 random collapses, which leaves
@@ -415,8 +426,10 @@ def check_collapse_is_safe(is_safe: Callable, *, with_boundary: bool = False, se
 
     * UChicago's "the two one-rings share exactly two vertices" looks at vertices only
       and calls the tetrahedron's edges safe; the package also compares the links'
-      edges and refuses them. Accepted, and the passing message says why the package
-      refuses (the two-face pillow).
+      edges and refuses them. With ``vertices_only=True`` (a UChicago learner) that is
+      accepted, and the passing message says why the package refuses (the two-face
+      pillow); by default (chapter 08 asks for the whole link condition) it is refused,
+      and the failure names UChicago's statement and ``vertices_only``.
     * CMU's "ignore requests to collapse boundary edges" refuses boundary edges the
       package allows. Accepted, and said.
 
@@ -430,11 +443,11 @@ def check_collapse_is_safe(is_safe: Callable, *, with_boundary: bool = False, se
     if (blanks := _blanks_left("collapse_is_safe", "collapse_is_safe", is_safe)) is not None:
         return blanks
     meshes = _collapse_meshes(with_boundary) if seed is None else _hidden_collapse_meshes(seed, with_boundary)
-    return counted(_check_collapse_is_safe(is_safe, meshes), len(meshes))
+    return counted(_check_collapse_is_safe(is_safe, meshes, vertices_only), len(meshes))
 
 
-def _check_collapse_is_safe(is_safe: Callable, meshes: dict[str, HalfedgeMesh]) -> CheckResult:
-    """:func:`check_collapse_is_safe` on the given meshes."""
+def _check_collapse_is_safe(is_safe: Callable, meshes: dict[str, HalfedgeMesh], vertices_only: bool) -> CheckResult:
+    """:func:`check_collapse_is_safe` on the given meshes (``vertices_only``: UChicago's statement)."""
     checked: list[str] = []
     notes: dict[str, None] = {}   # the course rules the learner's function followed, in order, once each
     for name, mesh in meshes.items():
@@ -446,7 +459,8 @@ def _check_collapse_is_safe(is_safe: Callable, meshes: dict[str, HalfedgeMesh]) 
             lc = link_condition(mesh, edge.index)
             if bool(answer) == bool(lc):
                 continue
-            if answer and not lc.extra.vertices and all(BOUNDARY not in pair for pair in lc.extra.edges):
+            vertex_part_holds = not lc.extra.vertices and all(BOUNDARY not in pair for pair in lc.extra.edges)
+            if answer and vertex_part_holds and vertices_only:
                 notes[_TETRAHEDRON_NOTE] = None        # the vertex part holds: UChicago's rule
                 continue
             if not answer and edge.is_boundary:
@@ -454,7 +468,10 @@ def _check_collapse_is_safe(is_safe: Callable, meshes: dict[str, HalfedgeMesh]) 
                 continue
             words = (f"edge {edge.index} (a = {lc.a}, b = {lc.b}): the rings share {_vertex_set(lc.shared.vertices)}, "
                      f"the opposite vertices are {_vertex_set(lc.link_ab.vertices)}")
-            if answer:
+            if answer and vertex_part_holds:
+                l, r = sorted(v for v in lc.link_ab.vertices if v != BOUNDARY)
+                words += _LINK_EDGE_WORDS.format(l=l, r=r)
+            elif answer:
                 words += _unsafe_words(lc, edge.is_boundary)
             else:
                 words += (", exactly the vertices opposite the edge, so the collapse is safe; yours says not safe. "

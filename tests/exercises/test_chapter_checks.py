@@ -79,7 +79,8 @@ def test_check_laplacian_step_refuses_a_function_that_moves_the_mesh():
 
 
 def test_check_collapse_is_safe_names_the_shared_neighbour_of_a_function_that_allows_everything():
-    result = check_collapse_is_safe(lambda mesh, e: True)
+    """By UChicago's statement the tetrahedron passes, so 'return True' is caught on the cube."""
+    result = check_collapse_is_safe(lambda mesh, e: True, vertices_only=True)
     assert not result and result.mesh_name == "cube" and "doubled edge" in result.message
 
 
