@@ -255,7 +255,7 @@ def _check_loop_rules(functions: list[tuple[str, Callable]], label: str,
                     boundary_note = boundary_note or _CLOSED_ONLY_NOTE.format(case=repr(case), words=f"on {what}, {trouble}")
                     continue
                 if trouble:
-                    return harness.failed(label, checked, case, f"on {what}, {trouble}", kind, mesh)
+                    return harness.failed(label, checked, case, f"on {what}, {trouble}", kind, mesh, error=answer)
                 if not np.array_equal(mesh.positions, before):
                     return harness.failed(label, checked, case,
                                    f"your {name} changed mesh.positions (at {what}). Every new position must be "
@@ -362,7 +362,7 @@ def _check_plane_quadric(plane_quadric: Callable, cases: list[tuple[str, np.ndar
         status, answer = harness.run(plane_quadric, a, b, c)
         trouble = harness.trouble(status, answer, "plane_quadric")
         if trouble:
-            return harness.failed("plane_quadric", checked, case, trouble)
+            return harness.failed("plane_quadric", checked, case, trouble, error=answer)
         try:
             yours = np.asarray(answer, dtype=np.float64)
         except (TypeError, ValueError):
@@ -516,7 +516,7 @@ def _check_optimal_point(optimal_point: Callable, cases: list) -> CheckResult:
                            f"abs(np.linalg.det(A)) first and fall back to the midpoint (a + b) / 2 when it is tiny.")
         trouble = harness.trouble(status, answer, "optimal_point")
         if trouble:
-            return harness.failed("optimal_point", checked, case, trouble)
+            return harness.failed("optimal_point", checked, case, trouble, error=answer)
         yours = _as_point(answer)
         if yours is None:
             return harness.failed("optimal_point", checked, case, f"optimal_point should return 3 numbers, but yours "
@@ -611,7 +611,7 @@ def _check_de_casteljau(de_casteljau: Callable, cases: list[tuple[str, np.ndarra
         status, answer = harness.run(de_casteljau, given, t)
         trouble = harness.trouble(status, answer, "de_casteljau")
         if trouble:
-            return harness.failed("de_casteljau", checked, case, trouble)
+            return harness.failed("de_casteljau", checked, case, trouble, error=answer)
         if not np.array_equal(given, points):
             return harness.failed("de_casteljau", checked, case, "your de_casteljau changed the control points it was "
                            "given. Build each level as a new array (or list) instead of overwriting the input.")

@@ -50,14 +50,17 @@ def _blanks_left(exercise: str, name: str, function: Callable) -> CheckResult | 
 
 
 def _call(exercise: str, name: str, function: Callable, *args, mesh_name: str | None = None,
-          checked: list[str] | None = None) -> tuple[object, CheckResult | None]:
-    """Run the learner's function: ``(value, None)``, or ``(None, a failed result saying why)``."""
+          checked: list[str] | None = None, element: tuple | None = None,
+          mesh: HalfedgeMesh | None = None) -> tuple[object, CheckResult | None]:
+    """Run the learner's function: ``(value, None)``, or ``(None, a failed result saying why)``,
+    carrying the case's ``mesh`` and ``element`` and, after an exception, ``rerun()``."""
     status, value = run(function, *args)
     if status == "timeout":
         return None, failed(exercise, checked or [], mesh_name,
-                             f"your {name} did not return within {TIME_LIMIT:g} s: a loop probably never ends.")
+                             f"your {name} did not return within {TIME_LIMIT:g} s: a loop probably never ends.", element, mesh)
     if status == "error":
-        return None, failed(exercise, checked or [], mesh_name, trouble("error", value, name))
+        return None, failed(exercise, checked or [], mesh_name, trouble("error", value, name), element, mesh,
+                            error=value)
     return value, None
 
 
@@ -274,7 +277,8 @@ def _check_laplacian_step(step: Callable, meshes: dict[str, HalfedgeMesh]) -> Ch
     not_judged: list[str] = []     # meshes with a boundary, where the learner followed UChicago's no-boundary rule
     for name, mesh in meshes.items():
         before = mesh.positions.copy()
-        answer, failure = _call("laplacian_step", "laplacian_step", step, mesh, mesh_name=name, checked=checked)
+        answer, failure = _call("laplacian_step", "laplacian_step", step, mesh, mesh_name=name, checked=checked,
+                                mesh=mesh)
         if failure is not None:
             return failure
         if not np.array_equal(mesh.positions, before):
@@ -453,7 +457,7 @@ def _check_collapse_is_safe(is_safe: Callable, meshes: dict[str, HalfedgeMesh], 
     for name, mesh in meshes.items():
         for edge in mesh.edges:
             answer, failure = _call("collapse_is_safe", "collapse_is_safe", is_safe, mesh, edge.index,
-                                    mesh_name=name, checked=checked)
+                                    mesh_name=name, checked=checked, element=("halfedge", 2 * edge.index), mesh=mesh)
             if failure is not None:
                 return failure
             lc = link_condition(mesh, edge.index)

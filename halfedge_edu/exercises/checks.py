@@ -60,8 +60,7 @@ def _describe_error(name: str, error: Exception) -> str:
     if isinstance(error, NotImplementedError) or "ellipsis" in str(error).lower():
         return (f"{name} is not finished yet (it raised {type(error).__name__}: {error}). "
                 f"Fill in the blanks marked ... and run the check again.")
-    return (f"your {name} raised {type(error).__name__}: {error}. Call it yourself on the faces above "
-            f"to see the full traceback.")
+    return f"your {name} raised {type(error).__name__}: {error}.{harness.own_line(error)}"
 
 
 def _has_ellipsis(value) -> bool:
@@ -481,7 +480,8 @@ def _check_build(learner_build: Callable, cases: list[tuple[str, np.ndarray, np.
                            "A loop probably never ends: check the walks that should come back to their start.",
                            None, mesh)
         if status == "error":
-            return harness.failed("build", checked, name, intro + _describe_error("build", answer), None, mesh)
+            return harness.failed("build", checked, name, intro + _describe_error("build", answer), None, mesh,
+                                      error=answer)
         problem = _compare_build(answer, faces, len(vertices))
         if problem is not None:
             text, element = problem
@@ -638,7 +638,7 @@ def _check_one_ring(learner_one_ring: Callable, cases: list[tuple[str, HalfedgeM
                                ("vertex", v), mesh)
             if status == "error":
                 return harness.failed("one_ring", checked, name, f"for vertex {v}, " + _describe_error("one_ring", answer),
-                               ("vertex", v), mesh)
+                               ("vertex", v), mesh, error=answer)
             ring, reason = _ring_as_ints(answer)
             if ring is None:
                 return harness.failed("one_ring", checked, name, f"for vertex {v}, {reason}", ("vertex", v), mesh)

@@ -382,7 +382,7 @@ def _reader_failure(read_obj: Callable, checked: list[str], cases: tuple[ReaderC
         if problem is not None:
             if status == "error" and not isinstance(answer, NotImplementedError):
                 problem += f" Here: {case.rule}."
-            return failed("obj_io", checked, case.name, problem)
+            return failed("obj_io", checked, case.name, problem, error=answer)
         if words is not None:
             return failed("obj_io", checked, case.name, words)
         checked.append(case.name)
@@ -401,7 +401,7 @@ def _reader_failure(read_obj: Callable, checked: list[str], cases: tuple[ReaderC
             return None
         if problem is not None:
             return failed("obj_io", checked, name, problem + " read_obj should also read a file given as a "
-                          "pathlib.Path (Path.read_text() gives its text).")
+                          "pathlib.Path (Path.read_text() gives its text).", error=answer)
     if words is not None:
         return failed("obj_io", checked, name, words)
     checked.append("spot.obj")
@@ -470,7 +470,7 @@ def _writer_failure(write_obj: Callable, checked: list[str], cases: tuple = WRIT
             continue
         problem = trouble(status, text, "write_obj")
         if problem is not None:
-            return failed("obj_io", checked, name, problem)
+            return failed("obj_io", checked, name, problem, error=text)
         if not isinstance(text, str):
             return failed("obj_io", checked, name, f"write_obj should return the file's text (a str); yours "
                           f"returned {type(text).__name__}.")
@@ -591,7 +591,7 @@ def _check_obj_io(read_obj: Callable, write_obj: Callable, readers: tuple[Reader
     if status == "ok":
         status, answer = run(read_obj, answer)
     if (problem := trouble(status, answer, "read_obj or write_obj")) is not None:
-        return failed("obj_io", checked, name, problem)
+        return failed("obj_io", checked, name, problem, error=answer)
     try:
         vertices, faces = answer
     except (TypeError, ValueError):

@@ -242,8 +242,7 @@ def _describe_error(name: str, error: Exception) -> str:
                 f"your code and run the check again.")
     if "ellipsis" in str(error).lower():
         return f"your {name} still has a blank (...) in it. Fill it in and run the check again."
-    return (f"your {name} raised {type(error).__name__}: {error}. Call it yourself on a copy of this mesh to "
-            f"see the full traceback.")
+    return f"your {name} raised {type(error).__name__}: {error}.{harness.own_line(error)}"
 
 
 def _validation_problem(mesh: HalfedgeMesh, log: OperationLog, doing: str) -> tuple[str, tuple] | None:
@@ -305,7 +304,8 @@ def _check_steps(exercise: str, learner: Callable, cases: list, doing: str, elem
                     continue
                 text, element = problem
                 return harness.failed(exercise, checked, name, text, _shown(element), before)
-            return harness.failed(exercise, checked, name, f"{doing.format(step)}, {text}", element_of(step), before)
+            return harness.failed(exercise, checked, name, f"{doing.format(step)}, {text}", element_of(step), before,
+                                  error=answer if status == "error" else None)
         checked.append(name)
     return harness.passed(exercise, checked, " ".join([praise, *notes]))
 

@@ -229,7 +229,7 @@ def _check_tangential_smoothing(tangential_smoothing: Callable, cases: list[tupl
         status, answer = harness.run(tangential_smoothing, mesh)
         trouble = harness.trouble(status, answer, name)
         if trouble:
-            return harness.failed(name, checked, case, trouble)
+            return harness.failed(name, checked, case, trouble, None, mesh, error=answer)
         if not np.array_equal(mesh.positions, before):
             mesh.positions[:] = before
             return harness.failed(name, checked, case, "your tangential_smoothing changed mesh.positions. Compute every "
