@@ -550,7 +550,59 @@ def _is_clockwise(want: list[int], ring: list[int]) -> bool:
     return len(want) > 2 and ring == want[:1] + want[1:][::-1]
 
 
+def _is_run_of(ring: list[int], want: list[int]) -> bool:
+    """Whether ``ring`` is a piece of ``want`` read without gaps, either way round (a walk that
+    started or stopped too early)."""
+    n = len(ring)
+    return 0 < n < len(want) and any(ring == order[k:k + n] for order in (want, want[::-1])
+                                     for k in range(len(want) - n + 1))
+
+
+#: The one_ring slips a ring can show, in the order they are tried: (name, detector, sentence).
+#: A detector gets ``(v, ring, want, on_boundary)``; the sentence may use ``{v}``, ``{first}``
+#: (ring[0]), ``{start_tip}`` and ``{missing}``. Each row is tested with the slip's own code in
+#: tests/exercises/test_checks.py (``RING_SLIPS``), so no sentence names a bug it did not see.
+RING_SLIPS: tuple[tuple[str, Callable, str], ...] = (
+    ("origins instead of tips",
+     lambda v, ring, want, on_boundary: bool(ring) and all(u == v for u in ring),
+     "Every entry is v itself: append the tip of each outgoing halfedge (h.tip), not h.vertex."),
+    ("walking around a face (h = h.next)",
+     lambda v, ring, want, on_boundary: v in ring,
+     "Your ring contains vertex {v} itself, so the walk went round a triangle: h.next follows the face "
+     "(its tip, the face's third corner, then v). To turn around v, step from one outgoing halfedge of v "
+     "to the next: h = h.prev.twin."),
+    ("a step that gives back its own halfedge (h = h.twin.twin)",
+     lambda v, ring, want, on_boundary: ring == want[:1] and len(want) > 1,
+     "Your walk stopped after one step: the step gave back the halfedge it started from (a twin's twin is "
+     "the halfedge itself, h.twin.twin == h), so the loop ended at once. Step to the next outgoing halfedge "
+     "of v: h = h.prev.twin."),
+    ("circling around the tip (h = h.next.twin)",
+     lambda v, ring, want, on_boundary: len(ring) > 1 and len(set(ring)) == 1 and len(want) > 1,
+     "Every entry is vertex {first}: the walk circles around that vertex instead of around v (h.next.twin "
+     "does that). Step with h = h.prev.twin to stay at v."),
+    ("right order, wrong start",
+     lambda v, ring, want, on_boundary: len(ring) == len(want) and any(ring == want[k:] + want[:k]
+                                                                        for k in range(len(want))),
+     "Right order, wrong start: begin with the tip of v.halfedge, vertex {start_tip}."),
+    ("clockwise from another start",
+     lambda v, ring, want, on_boundary: len(ring) == len(want) and any(ring == want[::-1][k:] + want[::-1][:k]
+                                                                        for k in range(len(want))),
+     "That is the clockwise order (CMU's h.twin.next walk, fine too) but from another start: begin with the "
+     "tip of v.halfedge, vertex {start_tip}."),
+    ("right neighbours, out of order",
+     lambda v, ring, want, on_boundary: sorted(ring) == sorted(want),
+     "Same neighbours, but not in order around v (either way round is fine, one step at a time)."),
+    ("stopping at the boundary halfedge",
+     lambda v, ring, want, on_boundary: on_boundary and _is_run_of(ring, want),
+     "Missing {missing}: the neighbours you have are in order, but the walk stopped (or started) at the "
+     "boundary. On the boundary the walk must also pass through the boundary halfedge: h = h.prev.twin does that by itself, "
+     "so don't stop at h.face is None."),
+)
+
+
 def _compare_ring(mesh: HalfedgeMesh, v: int, ring: list[int]) -> str | None:
+    """None if ``ring`` is vertex ``v``'s ring (either way round); else what is wrong, with the
+    sentence of the first slip in :data:`RING_SLIPS` the ring shows, or what is missing or extra."""
     vertex = mesh.vertex(v)
     want = [int(u) for u in vertex.neighbors()]
     if ring == want or _is_clockwise(want, ring):
@@ -560,19 +612,11 @@ def _compare_ring(mesh: HalfedgeMesh, v: int, ring: list[int]) -> str | None:
              f"{v} -> {int(start.tip)})" if vertex.is_boundary else
              f"vertex {v} has halfedge {start.index} ({v} -> {int(start.tip)})")
     head = f"{where}; its ring, counter-clockwise from {int(start.tip)}, is {want}, but yours is {ring}."
-    if ring and all(u == v for u in ring):
-        return head + " Every entry is v itself: append the tip of each outgoing halfedge (h.tip), not h.vertex."
-    if len(ring) > 1 and len(set(ring)) == 1 and len(want) > 1:
-        return head + (f" Every entry is vertex {ring[0]}: the walk circles around that vertex instead of "
-                       f"around v (h.next.twin does that). Step with h = h.prev.twin to stay at v.")
-    if len(ring) == len(want) and any(ring == want[k:] + want[:k] for k in range(len(want))):
-        return head + f" Right order, wrong start: begin with the tip of v.halfedge, vertex {int(start.tip)}."
-    reversed_ring = want[::-1]
-    if len(ring) == len(want) and any(ring == reversed_ring[k:] + reversed_ring[:k] for k in range(len(want))):
-        return head + (f" That is the clockwise order (CMU's h.twin.next walk, fine too) but from another start: "
-                       f"begin with the tip of v.halfedge, vertex {int(start.tip)}.")
-    if sorted(ring) == sorted(want):
-        return head + " Same neighbours, but not in order around v (either way round is fine, one step at a time)."
+    for _, detector, sentence in RING_SLIPS:
+        if detector(v, ring, want, vertex.is_boundary):
+            missing = [u for u in want if u not in ring]
+            return head + " " + sentence.format(v=v, first=ring[0] if ring else None, start_tip=int(start.tip),
+                                                missing=missing)
     extra = sorted(set(ring) - set(want))
     missing = [u for u in want if u not in ring]
     parts = []
@@ -582,12 +626,8 @@ def _compare_ring(mesh: HalfedgeMesh, v: int, ring: list[int]) -> str | None:
         parts.append(f"{extra} {'is' if len(extra) == 1 else 'are'} not next to vertex {v}")
     if len(ring) > len(set(ring)):
         parts.append("some neighbours appear twice (stop when you are back at the start halfedge)")
-    hint = ""
-    if missing and vertex.is_boundary:
-        hint = (" On the boundary the walk must also pass through the boundary halfedge: h = h.prev.twin "
-                "does that by itself, so don't stop at h.face is None.")
     found = "; ".join(parts)
-    return head + " " + found[:1].upper() + found[1:] + "." + hint
+    return head + " " + found[:1].upper() + found[1:] + "."
 
 
 _CLOCKWISE_PRAISE = (
