@@ -35,7 +35,7 @@ from . import hidden
 from .harness import TIME_LIMIT, CheckResult, counted, failed, hidden_name, hidden_rng, passed, run, trouble, unfinished
 from .io_checks import check_obj_io, check_obj_reader, check_obj_writer
 
-__all__ = ["BOWTIE_FACES", "BOWTIE_VERTICES", "check_collapse_is_safe", "check_cut", "check_fan",
+__all__ = ["BOWTIE_FACES", "BOWTIE_VERTICES", "FAN_SLIPS", "check_collapse_is_safe", "check_cut", "check_fan",
            "check_laplacian_step", "check_obj_io", "check_obj_reader", "check_obj_writer", "smooth_once_in_place"]
 
 #: Chapter 04's bowtie: two triangles that share only vertex 0.
@@ -88,6 +88,35 @@ def check_fan(fan: Callable, *, seed: int | None = None) -> CheckResult:
     return counted(_check_fan(fan, cases), len(cases))
 
 
+def _strip(corners: list[int]) -> list[list[int]]:
+    """The triangles of a strip over the corners, (a, b, c), (b, c, d), ... (the slip's answer)."""
+    return [list(corners[k:k + 3]) for k in range(len(corners) - 2)]
+
+
+#: The fan slips, in the order they are tried: (name, detector, sentence). A detector gets
+#: ``(corners, mine, expected)``; the sentence may use ``{n}``, ``{count}``, ``{got}`` and
+#: ``{first}``. Each row is tested with the slip's own code in tests/exercises/test_chapter_checks.py.
+FAN_SLIPS: tuple[tuple[str, Callable, str], ...] = (
+    ("too few or too many triangles",
+     lambda corners, mine, expected: len(mine) != len(expected),
+     "A face of {n} corners makes n - 2 = {count} triangles, yours makes {got}: the fan's second corner "
+     "runs over corners[1] to corners[n - 2] (k in range(1, n - 1))."),
+    ("turned the other way",
+     lambda corners, mine, expected: mine == [[a, c, b] for a, b, c in expected],
+     "Your triangles have the right corners but turn the other way: keep the polygon's order, (a, b, c) and "
+     "not (a, c, b), so that every triangle faces the same side as the polygon."),
+    ("a strip, not a fan",
+     lambda corners, mine, expected: mine == _strip(corners) != expected,
+     "Your triangles are a strip, each starting at the second corner of the one before; a fan keeps the "
+     "first corner in every triangle: (a, b, c), (a, c, d), ..."),
+    ("vertex 0 instead of the first corner",
+     lambda corners, mine, expected: corners[0] != 0 and all(t[0] == 0 for t in mine)
+     and [[corners[0], *t[1:]] for t in mine] == expected,
+     "Every triangle of yours starts at vertex 0, but this face's first corner is vertex {first}: use "
+     "corners[0], not 0 (the faces of a file are not all numbered from 0)."),
+)
+
+
 def _check_fan(fan: Callable, cases: list[tuple[str, list[int]]]) -> CheckResult:
     """:func:`check_fan` on the given cases."""
     checked: list[str] = []
@@ -104,8 +133,10 @@ def _check_fan(fan: Callable, cases: list[tuple[str, list[int]]]) -> CheckResult
             return failed("fan", checked, name, f"fan should return a list of triangles (a, b, c), "
                            f"but yours returned {answer!r:.60}.")
         if mine != expected:
-            return failed("fan", checked, name, f"the reader makes {expected}, yours makes {mine}. Every "
-                           f"triangle shares the first corner: (a, b, c), (a, c, d), ...")
+            sentence = next((sentence for _, detector, sentence in FAN_SLIPS if detector(corners, mine, expected)),
+                            "Every triangle shares the first corner: (a, b, c), (a, c, d), ...")
+            words = sentence.format(n=len(corners), count=len(expected), got=len(mine), first=corners[0])
+            return failed("fan", checked, name, f"the reader makes {expected}, yours makes {mine}. {words}")
         checked.append(name)
     return passed("fan", checked, "Your fan matches the reader.")
 

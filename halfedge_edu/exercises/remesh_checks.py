@@ -127,6 +127,8 @@ def _damping(before: np.ndarray, yours: np.ndarray, target: np.ndarray) -> float
     if length_squared == 0.0:
         return None
     weight = float(np.sum((yours - before) * step)) / length_squared
+    if abs(weight - 1.0) < 1e-6:                  # the full step, with rounding: not a damped one
+        return None
     if not 0.0 < weight < 1.0 or not harness.close(yours, before + weight * step):
         return None
     return weight

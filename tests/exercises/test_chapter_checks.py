@@ -134,3 +134,26 @@ def test_moving_only_some_boundary_vertices_is_still_a_slip():
         return new
     result = check_laplacian_step(moves_one_boundary_vertex)
     assert not result.passed and "is on the boundary and should stay" in result.message
+
+
+FAN_SLIP_CODE = {
+    "too few or too many triangles":
+        lambda corners: [(corners[0], corners[k], corners[k + 1]) for k in range(1, len(corners) - 2)],
+    "turned the other way":
+        lambda corners: [(corners[0], corners[k + 1], corners[k]) for k in range(1, len(corners) - 1)],
+    "a strip, not a fan":
+        lambda corners: [(corners[k], corners[k + 1], corners[k + 2]) for k in range(len(corners) - 2)],
+    "vertex 0 instead of the first corner":
+        lambda corners: [(0, corners[k], corners[k + 1]) for k in range(1, len(corners) - 1)],
+}
+
+
+@pytest.mark.parametrize("slip", sorted(FAN_SLIP_CODE))
+def test_each_fan_slip_gets_its_own_sentence(slip):
+    from halfedge_edu.exercises.chapter_checks import FAN_SLIPS
+
+    sentences = {name: sentence.split("{")[0][:40] for name, _, sentence in FAN_SLIPS}
+    assert set(sentences) == set(FAN_SLIP_CODE)
+    result = check_fan(FAN_SLIP_CODE[slip], seed=2) if slip.startswith("vertex 0") else check_fan(FAN_SLIP_CODE[slip])
+    assert not result.passed and sentences[slip] in result.message, result.message
+    assert all(words not in result.message for name, words in sentences.items() if name != slip)

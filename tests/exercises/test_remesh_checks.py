@@ -114,3 +114,12 @@ def test_a_weight_that_changes_between_meshes_is_named():
     result = check_tangential_smoothing(changing)
     assert not result.passed and result.mesh_name.startswith("icosphere")
     assert "damped with w = 0.5 here but w = 0.2 (CMU's 1/5) before" in result.message
+
+
+def test_the_exact_answer_is_not_praised_as_a_damped_step():
+    """Rounding makes the fitted weight 0.99999999...: that is the full step, not CMU's damping."""
+    from halfedge_edu.exercises.remesh_checks import check_tangential_smoothing, tangential_smoothing_reference
+
+    for seed in (None, 1, 2):
+        result = check_tangential_smoothing(tangential_smoothing_reference, seed=seed)
+        assert result.passed and "damp" not in result.message, result.message
