@@ -35,7 +35,7 @@ from . import hidden
 from .harness import TIME_LIMIT, CheckResult, counted, failed, hidden_name, hidden_rng, passed, run, trouble, unfinished
 from .io_checks import check_obj_io, check_obj_reader, check_obj_writer
 
-__all__ = ["BOWTIE_FACES", "BOWTIE_VERTICES", "FAN_SLIPS", "check_collapse_is_safe", "check_cut", "check_fan",
+__all__ = ["BOWTIE_FACES", "BOWTIE_VERTICES", "FAN_SLIPS", "NONMANIFOLD_SLIPS", "check_nonmanifold", "check_collapse_is_safe", "check_cut", "check_fan",
            "check_laplacian_step", "check_obj_io", "check_obj_reader", "check_obj_writer", "smooth_once_in_place"]
 
 #: Chapter 04's bowtie: two triangles that share only vertex 0.
@@ -516,3 +516,165 @@ def _check_collapse_is_safe(is_safe: Callable, meshes: dict[str, HalfedgeMesh], 
         checked.append(name)
     return passed("collapse_is_safe", checked, " ".join(["It agrees with link_condition on every edge." if not notes
                   else "It follows a course's own rule where the package's differs.", *notes]))
+
+
+# --------------------------------------------------------------------------------------
+# Chapter 04, second exercise: UChicago P3, non-manifold detection on a soup topology
+# --------------------------------------------------------------------------------------
+
+def _two_fans_joined_elsewhere() -> np.ndarray:
+    """Two triangles at vertex 0 joined through faces that do not touch 0: one connected surface
+    (0-1-2 reaches 0-3-4 across edges (1, 2), (1, 5), (5, 4), (4, 3)), but two fans at 0."""
+    return np.array([[0, 1, 2], [0, 3, 4], [2, 1, 5], [5, 4, 3], [5, 1, 4]])
+
+
+def _pinched_grids(rng: np.random.Generator) -> tuple[str, np.ndarray]:
+    """Two grid patches sharing only one corner vertex (a pinch), renumbered at random."""
+    rows, columns = (int(n) for n in rng.integers(1, 3, 2))
+    _, first = hidden.grid(rows, columns, rng)
+    _, second = hidden.grid(rows, columns, rng)
+    n = int(first.max()) + 1
+    second = second + n
+    second[second == n] = 0                                   # the second patch's corner 0 is the first's
+    faces = np.vstack([first, second])
+    used = np.unique(faces)
+    renumber = np.full(int(used.max()) + 1, -1)
+    renumber[used] = rng.permutation(len(used))
+    return f"two {rows} x {columns} grid patches touching at one corner", renumber[faces]
+
+
+def _extra_page(rng: np.random.Generator) -> tuple[str, np.ndarray]:
+    """A closed mesh with one more triangle on one of its edges (three faces there)."""
+    shape = str(rng.choice(["tetrahedron", "cube", "octahedron"]))
+    _, faces = hidden.closed_mesh(shape).to_arrays()
+    a, b = (int(v) for v in faces[int(rng.integers(len(faces)))][:2])
+    page = np.array([[a, b, int(faces.max()) + 1]])
+    return f"{shape} with a third face on one edge", np.vstack([faces, page])
+
+
+def nonmanifold_cases(seed: int | None = None) -> list[tuple[str, np.ndarray]]:
+    """``(name, faces)`` for :func:`check_nonmanifold`: manifold meshes with and without
+    boundary, the book (three faces on an edge), two cones touching at a tip, the bowtie,
+    two fans joined away from their vertex. With a ``seed``, the hidden cases instead."""
+    if seed is not None:
+        rng = hidden_rng(seed)
+        rows, columns = (int(n) for n in rng.integers(2, 4, 2))
+        shape = str(rng.choice(list(hidden.CLOSED_SHAPES)))
+        cases = [(f"a {rows} x {columns} grid patch, renumbered", hidden.renumbered(*hidden.grid(rows, columns, rng), rng)[1]),
+                 (f"{shape}, renumbered", hidden.renumbered(*hidden.closed_mesh(shape).to_arrays(), rng)[1]),
+                 _pinched_grids(rng), _extra_page(rng)]
+        return [(hidden_name(k, name), np.asarray(faces)) for k, (name, faces) in enumerate(cases, start=1)]
+    return [
+        ("cube", sample("cube").to_arrays()[1]),
+        ("open_patch", sample("open_patch").to_arrays()[1]),
+        ("strip (every vertex on the boundary)", sample("strip").to_arrays()[1]),
+        ("the book: three faces on edge (0, 1)", sample("nonmanifold_edge").faces),
+        ("two tetrahedra touching at vertex 0", sample("nonmanifold_vertex").faces),
+        ("the bowtie", BOWTIE_FACES.copy()),
+        ("two fans at vertex 0, joined away from it", _two_fans_joined_elsewhere()),
+    ]
+
+
+#: The non-manifold slips, in the order tried: (name, detector, sentence). A detector gets
+#: ``(question, soup, answer)`` with ``question`` "edges" or "vertices" and the learner's
+#: (wrong) answer; the sentence may use ``{edge}``, ``{v}``, ``{fans}``. Each row is tested
+#: with the slip's own code in tests/exercises/test_nonmanifold_check.py.
+NONMANIFOLD_SLIPS: tuple[tuple[str, Callable, str], ...] = (
+    ("a boundary edge called non-manifold",
+     lambda question, soup, answer: question == "edges" and answer
+     and any(len(soup.faces_of_edge(*e)) == 1 for e in soup.edges()),
+     "No edge here has more than two faces; edge {edge} has just one, which makes it a boundary edge, and a "
+     "boundary edge is manifold: an edge is manifold with one face or two."),
+    ("a boundary vertex called non-manifold",
+     lambda question, soup, answer: question == "vertices" and answer
+     and any(len(soup.faces_of_edge(*e)) == 1 for e in soup.edges()),
+     "Every vertex here has its faces in one fan. On the boundary (vertex {v}) the fan does not close into a "
+     "full ring, and that is still manifold: the rule is one fan, not a closed one."),
+    ("faces connected anywhere instead of across edges at the vertex",
+     lambda question, soup, answer: question == "vertices" and not answer and _fans_joined_elsewhere(soup),
+     "Vertex {v}'s faces form {count} fans, {fans}: they are joined through other faces, but not across an edge "
+     "at vertex {v}. Walk from face to face only across the edges that touch the vertex."),
+)
+
+
+def _fans_joined_elsewhere(soup) -> bool:
+    """Whether some non-manifold vertex's fans are joined through faces away from it."""
+    for v in soup.nonmanifold_vertices():
+        faces = soup.faces_of_vertex(v)
+        reached, stack = {faces[0]}, [faces[0]]
+        while stack:
+            f = stack.pop()
+            for k in range(3):
+                a, b = (int(x) for x in (soup.faces[f][k], soup.faces[f][(k + 1) % 3]))
+                for g in soup.faces_of_edge(a, b):
+                    if g not in reached:
+                        reached.add(g)
+                        stack.append(g)
+        if set(faces) <= reached:
+            return True
+    return False
+
+
+def check_nonmanifold(has_nonmanifold_edges: Callable, has_nonmanifold_vertices: Callable, *,
+                      seed: int | None = None) -> CheckResult:
+    """``has_nonmanifold_edges(soup) -> bool`` and ``has_nonmanifold_vertices(soup) -> bool``
+    (``soup`` a :class:`~halfedge_edu.core.soup.SoupTopology`) against the library's answers.
+
+    As UChicago's P3 says, the vertex question is not judged on a face list that is not
+    edge-manifold ("you do not need to check vertex manifoldness when the mesh is not edge
+    manifold"); the congratulation says so.
+
+    ``seed``: None for the public cases (the chapter's); an int for only the hidden cases made from it.
+    """
+    for name, function in (("has_nonmanifold_edges", has_nonmanifold_edges),
+                           ("has_nonmanifold_vertices", has_nonmanifold_vertices)):
+        if (blanks := _blanks_left("nonmanifold", name, function)) is not None:
+            return blanks
+    cases = nonmanifold_cases(seed)
+    return counted(_check_nonmanifold(has_nonmanifold_edges, has_nonmanifold_vertices, cases), len(cases))
+
+
+def _check_nonmanifold(has_nonmanifold_edges: Callable, has_nonmanifold_vertices: Callable,
+                       cases: list[tuple[str, np.ndarray]]) -> CheckResult:
+    """:func:`check_nonmanifold` on the given face lists."""
+    from halfedge_edu.core.soup import SoupTopology
+
+    checked: list[str] = []
+    for name, faces in cases:
+        soup = SoupTopology(faces)
+        edge_problem = soup.has_nonmanifold_edges()
+        for question, function in (("edges", has_nonmanifold_edges), ("vertices", has_nonmanifold_vertices)):
+            if question == "vertices" and edge_problem:
+                continue                     # UChicago: vertices need not be judged when an edge is not manifold
+            answer, failure = _call("nonmanifold", f"has_nonmanifold_{question}", function, soup, mesh_name=name,
+                                    checked=checked)
+            if failure is not None:
+                return failure
+            wanted = soup.has_nonmanifold_edges() if question == "edges" else soup.has_nonmanifold_vertices()
+            if not isinstance(answer, (bool, np.bool_)):
+                return failed("nonmanifold", checked, name, f"has_nonmanifold_{question} should return True or "
+                              f"False, but yours returned {answer!r:.60}.")
+            if bool(answer) == wanted:
+                continue
+            words = (f"has_nonmanifold_{question} says {bool(answer)}, but it should be {wanted}. ")
+            if question == "edges" and wanted:
+                edge = soup.nonmanifold_edges()[0]
+                words += (f"Edge {edge} has {len(soup.faces_of_edge(*edge))} faces ({soup.faces_of_edge(*edge)}); an "
+                          f"edge is manifold with one face or two. soup.faces_of_edge(a, b) lists them.")
+            elif question == "vertices" and wanted and not _fans_joined_elsewhere(soup):
+                v = soup.nonmanifold_vertices()[0]
+                words += (f"Vertex {v}'s faces form {len(soup.fans(v))} fans, {soup.fans(v)}: you cannot walk from "
+                          f"one to the other across edges at vertex {v}.")
+            boundary_edge = next((e for e in soup.edges() if len(soup.faces_of_edge(*e)) == 1), None)
+            boundary_vertex = boundary_edge[0] if boundary_edge else None
+            for _, detector, sentence in NONMANIFOLD_SLIPS:
+                if detector(question, soup, answer):
+                    v = soup.nonmanifold_vertices()[0] if soup.nonmanifold_vertices() else boundary_vertex
+                    fans = soup.fans(v) if v is not None else []
+                    words += sentence.format(edge=boundary_edge, v=v, fans=fans, count=len(fans))
+                    break
+            return failed("nonmanifold", checked, name, words)
+        checked.append(name)
+    return passed("nonmanifold", checked, (
+        "Your two questions agree with the library on every face list, built without breaking. As UChicago's "
+        "P3 allows, the vertex question was not asked where an edge is already non-manifold."))
