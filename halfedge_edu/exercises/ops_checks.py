@@ -44,14 +44,14 @@ import numpy as np
 
 from halfedge_edu.core.errors import MeshInvariantError
 from halfedge_edu.core.mesh import HalfedgeMesh
-from halfedge_edu.core.ops import OperationLog, can_collapse, can_flip, collapse, flip
+from halfedge_edu.core.ops import OperationLog, can_collapse, can_flip, can_split, collapse, flip, split
 from halfedge_edu.data import sample
 
 from . import harness, hidden
 from .harness import TIME_LIMIT, CheckResult
 
 
-__all__ = ["check_collapse", "check_flip", "collapse_cases", "flip_cases"]
+__all__ = ["check_collapse", "check_flip", "check_split", "collapse_cases", "flip_cases", "split_cases"]
 
 #: Decimals that positions are rounded to when faces are compared by their corners.
 _DECIMALS = 9
@@ -511,4 +511,87 @@ def check_collapse(learner_collapse: Callable, *, seed: int | None = None) -> Ch
         "indices, and stop before you change the pointers you walk along.",
         _collapse_problem, lambda mesh, h: collapse(mesh, mesh.halfedge(h)),
         "Both cases work, degree 3 and higher, and the mesh stays valid.",
+    ), len(cases))
+
+
+# --------------------------------------------------------------------------------------
+# check_split (CS184 and CMU's task 2)
+# --------------------------------------------------------------------------------------
+
+def split_cases(seed: int | None = None) -> list[tuple[str, HalfedgeMesh, list[int]]]:
+    """What ``check_split`` runs: ``(name, mesh, edges)``, interior edges split one after another.
+
+    The strip's middle edge first (small enough to draw), then the cube's diagonal and a
+    side, then random splits on an icosphere. With a ``seed``, the hidden cases instead.
+    """
+    split_edge = lambda mesh, e: split(mesh, e)  # noqa: E731
+    if seed is not None:
+        return _hidden_step_cases(seed, can_split, split_edge, halfedges=False, with_boundary=True, what="splits")
+    strip = sample("strip")
+    cube = sample("cube")
+    sphere = sample("icosphere", subdivisions=1)
+    return [
+        ("strip", strip, [int(strip.find_edge(1, 2))]),
+        ("cube", cube, [1, 0]),
+        ("icosphere, 5 random splits", sphere, _random_steps(sphere, can_split, split_edge, 5, seed=5, halfedges=False)),
+    ]
+
+
+def _split_problem(before: HalfedgeMesh, yours: HalfedgeMesh, e: int,
+                   notes: dict[str, None] | None = None) -> tuple[str, tuple | None] | None:
+    """None if ``yours`` is ``before`` with interior edge ``e`` split at its midpoint; else (words, element)."""
+    log = OperationLog()
+    wanted = before.copy()
+    split(wanted, e, log=log)
+    ids = {n: index for n, (_, index) in log.named.items()}
+    doing = f"your split of edge {e}"
+    picture = f"(v0 = {ids['v0']}, v1 = {ids['v1']}; opposite it v2 = {ids['v2']} and v3 = {ids['v3']})"
+    counts = [(kind, getattr(before, f"n_{kind}"), getattr(yours, f"n_{kind}"), add)
+              for kind, add in (("vertices", 1), ("edges", 3), ("faces", 2))]
+    wrong = [f"{have - had} new {kind} instead of {add}" for kind, had, have, add in counts if have - had != add]
+    if wrong:
+        return (f"after {doing} {picture} the mesh has {', '.join(wrong)}. A split of an interior edge adds 1 vertex "
+                f"m, 3 edges (m - v1, m - v2, m - v3; the old edge keeps its v0 half) and 2 faces "
+                f"(mesh.add_vertex, mesh.add_edge, mesh.add_face).", ("halfedge", 2 * e))
+    m = int(np.flatnonzero(~yours.vertex_deleted)[-1]) if yours.n_vertex_slots > before.n_vertex_slots else -1
+    midpoint = 0.5 * (before.positions[ids["v0"]] + before.positions[ids["v1"]])
+    if m < 0 or not np.allclose(yours.positions[m], midpoint):
+        where = f"at {np.round(yours.positions[m], 4).tolist()}" if m >= 0 else "nowhere"
+        return (f"after {doing} {picture}, the new vertex is {where}; it goes at the midpoint of the edge, "
+                f"{np.round(midpoint, 4).tolist()}.", ("halfedge", 2 * e))
+    moved = np.flatnonzero(np.any(yours.positions[: before.n_vertex_slots] != before.positions, axis=1))
+    if len(moved):
+        return f"{doing} moved vertex {int(moved[0])}; a split only adds m.", ("vertex", int(moved[0]))
+    problem = _validation_problem(yours, log, doing)
+    if problem is not None:
+        return problem
+    different = _compare_faces(yours, wanted)
+    if different is not None:
+        return (f"after {doing} {picture}, {different}. The four triangles around m are (v0, m, v2), (m, v1, v2), "
+                f"(m, v0, v3) and (v1, m, v3), and no other face changes.", ("halfedge", 2 * e))
+    return None
+
+
+def check_split(learner_split: Callable, *, seed: int | None = None) -> CheckResult:
+    """Run ``learner_split(mesh, e)`` on copies of small meshes and compare with the library's split.
+
+    Args:
+        learner_split: a function ``(mesh, e) -> anything`` that splits interior edge ``e``
+            (an int) in place: a new vertex ``m`` at the midpoint, joined to the two
+            opposite vertices (CS184's and CMU's task). Any numbering of the new elements.
+        seed: None for the public cases (the chapter's); an int for only the hidden
+            cases made from it.
+
+    Returns:
+        A :class:`~halfedge_edu.exercises.CheckResult`: at the first difference, what it
+        is in words, with the picture's names; otherwise a short congratulation.
+    """
+    if (words := harness.unfinished(learner_split, "split")) is not None:
+        return harness.failed("split", [], None, words)
+    cases = split_cases(seed)
+    return harness.counted(_check_steps(
+        "split", learner_split, cases, "splitting edge {}", lambda e: ("halfedge", 2 * e),
+        "A split is a fixed number of allocations and pointer writes; look for a loop that never ends.",
+        _split_problem, lambda mesh, e: split(mesh, e),
+        "Four triangles around the new vertex, +1 vertex, +3 edges, +2 faces, and the mesh stays valid.",
     ), len(cases))

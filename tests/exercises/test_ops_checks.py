@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from halfedge_edu.exercises.harness import CheckResult
+from tests.exercises.chapter_solutions import chapter_namespace
 from halfedge_edu.exercises.ops_checks import check_collapse, check_flip, collapse_cases, flip_cases
 from halfedge_edu.core.ops import can_collapse, can_flip, collapse, flip
 
@@ -333,3 +334,30 @@ def test_a_collapse_that_keeps_the_other_endpoint_is_accepted_and_the_convention
     result = check_collapse(lambda mesh, h: collapse(mesh, mesh.halfedge(h ^ 1)))
     assert result.passed, result.message
     assert "UChicago's assignment leaves the choice of which vertex to keep free" in result.message
+
+
+def split_keeping_face_halfedges(mesh, e):
+    """A split that relinks every halfedge but leaves f0 pointing at h2, which has moved to f2."""
+    right = CHAPTER_06_SPLIT
+    f0 = int(mesh.halfedge_face[2 * e])
+    kept = int(mesh.face_halfedge[f0])
+    m = right(mesh, e)
+    mesh.face_halfedge[f0] = kept
+    return m
+
+
+CHAPTER_06_SPLIT = chapter_namespace("06")["my_split"]
+
+
+def test_check_split_names_a_face_left_pointing_at_a_halfedge_that_moved():
+    from halfedge_edu.exercises import check_split
+
+    result = check_split(split_keeping_face_halfedges)
+    assert not result.passed and "face-halfedge" in result.message and "is f0" in result.message
+
+
+def test_check_split_counts_the_new_elements():
+    from halfedge_edu.exercises import check_split
+
+    result = check_split(lambda mesh, e: mesh.add_vertex([0.0, 0.0, 0.0]))
+    assert not result.passed and "0 new edges instead of 3" in result.message
