@@ -38,7 +38,8 @@ from . import harness, hidden
 from .harness import CheckResult
 
 
-__all__ = ["check_tangential_smoothing", "smoothing_cases", "tangential_smoothing_reference"]
+__all__ = ["check_tangential_smoothing", "check_vertex_normal", "normal_cases", "smoothing_cases",
+           "tangential_smoothing_reference"]
 
 
 def _bumpy(mesh: HalfedgeMesh, seed: int, amount: float) -> HalfedgeMesh:
@@ -275,3 +276,105 @@ def _check_tangential_smoothing(tangential_smoothing: Callable, cases: list[tupl
             f"a damped step moves more gently and needs more of them."))
     return harness.all_good(name, checked, "meshes", "That is the smoothing phase of the remesher: the vertices spread "
                      "out evenly and the surface keeps its shape.")
+
+
+# --------------------------------------------------------------------------------------
+# Area-weighted vertex normals (CS184's Vertex::normal, UChicago P4 and chapter 11's n)
+# --------------------------------------------------------------------------------------
+
+def normal_cases(seed: int | None = None) -> list[tuple[str, HalfedgeMesh]]:
+    """The meshes ``check_vertex_normal`` asks every vertex of: faces of different sizes
+    around a vertex (where the weights matter), a boundary, other degrees."""
+    if seed is not None:
+        rng = harness.hidden_rng(seed)
+        shape = str(rng.choice(["cube", "octahedron", "icosphere(1)"]))
+        flips = int(rng.integers(3, 8))
+        rows, columns = (int(n) for n in rng.integers(2, 4, 2))
+        return [
+            (harness.hidden_name(1, f"{shape}, nudged"), hidden.jittered(hidden.closed_mesh(shape), rng, 0.08)),
+            (harness.hidden_name(2, f"icosphere(1) after {flips} random flips, nudged"),
+             hidden.jittered(hidden.flipped(hidden.closed_mesh("icosphere(1)"), flips, rng), rng, 0.05)),
+            (harness.hidden_name(3, f"a {rows} x {columns} grid patch, bent"),
+             HalfedgeMesh.from_faces(*hidden.grid(rows, columns, rng, amount=0.3))),
+        ]
+    return [
+        ("cube", sample("cube")),
+        ("open patch, bent (a boundary)", _bumpy(sample("open_patch"), 7, 0.15)),
+        ("icosphere, nudged", _bumpy(sample("icosphere", subdivisions=1), 8, 0.05)),
+    ]
+
+
+def _normal_words(mesh: HalfedgeMesh, v: int, yours: np.ndarray, wanted: np.ndarray) -> str:
+    """What is wrong with one vertex normal, naming the slip where the answer shows it."""
+    P = mesh.positions
+    crosses = []
+    for f in mesh.vertex(v).faces():
+        a, b, c = (P[u.index] for u in f.vertices())
+        crosses.append(np.cross(b - a, c - a))
+    area_sum = np.sum(crosses, axis=0)
+    text = (f"vertex {v} touches {len(crosses)} faces; the area-weighted normal sums their cross products "
+            f"(b - a) x (c - a) (each is twice the face's area long) and divides by the length once: "
+            f"{harness.point_text(wanted)}. Yours is {harness.point_text(yours)}.")
+    unit = lambda x: x / np.linalg.norm(x)  # noqa: E731
+    if harness.close(yours, -wanted):
+        text += " It points inwards: take the corners in the face's own counter-clockwise order, a -> b -> c."
+    elif harness.close(yours, area_sum) or harness.close(yours, 0.5 * area_sum):
+        text += " Right direction, wrong length: a normal has length 1, so divide the sum by its length."
+    elif harness.close(yours, unit(np.sum([unit(x) for x in crosses], axis=0))):
+        text += (" That is every face counted the same (each cross product made unit first). Leave them as they "
+                 "are: their lengths are the area weights, so big faces count more.")
+    elif harness.close(yours, vertex_normals(mesh, weighting="angle")[v]):
+        text += " That weights the faces by their corner angles; this exercise asks for area weights."
+    elif any(harness.close(yours, unit(x)) for x in crosses):
+        text += " That is the normal of one face only: sum over every face around the vertex (v.faces())."
+    return text
+
+
+def check_vertex_normal(vertex_normal: Callable, *, seed: int | None = None) -> CheckResult:
+    """Compare the learner's ``vertex_normal(mesh, v) -> (3,)`` with ``hx.vertex_normals(mesh)``
+    (area weights) at every vertex of a few meshes.
+
+    Args:
+        vertex_normal: ``(mesh, v) -> (3,)``, the unit area-weighted normal of vertex
+            ``v`` (a Vertex handle); the mesh must not change.
+        seed: None for the public cases (the chapter's); an int for only the hidden
+            cases made from it.
+    """
+    name = "vertex_normal"
+    if (words := harness.unfinished(vertex_normal, name)) is not None:
+        return harness.failed(name, [], None, words)
+    cases = normal_cases(seed)
+    return harness.counted(_check_vertex_normal(vertex_normal, cases), len(cases))
+
+
+def _check_vertex_normal(vertex_normal: Callable, cases: list[tuple[str, HalfedgeMesh]]) -> CheckResult:
+    """:func:`check_vertex_normal` on the given meshes."""
+    name = "vertex_normal"
+    checked: list[str] = []
+    for case, mesh in cases:
+        wanted = vertex_normals(mesh)
+        before = mesh.positions.copy()
+        for vertex in mesh.vertices:
+            status, answer = harness.run(vertex_normal, mesh, vertex)
+            trouble = harness.trouble(status, answer, name)
+            element = ("vertex", vertex.index)
+            if trouble:
+                return harness.failed(name, checked, case, f"at vertex {vertex.index}, {trouble}", element, mesh,
+                                      error=answer)
+            if not np.array_equal(mesh.positions, before):
+                mesh.positions[:] = before
+                return harness.failed(name, checked, case, "your vertex_normal changed mesh.positions; it should "
+                                      "only read them.", element, mesh)
+            try:
+                yours = np.asarray(answer, dtype=np.float64).reshape(-1)
+            except (TypeError, ValueError):
+                yours = np.zeros(0)
+            if yours.shape != (3,):
+                return harness.failed(name, checked, case, f"vertex_normal should return 3 numbers, but at vertex "
+                                      f"{vertex.index} yours returned {answer!r:.80}.", element, mesh)
+            if not np.allclose(yours, wanted[vertex.index], rtol=1e-6, atol=1e-8):
+                return harness.failed(name, checked, case, _normal_words(mesh, vertex.index, yours,
+                                                                         wanted[vertex.index]), element, mesh)
+        checked.append(case if case.startswith("hidden") else case.split(" (")[0])
+    return harness.all_good(name, checked, "meshes", "That is the n chapter 11's smoothing projects the step with, "
+                            "and the smooth shading of chapter 05.")

@@ -123,3 +123,38 @@ def test_the_exact_answer_is_not_praised_as_a_damped_step():
     for seed in (None, 1, 2):
         result = check_tangential_smoothing(tangential_smoothing_reference, seed=seed)
         assert result.passed and "damp" not in result.message, result.message
+
+
+def _cross_products(v):
+    for f in v.faces():
+        a, b, c = (u.position for u in f.vertices())
+        yield np.cross(b - a, c - a)
+
+
+def area_weighted_normal(mesh, v):
+    total = sum(_cross_products(v))
+    return total / np.linalg.norm(total)
+
+
+NORMAL_SLIPS = {
+    "every face counted the same": lambda mesh, v: (lambda t: t / np.linalg.norm(t))(
+        sum(x / np.linalg.norm(x) for x in _cross_products(v))),
+    "It points inwards": lambda mesh, v: -area_weighted_normal(mesh, v),
+    "Right direction, wrong length": lambda mesh, v: sum(_cross_products(v)),
+    "the normal of one face only": lambda mesh, v: (lambda x: x / np.linalg.norm(x))(next(_cross_products(v))),
+}
+
+
+def test_the_area_weighted_normal_passes_public_and_hidden_cases():
+    from halfedge_edu.exercises import check_vertex_normal
+
+    assert check_vertex_normal(area_weighted_normal).passed
+    assert all(check_vertex_normal(area_weighted_normal, seed=seed).passed for seed in (1, 2, 3))
+
+
+@pytest.mark.parametrize("named", sorted(NORMAL_SLIPS))
+def test_each_normal_slip_is_named(named):
+    from halfedge_edu.exercises import check_vertex_normal
+
+    result = check_vertex_normal(NORMAL_SLIPS[named])
+    assert not result.passed and named in result.message, result.message
