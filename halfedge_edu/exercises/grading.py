@@ -94,6 +94,7 @@ EXERCISES: tuple[Exercise, ...] = (
     Exercise("de_casteljau", "12", ("my_de_casteljau",), "check_de_casteljau"),
     Exercise("nonmanifold", "04", ("has_nonmanifold_edges", "has_nonmanifold_vertices"), "check_nonmanifold"),
     Exercise("split", "06", ("my_split",), "check_split"),
+    Exercise("vertex_normal", "11", ("my_vertex_normal",), "check_vertex_normal"),
 )
 
 
