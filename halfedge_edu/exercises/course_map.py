@@ -36,6 +36,7 @@ ACCEPTS: dict[str, str] = {
     "check_plane_quadric": "the chapter's plain `K = p p^T`",
     "check_optimal_point": "CMU: `A.inv() * b` with the midpoint fallback (a tolerance, not `det == 0`)",
     "check_tangential_smoothing": "CMU: a damped step `w` in (0, 1), the same everywhere",
+    "check_vertex_normal": "CS184 and UChicago P4: area weights from the raw cross products",
     "check_de_casteljau": "every level, the control points first",
 }
 
