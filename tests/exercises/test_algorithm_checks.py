@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from halfedge_edu.algorithms.bezier import de_casteljau as library_de_casteljau
 from halfedge_edu.exercises.algorithm_checks import (
@@ -204,3 +205,44 @@ def test_an_exact_determinant_test_is_rejected_on_a_meshs_flat_region_and_the_sl
     assert not result.passed
     assert "a tilted flat region of a mesh" in result.message
     assert "det(A) == 0 misses it" in result.message
+
+
+def chapter_patch_point(grid, u, v):
+    columns = [library_de_casteljau(grid[:, j], u)[-1][0] for j in range(grid.shape[1])]
+    return library_de_casteljau(np.array(columns), v)[-1][0]
+
+
+def cs184_patch_point(grid, u, v):
+    """CS184's BezierPatch::evaluate: de Casteljau along each row at u, then through the rows at v."""
+    rows = [library_de_casteljau(grid[i], u)[-1][0] for i in range(grid.shape[0])]
+    return library_de_casteljau(np.array(rows), v)[-1][0]
+
+
+def test_both_patch_conventions_pass_and_cs184s_is_named():
+    from halfedge_edu.exercises import check_bezier_patch
+
+    assert check_bezier_patch(chapter_patch_point).passed
+    cs184 = check_bezier_patch(cs184_patch_point)
+    assert cs184.passed and "CS184's convention" in cs184.message
+    assert all(check_bezier_patch(f, seed=s).passed for f in (chapter_patch_point, cs184_patch_point) for s in (1, 2))
+
+
+def test_a_patch_point_that_switches_convention_is_refused():
+    from halfedge_edu.exercises import check_bezier_patch
+
+    def switching(grid, u, v):
+        return (chapter_patch_point if grid.shape == (4, 4, 3) else cs184_patch_point)(grid, u, v)
+
+    result = check_bezier_patch(switching)
+    assert not result.passed and "u must run along the same index" in result.message
+
+
+@pytest.mark.parametrize(("slip", "named"), [
+    (lambda grid, u, v: library_de_casteljau(grid[:, 0], u)[-1][0], "one column's curve"),
+    (lambda grid, u, v: chapter_patch_point(grid, 1 - u, 1 - v), "swapped t and 1 - t"),
+])
+def test_patch_slips_are_named(slip, named):
+    from halfedge_edu.exercises import check_bezier_patch
+
+    result = check_bezier_patch(slip)
+    assert not result.passed and named in result.message, result.message
