@@ -95,6 +95,7 @@ EXERCISES: tuple[Exercise, ...] = (
     Exercise("nonmanifold", "04", ("has_nonmanifold_edges", "has_nonmanifold_vertices"), "check_nonmanifold"),
     Exercise("split", "06", ("my_split",), "check_split"),
     Exercise("vertex_normal", "11", ("my_vertex_normal",), "check_vertex_normal"),
+    Exercise("bezier_patch", "12", ("my_patch_point",), "check_bezier_patch"),
 )
 
 
