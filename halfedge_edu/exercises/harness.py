@@ -58,6 +58,8 @@ class CheckResult:
         mesh_name: the mesh where the first difference was found (None if passed).
         element: ``(kind, index)`` of the offending element, e.g. ``("halfedge", 4)``.
         mesh: that mesh as a ``HalfedgeMesh`` (the reference), for :meth:`show`.
+        names: labels by ``(kind, index)`` for :meth:`show`, the names the message uses
+            (an operation's ``v0``, ``h3``, ``vA``, ...); None labels by index.
         rerun: when the learner's function raised, calls it again on a fresh copy of the
             case it failed on, so that the learner sees the whole traceback (and can
             step into it with ``%debug``); None otherwise.
@@ -72,6 +74,7 @@ class CheckResult:
     mesh: HalfedgeMesh | None = field(default=None, repr=False)
     total: int = 0
     rerun: Callable[[], object] | None = field(default=None, repr=False, compare=False)
+    names: dict | None = field(default=None, repr=False, compare=False)
 
     def __bool__(self) -> bool:
         return self.passed
@@ -97,7 +100,9 @@ class CheckResult:
         kind, index = self.element
         scene = HalfedgeScene(self.mesh, **scene_options)
         try:
-            if kind == "halfedge":
+            if self.names:     # one naming scheme: the picture labels what the message names
+                scene.set_roles(_roles_around(self.mesh, kind, index), names=self.names)
+            elif kind == "halfedge":
                 scene.show_halfedge(index)
             elif kind == "vertex":
                 scene.show_one_ring(index)
@@ -106,6 +111,24 @@ class CheckResult:
             return Image(data=scene.screenshot())
         finally:
             scene.close()
+
+
+def _roles_around(mesh: HalfedgeMesh, kind: str, index: int) -> dict[str, list[int]]:
+    """The highlight roles of one element and its neighbourhood (as ``show_halfedge`` /
+    ``show_one_ring`` draw them), for a picture labelled with the operation's names."""
+    if kind == "halfedge":
+        roles = {"current": [index], "twin": [index ^ 1], "next": [int(mesh.halfedge_next[index])],
+                 "prev": [int(mesh.halfedge_prev[index])], "origin": [int(mesh.halfedge_vertex[index])],
+                 "tip": [int(mesh.halfedge_vertex[index ^ 1])]}
+        if mesh.halfedge_face[index] >= 0:
+            roles["face"] = [int(mesh.halfedge_face[index])]
+        return roles
+    if kind == "vertex":
+        vertex = mesh.vertex(index)
+        outgoing = [h.index for h in vertex.outgoing()]
+        return {"center": [index], "outgoing": outgoing, "neighbor": [int(mesh.halfedge_vertex[h ^ 1]) for h in outgoing],
+                "ring_face": [f.index for f in vertex.faces()]}
+    return {"face": [index]}
 
 
 def passed(exercise: str, checked: list[str], praise: str) -> CheckResult:
@@ -117,12 +140,13 @@ def passed(exercise: str, checked: list[str], praise: str) -> CheckResult:
 
 def failed(exercise: str, checked: list[str], mesh_name: str | None, text: str,
             element: tuple | None = None, mesh: HalfedgeMesh | None = None,
-            error: BaseException | None = None) -> CheckResult:
+            error: BaseException | None = None, names: dict | None = None) -> CheckResult:
     """The first difference, in words: on which mesh, what is wrong (``text``), what agreed before.
 
     ``element`` and ``mesh`` let :meth:`CheckResult.show` draw the offending element.
     ``error``, the learner's exception when their function raised (as :func:`run` gave
-    it), gives the result its :attr:`~CheckResult.rerun`.
+    it), gives the result its :attr:`~CheckResult.rerun`; ``names`` labels the picture
+    with the names the message uses.
     """
     where = f"On {mesh_name!r}: " if mesh_name else ""
     if not where:
@@ -132,7 +156,7 @@ def failed(exercise: str, checked: list[str], mesh_name: str | None, text: str,
             and not isinstance(error, NotImplementedError) and "ellipsis" not in str(error).lower()):
         text += " result.rerun() calls it again on this case, to show the whole traceback."
     return CheckResult(exercise, False, f"Not yet. {where}{text}{before}", list(checked), mesh_name, element, mesh,
-                       rerun=_rerun_of(error))
+                       rerun=_rerun_of(error), names=names)
 
 
 def counted(result: CheckResult, total: int) -> CheckResult:

@@ -269,6 +269,17 @@ def _shown(element):
 # Running the learner's operation step by step (both checks)
 # --------------------------------------------------------------------------------------
 
+def _picture_names(library: Callable, before: HalfedgeMesh, step: int) -> dict[tuple[str, int], str]:
+    """``(kind, index) -> name`` of the operation's picture (``v0``, ``h3``, ``vA`` ...) for
+    this step, so that ``result.show()`` labels the elements as the message names them."""
+    log = OperationLog()
+    try:
+        library(before.copy(), step, log=log)
+    except TypeError:                     # an operation that takes no log: label by index
+        return {}
+    return {element: name for name, element in log.named.items()}
+
+
 def _check_steps(exercise: str, learner: Callable, cases: list, doing: str, element_of: Callable,
                  timeout_hint: str, problem_of: Callable, library: Callable, praise: str) -> CheckResult:
     """Run ``learner(mesh, step)`` on a copy before every step of every case; stop at the first difference.
@@ -303,9 +314,11 @@ def _check_steps(exercise: str, learner: Callable, cases: list, doing: str, elem
                     library(mesh, step)
                     continue
                 text, element = problem
-                return harness.failed(exercise, checked, name, text, _shown(element), before)
+                return harness.failed(exercise, checked, name, text, _shown(element), before,
+                                      names=_picture_names(library, before, step))
             return harness.failed(exercise, checked, name, f"{doing.format(step)}, {text}", element_of(step), before,
-                                  error=answer if status == "error" else None)
+                                  error=answer if status == "error" else None,
+                                  names=_picture_names(library, before, step))
         checked.append(name)
     return harness.passed(exercise, checked, " ".join([praise, *notes]))
 
@@ -371,7 +384,8 @@ def check_flip(learner_flip: Callable, *, seed: int | None = None) -> CheckResul
     return harness.counted(_check_steps(
         "flip", learner_flip, cases, "flipping edge {}", lambda e: ("halfedge", 2 * e),
         "A flip is a fixed number of pointer writes; look for a loop that never ends.",
-        _flip_problem, flip, "Every pointer ends up where it should, and the mesh is still valid.",
+        _flip_problem, lambda mesh, e, log=None: flip(mesh, e, log=log),
+        "Every pointer ends up where it should, and the mesh is still valid.",
     ), len(cases))
 
 
@@ -509,7 +523,7 @@ def check_collapse(learner_collapse: Callable, *, seed: int | None = None) -> Ch
         "collapse", learner_collapse, cases, "collapsing halfedge {}", lambda h: ("halfedge", h),
         "The walk around vB (h = twin(prev(h))) probably never comes back to its start: compare halfedge "
         "indices, and stop before you change the pointers you walk along.",
-        _collapse_problem, lambda mesh, h: collapse(mesh, mesh.halfedge(h)),
+        _collapse_problem, lambda mesh, h, log=None: collapse(mesh, mesh.halfedge(h), log=log),
         "Both cases work, degree 3 and higher, and the mesh stays valid.",
     ), len(cases))
 
@@ -592,6 +606,6 @@ def check_split(learner_split: Callable, *, seed: int | None = None) -> CheckRes
     return harness.counted(_check_steps(
         "split", learner_split, cases, "splitting edge {}", lambda e: ("halfedge", 2 * e),
         "A split is a fixed number of allocations and pointer writes; look for a loop that never ends.",
-        _split_problem, lambda mesh, e: split(mesh, e),
+        _split_problem, lambda mesh, e, log=None: split(mesh, e, log=log),
         "Four triangles around the new vertex, +1 vertex, +3 edges, +2 faces, and the mesh stays valid.",
     ), len(cases))

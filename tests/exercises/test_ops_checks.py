@@ -361,3 +361,13 @@ def test_check_split_counts_the_new_elements():
 
     result = check_split(lambda mesh, e: mesh.add_vertex([0.0, 0.0, 0.0]))
     assert not result.passed and "0 new edges instead of 3" in result.message
+
+
+def test_a_failed_operation_labels_its_picture_with_the_names_its_message_uses():
+    result = check_flip(lambda mesh, e: student_flip(mesh, e, keep_vertex_halfedges=False))
+    assert not result.passed and result.names
+    named = {name for name in result.names.values()}
+    assert {"v0", "v1", "v2", "v3", "h0", "h1"} <= named
+    for kind, index in [result.element]:
+        if (kind, index) in result.names:
+            assert result.names[(kind, index)] in result.message
