@@ -495,6 +495,34 @@ buggy.show(window_size=(420, 320))
 # centroid was not the one of the old mesh.
 
 # %% [markdown]
+# ### Exercise 2: the normal you projected with
+#
+# `hx.vertex_normals(mesh)` gave the smoothing its `n`. Write it for one vertex, as
+# CS184's `Vertex::normal()` and UChicago's P4 ask: sum the cross products
+# `(b - a) x (c - a)` of the faces around `v` (corners in each face's own order; each
+# is twice its face's area long, so big faces count more), then divide by the length
+# once. `check_vertex_normal` compares yours with the library's at every vertex of a
+# cube, a bent patch and a nudged icosphere, and names the slip it recognises.
+
+# %%
+from halfedge_edu.exercises.remesh_checks import check_vertex_normal
+
+
+def my_vertex_normal(mesh, v):
+    total = np.zeros(3)
+    for f in v.faces():
+        a, b, c = (u.position for u in f.vertices())
+        ### BEGIN SOLUTION
+        total += np.cross(b - a, c - a)   # this face's normal, as long as twice its area
+        ### END SOLUTION
+    ### BEGIN SOLUTION
+    return total / np.linalg.norm(total)   # unit length, divided once at the end
+    ### END SOLUTION
+
+
+check_vertex_normal(my_vertex_normal)
+
+# %% [markdown]
 # ## Summary
 #
 # - Isotropic remeshing aims for edges of length about L and degrees near 6, with four
