@@ -51,7 +51,7 @@ from . import harness, hidden
 from .harness import TIME_LIMIT, CheckResult
 
 
-__all__ = ["check_collapse", "check_flip", "check_split", "collapse_cases", "flip_cases", "split_cases"]
+__all__ = ["COLLAPSE_PHASES", "check_collapse", "check_collapse_steps", "check_flip", "check_split", "collapse_cases", "flip_cases", "split_cases"]
 
 #: Decimals that positions are rounded to when faces are compared by their corners.
 _DECIMALS = 9
@@ -609,3 +609,91 @@ def check_split(learner_split: Callable, *, seed: int | None = None) -> CheckRes
         _split_problem, lambda mesh, e, log=None: split(mesh, e, log=log),
         "Four triangles around the new vertex, +1 vertex, +3 edges, +2 faces, and the mesh stays valid.",
     ), len(cases))
+
+
+# --------------------------------------------------------------------------------------
+# check_collapse_steps: chapter 07's intermediate checks, one per phase of the collapse
+# --------------------------------------------------------------------------------------
+
+#: Chapter 07's phases, by the last step each one ends with.
+COLLAPSE_PHASES = {2: "move vA and reassign vB's halfedges (steps 1 and 2)",
+                   4: "relink h_A_L and h_R_A in place of h_B_L and h_R_B (steps 3 and 4)",
+                   5: "give vL, vR and vA live halfedges (step 5)",
+                   6: "delete (step 6): the whole collapse"}
+
+
+def _phase_problem(before: HalfedgeMesh, yours: HalfedgeMesh, h: int, upto: int) -> tuple[str, tuple] | None:
+    """What steps 1..``upto`` of the chapter's collapse got wrong on ``yours``, or None."""
+    log = OperationLog()
+    wanted = before.copy()
+    collapse(wanted, wanted.halfedge(h), log=log)
+    ids = {n: index for n, (_, index) in log.named.items()}
+    vA, vB = ids["vA"], ids["vB"]
+    midpoint = 0.5 * (before.positions[vA] + before.positions[vB])
+    if not np.allclose(yours.positions[vA], midpoint):
+        return (f"step 1: vA = {vA} is at {np.round(yours.positions[vA], 4).tolist()}, not at the edge's midpoint "
+                f"{np.round(midpoint, 4).tolist()}.", ("vertex", vA))
+    skipped = {ids["h_BA"], ids["h_L_B"] ^ 1, ids["h_B_R"]}
+    for g in before.vertex(vB).outgoing():
+        if g.index not in skipped and yours.halfedge_vertex[g.index] != vA:
+            return (f"step 2: halfedge {g.index} left vB = {vB}; it should now leave vA = {vA}, but yours leaves "
+                    f"{int(yours.halfedge_vertex[g.index])}.", ("halfedge", g.index))
+    if upto < 4:
+        return None
+    for new, old in (("h_A_L", "h_B_L"), ("h_R_A", "h_R_B")):
+        g = ids[new]
+        for array, word in (("halfedge_next", "next"), ("halfedge_prev", "prev"), ("halfedge_face", "face")):
+            if getattr(yours, array)[g] != getattr(wanted, array)[g]:
+                return (f"step {3 if new == 'h_A_L' else 4}: {new} = halfedge {g} takes the place of {old} = "
+                        f"halfedge {ids[old]}, so its {word} should be {int(getattr(wanted, array)[g])} (what {old}'s "
+                        f"was, read before you change anything of it), but yours is {int(getattr(yours, array)[g])}.",
+                        ("halfedge", g))
+    if upto < 5:
+        return None
+    going = {ids["h_BA"] >> 1, ids["h_L_B"] >> 1, ids["h_B_R"] >> 1}
+    for name in ("vL", "vR", "vA"):
+        v = ids[name]
+        g = int(yours.vertex_halfedge[v])
+        if yours.halfedge_vertex[g] != v or (g >> 1) in going:
+            return (f"step 5: {name} = vertex {v}'s halfedge is {g}, which "
+                    f"{'is on an edge that step 6 deletes' if (g >> 1) in going else 'does not leave it'}; point it "
+                    f"at a live halfedge that leaves {name}.", ("vertex", v))
+    return None
+
+
+def check_collapse_steps(learner_collapse: Callable, upto: int) -> CheckResult:
+    """Chapter 07's intermediate check: the steps of ``learner_collapse`` up to ``upto`` (2, 4,
+    5 or 6), on ``single_collapse`` and the cube's two cases, before the rest is written.
+
+    It runs the learner's function (steps after ``upto`` may still be missing) and
+    compares only what steps 1 to ``upto`` change with the library's collapse, in the
+    chapter's numbering (``h_A_L`` and ``h_R_A`` are the edges kept). ``upto=6`` is
+    :func:`check_collapse` itself.
+    """
+    if upto not in COLLAPSE_PHASES:
+        raise ValueError(f"upto must be one of {sorted(COLLAPSE_PHASES)}, the last step of a phase; got {upto!r}")
+    if upto == 6:
+        return check_collapse(learner_collapse)
+    name = "collapse"
+    cases = [(case, mesh, steps) for case, mesh, steps in collapse_cases()[:3]]
+    checked: list[str] = []
+    for case, mesh, steps in cases:
+        h = steps[0]
+        yours = mesh.copy()
+        status, answer = harness.run(learner_collapse, yours, h)
+        trouble = harness.trouble(status, answer, name)
+        if trouble:
+            return harness.counted(harness.failed(name, checked, case, f"collapsing halfedge {h}, {trouble}",
+                                                  ("halfedge", h), mesh, error=answer), len(cases))
+        problem = _phase_problem(mesh, yours, h, upto)
+        if problem is not None:
+            text, element = problem
+            return harness.counted(harness.failed(name, checked, case, f"collapsing halfedge {h}, {text}", element,
+                                                  mesh, names=_picture_names(
+                                                      lambda m, s, log=None: collapse(m, m.halfedge(s), log=log),
+                                                      mesh, h)), len(cases))
+        checked.append(case)
+    following = min(k for k in COLLAPSE_PHASES if k > upto)
+    return harness.counted(harness.passed(name, checked, f"Steps 1 to {upto} are right. Next: "
+                                          f"{COLLAPSE_PHASES[following]}, then check_collapse_steps(my_collapse, "
+                                          f"{following})."), len(cases))

@@ -371,3 +371,35 @@ def test_a_failed_operation_labels_its_picture_with_the_names_its_message_uses()
     for kind, index in [result.element]:
         if (kind, index) in result.names:
             assert result.names[(kind, index)] in result.message
+
+
+def test_the_phase_checks_pass_the_library_collapse_at_every_phase():
+    from halfedge_edu.exercises.ops_checks import check_collapse_steps
+
+    for upto in (2, 4, 5, 6):
+        assert check_collapse_steps(lambda mesh, h: collapse(mesh, mesh.halfedge(h)), upto).passed
+
+
+def test_the_phase_check_after_steps_1_and_2_passes_a_collapse_written_that_far():
+    from halfedge_edu.exercises.ops_checks import check_collapse_steps
+
+    def steps_1_and_2(mesh, h):
+        vB, vA = int(mesh.halfedge_vertex[h]), int(mesh.halfedge_vertex[h ^ 1])
+        h_L_B, h_B_R = int(mesh.halfedge_prev[h]), int(mesh.halfedge_next[h ^ 1])
+        ring = _ring(mesh, h)
+        mesh.positions[vA] = 0.5 * (mesh.positions[vA] + mesh.positions[vB])
+        for g in ring:
+            if g not in (h, h_L_B ^ 1, h_B_R):
+                mesh.halfedge_vertex[g] = vA
+
+    assert check_collapse_steps(steps_1_and_2, 2).passed
+    later = check_collapse_steps(steps_1_and_2, 4)
+    assert not later.passed and "step 3: h_A_L" in later.message
+
+
+def test_the_phase_check_of_steps_3_and_4_names_reading_the_neighbours_too_early():
+    from halfedge_edu.exercises.ops_checks import check_collapse_steps
+
+    result = check_collapse_steps(lambda mesh, h: student_collapse(mesh, h, copy_first=True), 4)
+    assert not result.passed and result.mesh_name == "cube, removing the degree-3 vertex 0"
+    assert "read before you change anything of it" in result.message
