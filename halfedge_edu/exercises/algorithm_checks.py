@@ -43,7 +43,7 @@ from . import harness, hidden
 from .harness import CheckResult, hidden_name
 
 
-__all__ = ["check_bezier_patch", "check_loop_rules", "check_plane_quadric", "check_optimal_point", "check_de_casteljau",
+__all__ = ["check_bezier_patch", "check_upsample_connectivity", "check_loop_rules", "check_plane_quadric", "check_optimal_point", "check_de_casteljau",
            "patch_point",
            "loop_cases", "loop_original_beta", "warren_beta"]
 
@@ -760,3 +760,95 @@ def _check_bezier_patch(patch_point_function: Callable, cases: list) -> CheckRes
                  "correct there; the chapter and hx.bezier_surface_points run u down the columns, so your S(u, v) "
                  "is the chapter's S(v, u) (or pass grid.transpose(1, 0, 2)).")
     return harness.all_good(name, checked, "grids", words)
+
+
+# --------------------------------------------------------------------------------------
+# Chapter 09, second exercise: the 4-to-1 connectivity (CS184's and CMU's upsample)
+# --------------------------------------------------------------------------------------
+
+def _upsample_cases(seed: int | None = None) -> list[tuple[str, HalfedgeMesh]]:
+    """Closed meshes (the two courses' upsampling assumes no boundary) of several degrees;
+    with a ``seed``, the hidden cases: closed meshes after random flips, nudged."""
+    if seed is None:
+        return [("tetrahedron", _jittered(sample("tetrahedron"), 11)), ("octahedron", _jittered(sample("octahedron"), 12)),
+                ("cube", _jittered(sample("cube"), 13))]
+    rng = harness.hidden_rng(seed)
+    cases = []
+    for number, shape in enumerate(rng.choice(["tetrahedron", "cube", "octahedron", "icosphere(1)"], 3, replace=False),
+                                   start=1):
+        flips = int(rng.integers(0, 5))
+        mesh = hidden.jittered(hidden.flipped(hidden.closed_mesh(str(shape)), flips, rng), rng, 0.05)
+        cases.append((hidden_name(number, f"{shape} after {flips} random flips, nudged"), mesh))
+    return cases
+
+
+def _faces_by_points(vertices: np.ndarray, faces: np.ndarray) -> set[tuple]:
+    """Every face as its corners' rounded positions, turned to start at the smallest."""
+    found = set()
+    for face in faces.tolist():
+        points = [tuple(np.round(vertices[v], 9).tolist()) for v in face]
+        k = points.index(min(points))
+        found.add(tuple(points[k:] + points[:k]))
+    return found
+
+
+def _split_only(mesh: HalfedgeMesh) -> HalfedgeMesh:
+    """The slip's result: every old edge split at its midpoint, no flips."""
+    from halfedge_edu.core.ops import split
+
+    work = mesh.copy()
+    for e in range(mesh.n_edge_slots):
+        split(work, e)
+    return work
+
+
+def check_upsample_connectivity(upsample: Callable, *, seed: int | None = None) -> CheckResult:
+    """Compare the learner's ``upsample(mesh) -> HalfedgeMesh`` (the 4-to-1 split by
+    splitting every old edge, then flipping the new edges that join an old and a new
+    vertex) with ``loop_subdivide``'s connectivity.
+
+    The new vertices may sit at the edges' midpoints (connectivity only) or at Loop's
+    positions (Warren's weights); either is recognised. The mesh passed in may be changed
+    (the function may work in place and return it).
+
+    ``seed``: None for the public cases (the chapter's); an int for only the hidden cases made from it.
+    """
+    from halfedge_edu.algorithms.loop import loop_subdivide
+
+    name = "upsample"
+    if (words := harness.unfinished(upsample, name)) is not None:
+        return harness.failed(name, [], None, words)
+    cases = _upsample_cases(seed)
+    checked: list[str] = []
+    for case, mesh in cases:
+        status, answer = harness.run(upsample, mesh.copy())
+        trouble = harness.trouble(status, answer, name)
+        if trouble:
+            return harness.counted(harness.failed(name, checked, case, trouble, None, mesh, error=answer), len(cases))
+        if not isinstance(answer, HalfedgeMesh):
+            return harness.counted(harness.failed(name, checked, case, f"upsample should return the subdivided "
+                                                  f"HalfedgeMesh, but yours returned {type(answer).__name__}."),
+                                   len(cases))
+        answer.topology_changed()
+        V, E, F = mesh.n_vertices, mesh.n_edges, mesh.n_faces
+        counts = (answer.n_vertices, answer.n_edges, answer.n_faces)
+        if counts != (V + E, 2 * E + 3 * F, 4 * F):
+            text = (f"the result has {counts[0]} vertices, {counts[1]} edges and {counts[2]} faces; the 4-to-1 split "
+                    f"of {V} vertices, {E} edges and {F} faces has V + E = {V + E}, 2E + 3F = {2 * E + 3 * F} and 4F = "
+                    f"{4 * F}: one new vertex per edge, each old face four.")
+            return harness.counted(harness.failed(name, checked, case, text, None, mesh), len(cases))
+        subdivided = loop_subdivide(mesh)
+        faces = subdivided.to_arrays()[1]
+        midpoints = np.vstack([mesh.positions[:V], 0.5 * mesh.positions[mesh.edge_vertices()].sum(axis=1)])
+        yours = _faces_by_points(*answer.to_arrays())
+        if yours in (_faces_by_points(midpoints, faces), _faces_by_points(subdivided.positions, faces)):
+            checked.append(case)
+            continue
+        text = "the counts are right, but not every old triangle became its four: the centre triangle of three new " \
+               "vertices and a corner triangle at each old one."
+        if yours == _faces_by_points(*_split_only(mesh).to_arrays()):
+            text += (" Yours is every edge split with no flips: some cross edges still join a new vertex to an old "
+                     "corner. Flip each new edge that joins an old vertex and a new one (and only those).")
+        return harness.counted(harness.failed(name, checked, case, text, None, mesh), len(cases))
+    return harness.counted(harness.all_good(name, checked, "meshes", "Every old triangle is four, the connectivity "
+                                            "of one level of Loop subdivision."), len(cases))

@@ -246,3 +246,61 @@ def test_patch_slips_are_named(slip, named):
 
     result = check_bezier_patch(slip)
     assert not result.passed and named in result.message, result.message
+
+
+def upsample_by_operations(mesh):
+    """CS184's and CMU's upsample, connectivity only: split every old edge, flip old-new cross edges."""
+    from halfedge_edu.core.ops import flip, split
+
+    n_old_vertices = mesh.n_vertices
+    across = []
+    for e in range(mesh.n_edges):
+        ends = {int(v) for v in mesh.edge(e).vertices}
+        m = split(mesh, e)
+        across += [h.edge.index for h in m.outgoing() if h.tip.index not in ends]
+    for e in across:
+        a, b = (int(v) for v in mesh.edge(e).vertices)
+        if (a < n_old_vertices) != (b < n_old_vertices):
+            flip(mesh, e)
+    return mesh
+
+
+def test_the_upsample_connectivity_passes_at_midpoints_and_at_loops_positions():
+    from halfedge_edu.algorithms.loop import loop_subdivide
+    from halfedge_edu.exercises import check_upsample_connectivity
+
+    assert check_upsample_connectivity(upsample_by_operations).passed
+    assert check_upsample_connectivity(lambda mesh: loop_subdivide(mesh)).passed
+    assert all(check_upsample_connectivity(upsample_by_operations, seed=s).passed for s in (1, 2, 3))
+
+
+def test_splitting_without_flipping_is_named():
+    from halfedge_edu.core.ops import split
+    from halfedge_edu.exercises import check_upsample_connectivity
+
+    def no_flips(mesh):
+        for e in range(mesh.n_edges):
+            split(mesh, e)
+        return mesh
+
+    result = check_upsample_connectivity(no_flips)
+    assert not result.passed and "every edge split with no flips" in result.message
+
+
+def test_flipping_every_cross_edge_is_refused():
+    from halfedge_edu.core.ops import can_flip, flip, split
+    from halfedge_edu.exercises import check_upsample_connectivity
+
+    def flips_all(mesh):
+        across = []
+        for e in range(mesh.n_edges):
+            ends = {int(v) for v in mesh.edge(e).vertices}
+            m = split(mesh, e)
+            across += [h.edge.index for h in m.outgoing() if h.tip.index not in ends]
+        for e in across:
+            if can_flip(mesh, e):
+                flip(mesh, e)
+        return mesh
+
+    result = check_upsample_connectivity(flips_all)
+    assert not result.passed and "not every old triangle became its four" in result.message
