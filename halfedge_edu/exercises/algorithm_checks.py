@@ -200,11 +200,11 @@ def check_loop_rules(edge_point: Callable | None = None, vertex_point: Callable 
     label = " and ".join(name for name, _ in functions) or "Loop rules"
     if not functions:
         return harness.failed(label, [], None, "give check_loop_rules your edge_point, your vertex_point, or both.")
+    cases = loop_cases(seed)
     for name, function in functions:
         unfinished = harness.unfinished(function, name)
         if unfinished:
-            return harness.failed(label, [], None, unfinished)
-    cases = loop_cases(seed)
+            return harness.counted(harness.failed(label, [], None, unfinished), len(cases))
     return harness.counted(_check_loop_rules(functions, label, cases), len(cases))
 
 
@@ -348,10 +348,10 @@ def check_plane_quadric(plane_quadric: Callable, *, seed: int | None = None) -> 
         seed: None for the public cases (the chapter's); an int for only the hidden
             cases made from it.
     """
+    cases = _quadric_cases(seed)
     unfinished = harness.unfinished(plane_quadric, "plane_quadric")
     if unfinished:
-        return harness.failed("plane_quadric", [], None, unfinished)
-    cases = _quadric_cases(seed)
+        return harness.counted(harness.failed("plane_quadric", [], None, unfinished), len(cases))
     return harness.counted(_check_plane_quadric(plane_quadric, cases), len(cases))
 
 
@@ -485,10 +485,10 @@ def check_optimal_point(optimal_point: Callable, *, seed: int | None = None) -> 
         seed: None for the public cases (the chapter's); an int for only the hidden
             cases made from it.
     """
+    cases = _optimal_cases(seed)
     unfinished = harness.unfinished(optimal_point, "optimal_point")
     if unfinished:
-        return harness.failed("optimal_point", [], None, unfinished)
-    cases = _optimal_cases(seed)
+        return harness.counted(harness.failed("optimal_point", [], None, unfinished), len(cases))
     return harness.counted(_check_optimal_point(optimal_point, cases), len(cases))
 
 
@@ -597,10 +597,10 @@ def check_de_casteljau(de_casteljau: Callable, *, seed: int | None = None) -> Ch
         seed: None for the public cases (the chapter's); an int for only the hidden
             cases made from it.
     """
+    cases = _casteljau_cases(seed)
     unfinished = harness.unfinished(de_casteljau, "de_casteljau")
     if unfinished:
-        return harness.failed("de_casteljau", [], None, unfinished)
-    cases = _casteljau_cases(seed)
+        return harness.counted(harness.failed("de_casteljau", [], None, unfinished), len(cases))
     return harness.counted(_check_de_casteljau(de_casteljau, cases), len(cases))
 
 
@@ -701,9 +701,9 @@ def check_bezier_patch(patch_point_function: Callable, *, seed: int | None = Non
             cases made from it.
     """
     name = "patch_point"
-    if (words := harness.unfinished(patch_point_function, name)) is not None:
-        return harness.failed(name, [], None, words)
     cases = _patch_cases(seed)
+    if (words := harness.unfinished(patch_point_function, name)) is not None:
+        return harness.counted(harness.failed(name, [], None, words), len(cases))
     return harness.counted(_check_bezier_patch(patch_point_function, cases), len(cases))
 
 
@@ -816,9 +816,9 @@ def check_upsample_connectivity(upsample: Callable, *, seed: int | None = None) 
     from halfedge_edu.algorithms.loop import loop_subdivide
 
     name = "upsample"
-    if (words := harness.unfinished(upsample, name)) is not None:
-        return harness.failed(name, [], None, words)
     cases = _upsample_cases(seed)
+    if (words := harness.unfinished(upsample, name)) is not None:
+        return harness.counted(harness.failed(name, [], None, words), len(cases))
     checked: list[str] = []
     for case, mesh in cases:
         status, answer = harness.run(upsample, mesh.copy())

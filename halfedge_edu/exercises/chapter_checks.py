@@ -82,9 +82,9 @@ def check_fan(fan: Callable, *, seed: int | None = None) -> CheckResult:
 
     ``seed``: None for the public cases (the chapter's); an int for only the hidden cases made from it.
     """
-    if (blanks := _blanks_left("fan", "fan", fan)) is not None:
-        return blanks
     cases = fan_cases(seed)
+    if (blanks := _blanks_left("fan", "fan", fan)) is not None:
+        return counted(blanks, len(cases))
     return counted(_check_fan(fan, cases), len(cases))
 
 
@@ -165,9 +165,9 @@ def check_cut(cut_bowtie: Callable, *, seed: int | None = None) -> CheckResult:
 
     ``seed``: None for the public cases (the chapter's); an int for only the hidden cases made from it.
     """
-    if (blanks := _blanks_left("cut", "cut_bowtie", cut_bowtie)) is not None:
-        return blanks
     cases = cut_cases(seed)
+    if (blanks := _blanks_left("cut", "cut_bowtie", cut_bowtie)) is not None:
+        return counted(blanks, len(cases))
     return counted(_check_cut(cut_bowtie, cases), len(cases))
 
 
@@ -274,9 +274,9 @@ def check_laplacian_step(step: Callable, *, seed: int | None = None) -> CheckRes
 
     ``seed``: None for the public cases (the chapter's); an int for only the hidden cases made from it.
     """
-    if (blanks := _blanks_left("laplacian_step", "laplacian_step", step)) is not None:
-        return blanks
     meshes = laplacian_cases(seed)
+    if (blanks := _blanks_left("laplacian_step", "laplacian_step", step)) is not None:
+        return counted(blanks, len(meshes))
     return counted(_check_laplacian_step(step, meshes), len(meshes))
 
 
@@ -475,9 +475,9 @@ def check_collapse_is_safe(is_safe: Callable, *, with_boundary: bool = False, ve
     ``seed``: None for the public cases (the chapter's); an int for only the hidden cases
     made from it (closed meshes after random collapses and flips).
     """
-    if (blanks := _blanks_left("collapse_is_safe", "collapse_is_safe", is_safe)) is not None:
-        return blanks
     meshes = _collapse_meshes(with_boundary) if seed is None else _hidden_collapse_meshes(seed, with_boundary)
+    if (blanks := _blanks_left("collapse_is_safe", "collapse_is_safe", is_safe)) is not None:
+        return counted(blanks, len(meshes))
     return counted(_check_collapse_is_safe(is_safe, meshes, vertices_only), len(meshes))
 
 
@@ -626,11 +626,11 @@ def check_nonmanifold(has_nonmanifold_edges: Callable, has_nonmanifold_vertices:
 
     ``seed``: None for the public cases (the chapter's); an int for only the hidden cases made from it.
     """
+    cases = nonmanifold_cases(seed)
     for name, function in (("has_nonmanifold_edges", has_nonmanifold_edges),
                            ("has_nonmanifold_vertices", has_nonmanifold_vertices)):
         if (blanks := _blanks_left("nonmanifold", name, function)) is not None:
-            return blanks
-    cases = nonmanifold_cases(seed)
+            return counted(blanks, len(cases))
     return counted(_check_nonmanifold(has_nonmanifold_edges, has_nonmanifold_vertices, cases), len(cases))
 
 

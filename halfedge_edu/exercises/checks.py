@@ -461,10 +461,10 @@ def check_build(learner_build: Callable, *, seed: int | None = None) -> CheckRes
         A :class:`CheckResult`: on the first difference, what it is in words and which
         halfedge (``result.show()`` draws it); otherwise a short congratulation.
     """
+    cases = build_cases(seed)
     unfinished = harness.unfinished(learner_build, "build")
     if unfinished:
-        return harness.failed("build", [], None, unfinished)
-    cases = build_cases(seed)
+        return harness.counted(harness.failed("build", [], None, unfinished), len(cases))
     return harness.counted(_check_build(learner_build, cases), len(cases))
 
 
@@ -654,10 +654,10 @@ def check_one_ring(learner_one_ring: Callable, *, seed: int | None = None) -> Ch
         A :class:`CheckResult` naming the first vertex whose ring differs and why
         (``result.show()`` draws that vertex's ring); otherwise a congratulation.
     """
+    cases = one_ring_cases(seed)
     unfinished = harness.unfinished(learner_one_ring, "one_ring")
     if unfinished:
-        return harness.failed("one_ring", [], None, unfinished)
-    cases = one_ring_cases(seed)
+        return harness.counted(harness.failed("one_ring", [], None, unfinished), len(cases))
     return harness.counted(_check_one_ring(learner_one_ring, cases), len(cases))
 
 

@@ -510,7 +510,7 @@ def _check_one(function: Callable, name: str, find_failure: Callable, praise: st
     """Run one of the two finders (``_reader_failure``, ``_writer_failure``, already given
     their cases) on ``function``; ``total`` is how many cases that runs."""
     if words := unfinished(function, name):
-        return failed("obj_io", [], None, words)
+        return counted(failed("obj_io", [], None, words), total)
     checked: list[str] = []
     refusals: list[tuple[str, str]] = []
     failure = find_failure(function, checked, refusals)
@@ -564,11 +564,11 @@ def check_obj_io(read_obj: Callable, write_obj: Callable, *, seed: int | None = 
 
     ``seed``: None for the public cases (the chapter's); an int for only the hidden cases made from it.
     """
-    for name, function in (("read_obj", read_obj), ("write_obj", write_obj)):
-        if words := unfinished(function, name):
-            return failed("obj_io", [], None, words)
     readers, real_file, writers, round_trip, name = _io_cases(seed)
     total = len(readers) + real_file + len(writers) + 1
+    for function_name, function in (("read_obj", read_obj), ("write_obj", write_obj)):
+        if words := unfinished(function, function_name):
+            return counted(failed("obj_io", [], None, words), total)
     return counted(_check_obj_io(read_obj, write_obj, readers, real_file, writers, round_trip, name), total)
 
 

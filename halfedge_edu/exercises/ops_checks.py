@@ -600,9 +600,9 @@ def check_split(learner_split: Callable, *, seed: int | None = None) -> CheckRes
         A :class:`~halfedge_edu.exercises.CheckResult`: at the first difference, what it
         is in words, with the picture's names; otherwise a short congratulation.
     """
-    if (words := harness.unfinished(learner_split, "split")) is not None:
-        return harness.failed("split", [], None, words)
     cases = split_cases(seed)
+    if (words := harness.unfinished(learner_split, "split")) is not None:
+        return harness.counted(harness.failed("split", [], None, words), len(cases))
     return harness.counted(_check_steps(
         "split", learner_split, cases, "splitting edge {}", lambda e: ("halfedge", 2 * e),
         "A split is a fixed number of allocations and pointer writes; look for a loop that never ends.",

@@ -215,10 +215,10 @@ def check_tangential_smoothing(tangential_smoothing: Callable, *, seed: int | No
         one-ring.
     """
     name = "tangential_smoothing"
+    cases = smoothing_cases(seed)
     unfinished = harness.unfinished(tangential_smoothing, name)
     if unfinished:
-        return harness.failed(name, [], None, unfinished)
-    cases = smoothing_cases(seed)
+        return harness.counted(harness.failed(name, [], None, unfinished), len(cases))
     return harness.counted(_check_tangential_smoothing(tangential_smoothing, cases), len(cases))
 
 
@@ -341,9 +341,9 @@ def check_vertex_normal(vertex_normal: Callable, *, seed: int | None = None) -> 
             cases made from it.
     """
     name = "vertex_normal"
-    if (words := harness.unfinished(vertex_normal, name)) is not None:
-        return harness.failed(name, [], None, words)
     cases = normal_cases(seed)
+    if (words := harness.unfinished(vertex_normal, name)) is not None:
+        return harness.counted(harness.failed(name, [], None, words), len(cases))
     return harness.counted(_check_vertex_normal(vertex_normal, cases), len(cases))
 
 

@@ -105,3 +105,15 @@ def test_a_check_needs_nothing_of_the_learner_function_but_calling_it_and_its_co
     result = check_function(exercise)(*proxies, seed=5)
     assert result.passed, result.message
     assert all(proxy.calls > 0 for proxy in proxies)
+
+
+@pytest.mark.parametrize("exercise", EXERCISES, ids=lambda exercise: exercise.name)
+def test_an_unfinished_function_still_reports_how_many_cases_the_check_runs(exercise):
+    def blank(*arguments):
+        return ...
+
+    result = check_function(exercise)(*(blank for _ in exercise.functions))
+    assert not result.passed and result.checked == []
+    assert result.total >= 1
+    hidden = check_function(exercise)(*(blank for _ in exercise.functions), seed=3)
+    assert hidden.total >= 3
