@@ -376,6 +376,16 @@ def my_collapse(mesh, h):
     mesh.delete_vertex(vB)
     ### END SOLUTION
 
+# %% [markdown]
+# Check each phase as soon as you have written it: `upto=2` after steps 1 and 2, then
+# 4, then 5. Each says what the next phase is. (Steps you have not written yet are simply
+# not there; the check looks only at what the earlier steps change.)
+
+# %%
+from halfedge_edu.exercises.ops_checks import check_collapse_steps
+
+check_collapse_steps(my_collapse, 2)
+
 # %%
 from halfedge_edu.exercises import check_collapse
 
