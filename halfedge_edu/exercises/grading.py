@@ -93,7 +93,6 @@ EXERCISES: tuple[Exercise, ...] = (
     Exercise("tangential_smoothing", "11", ("my_tangential_smoothing",), "check_tangential_smoothing"),
     Exercise("de_casteljau", "12", ("my_de_casteljau",), "check_de_casteljau"),
     Exercise("nonmanifold", "04", ("has_nonmanifold_edges", "has_nonmanifold_vertices"), "check_nonmanifold"),
-    Exercise("split", "06", ("my_split",), "check_split"),
     Exercise("vertex_normal", "11", ("my_vertex_normal",), "check_vertex_normal"),
     Exercise("bezier_patch", "12", ("my_patch_point",), "check_bezier_patch"),
     Exercise("upsample", "09", ("my_upsample",), "check_upsample_connectivity"),
