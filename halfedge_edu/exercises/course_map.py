@@ -28,7 +28,6 @@ ACCEPTS: dict[str, str] = {
     "check_nonmanifold": "UChicago P3: the vertex question is not asked where an edge is already non-manifold",
     "check_laplacian_step": "UChicago P5: boundary vertices averaged too (judged on the closed meshes)",
     "check_flip": "any halfedge numbering (faces compared by their corners)",
-    "check_split": "CS184 and CMU: interior edges, any numbering of the new elements",
     "check_collapse": "UChicago P6: either endpoint kept; either of the merged edges kept",
     "check_collapse_is_safe": "CMU: boundary edges refused; UChicago's vertex-only statement with "
                               "`vertices_only=True`",
