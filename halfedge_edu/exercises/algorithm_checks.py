@@ -43,7 +43,7 @@ from . import harness, hidden
 from .harness import CheckResult, hidden_name
 
 
-__all__ = ["check_bezier_patch", "check_upsample_connectivity", "check_loop_rules", "check_plane_quadric", "check_optimal_point", "check_de_casteljau",
+__all__ = ["check_bezier_patch", "check_downsample", "check_upsample_connectivity", "check_loop_rules", "check_plane_quadric", "check_optimal_point", "check_de_casteljau",
            "patch_point",
            "loop_cases", "loop_original_beta", "warren_beta"]
 
@@ -852,3 +852,113 @@ def check_upsample_connectivity(upsample: Callable, *, seed: int | None = None) 
         return harness.counted(harness.failed(name, checked, case, text, None, mesh), len(cases))
     return harness.counted(harness.all_good(name, checked, "meshes", "Every old triangle is four, the connectivity "
                                             "of one level of Loop subdivision."), len(cases))
+
+
+# --------------------------------------------------------------------------------------
+# Chapter 10, the whole loop: CMU's downsampling (a priority queue of quadric costs)
+# --------------------------------------------------------------------------------------
+
+def _flat_faced(mesh: HalfedgeMesh, levels: int) -> HalfedgeMesh:
+    """``mesh`` with every triangle cut 4-to-1 ``levels`` times, new vertices at midpoints:
+    the same flat faces, many more triangles."""
+    from halfedge_edu.algorithms.loop import loop_subdivide
+
+    for _ in range(levels):
+        finer = loop_subdivide(mesh)
+        midpoints = 0.5 * mesh.positions[mesh.edge_vertices()].sum(axis=1)
+        positions = np.vstack([mesh.positions[: mesh.n_vertices], midpoints])
+        mesh = HalfedgeMesh.from_faces(positions, finer.to_arrays()[1])
+    return mesh
+
+
+def _downsample_cases(seed: int | None = None) -> list[tuple[str, HalfedgeMesh, int, np.ndarray | None]]:
+    """``(name, mesh, target_faces, corners)``: flat-faced solids whose corners a right loop
+    keeps exactly (``corners`` (k, 3)), and a sphere whose error is compared with the library's
+    (``corners`` None)."""
+    if seed is None:
+        cube = _flat_faced(sample("cube"), 2)
+        return [("a cube of 192 flat triangles, down to 12", cube, 12, sample("cube").positions.copy()),
+                ("an icosphere(2), down to 80 faces", sample("icosphere", subdivisions=2), 80, None)]
+    rng = harness.hidden_rng(seed)
+    turn, _ = np.linalg.qr(rng.standard_normal((3, 3)))
+    scale, shift = rng.uniform(0.5, 2.0, 3), rng.uniform(-2.0, 2.0, 3)
+    cube = _flat_faced(sample("cube"), 2)
+    cube.positions[:] = (cube.positions * scale) @ turn.T + shift
+    octahedron = _flat_faced(sample("octahedron"), 2)
+    sphere = sample("icosphere", subdivisions=2)
+    sphere.positions[:] = sphere.positions @ turn.T
+    target = int(rng.integers(30, 45)) * 2
+    return [
+        (hidden_name(1, "a stretched, turned cube of 192 flat triangles, down to 12"), cube, 12,
+         (sample("cube").positions * scale) @ turn.T + shift),
+        (hidden_name(2, "an octahedron of 128 flat triangles, down to 8"), octahedron, 8, sample("octahedron").positions.copy()),
+        (hidden_name(3, f"a turned icosphere(2), down to {target} faces"), sphere, target, None),
+    ]
+
+
+def check_downsample(downsample: Callable, *, seed: int | None = None) -> CheckResult:
+    """Run the learner's ``downsample(mesh, target_faces) -> HalfedgeMesh`` (CMU's quadric
+    simplification: a priority queue of edges by quadric cost, pop the cheapest, collapse
+    it to its optimal point, update the costs around the new vertex).
+
+    Judged by what the loop must achieve, not by its order of collapses (ties may fall
+    either way): a valid mesh of ``target_faces`` faces (or one fewer); on a solid of flat
+    faces, only its corners left, exactly where they were; on a sphere, an error no more
+    than twice the library's (``simplify_sequential``).
+
+    ``seed``: None for the public cases (the chapter's); an int for only the hidden cases made from it.
+    """
+    from halfedge_edu.algorithms.simplify_queue import simplify_sequential
+    from halfedge_edu.core.errors import MeshInvariantError
+
+    name = "downsample"
+    cases = _downsample_cases(seed)
+    if (words := harness.unfinished(downsample, name)) is not None:
+        return harness.counted(harness.failed(name, [], None, words), len(cases))
+    checked: list[str] = []
+    for case, mesh, target, corners in cases:
+        status, answer = harness.run(downsample, mesh.copy(), target)
+        trouble = harness.trouble(status, answer, name)
+        if trouble:
+            return harness.counted(harness.failed(name, checked, case, trouble, None, mesh, error=answer), len(cases))
+        if not isinstance(answer, HalfedgeMesh):
+            return harness.counted(harness.failed(name, checked, case, f"downsample should return the simplified "
+                                                  f"HalfedgeMesh, but yours returned {type(answer).__name__}."), len(cases))
+        result = answer.copy()
+        result.topology_changed()
+        if result.has_garbage:
+            result.garbage_collect()
+        try:
+            result.validate()
+        except MeshInvariantError as error:
+            return harness.counted(harness.failed(name, checked, case, (
+                f"your result is not a valid mesh ({error.rule}: {str(error).split('] ', 1)[-1]}). Skip an edge that "
+                f"may not collapse (can_collapse) instead of collapsing it."), None, mesh), len(cases))
+        if result.n_faces not in (target, target - 1):
+            return harness.counted(harness.failed(name, checked, case, (
+                f"your result has {result.n_faces} faces; stop when the mesh has {target} (a collapse removes two "
+                f"faces, so {target} or {target - 1})."), None, mesh), len(cases))
+        points = result.to_arrays()[0]
+        if corners is not None:
+            off = [p for p in points if not np.any(np.all(np.isclose(p, corners, atol=1e-6), axis=1))]
+            if off:
+                return harness.counted(harness.failed(name, checked, case, (
+                    f"{len(off)} of your {len(points)} vertices are not corners of the solid, e.g. "
+                    f"{harness.point_text(off[0])}. On flat faces every collapse can cost 0: a vertex on one face "
+                    f"may go anywhere in its plane, one on an edge along its line, and a corner's three planes pin "
+                    f"it. Put each new vertex at its edge's optimal point (the midpoint only when A is singular) "
+                    f"and pop the cheapest edge first, and only the corners are left, exactly."), None, mesh),
+                    len(cases))
+        else:
+            library = simplify_sequential(mesh, target).to_arrays()[0]
+            error = lambda p: float(np.abs(np.linalg.norm(p, axis=1) - 1.0).max())  # noqa: E731
+            if error(points) > max(2.0 * error(library), error(library) + 0.01):
+                return harness.counted(harness.failed(name, checked, case, (
+                    f"your result strays up to {error(points):.3g} from the sphere, the library's {error(library):.3g}. "
+                    f"Pop the cheapest edge each time, and after a collapse give the new vertex the sum of both "
+                    f"quadrics and put the edges around it back in the queue with their new costs (entries of "
+                    f"edges whose ends have changed since are stale: skip them)."), None, mesh), len(cases))
+        checked.append(case)
+    return harness.counted(harness.all_good(name, checked, "meshes", "Cheapest edge first, each to its optimal "
+                                            "point: the corners stay exactly and the sphere keeps its shape."),
+                           len(cases))

@@ -304,3 +304,83 @@ def test_flipping_every_cross_edge_is_refused():
 
     result = check_upsample_connectivity(flips_all)
     assert not result.passed and "not every old triangle became its four" in result.message
+
+
+# --------------------------------------------------------------------------------------
+# check_downsample: CMU's downsampling loop
+# --------------------------------------------------------------------------------------
+
+import heapq  # noqa: E402
+import itertools  # noqa: E402
+
+from halfedge_edu.algorithms.simplify import face_quadrics  # noqa: E402
+from halfedge_edu.core.ops import can_collapse, collapse  # noqa: E402
+
+
+def optimal_point_with_fallback(Q, a, b):
+    A, q = Q[:3, :3], Q[:3, 3]
+    if abs(np.linalg.det(A)) < 1e-9:
+        return 0.5 * (a + b)
+    return np.linalg.solve(A, -q)
+
+
+def _downsampler(optimal_point, *, stale_slip=False):
+    """The chapter's loop (a heap of edges with lazy deletion) with the point rule given; with
+    ``stale_slip``, only the survivor's old queue entries are marked stale after a collapse
+    (the first draft of the chapter's answer), not the removed vertex's."""
+    def downsample(mesh, target_faces):
+        mesh = mesh.copy()
+        corners = mesh.face_vertices()
+        K = face_quadrics(mesh.positions, corners)
+        Q = np.zeros((mesh.n_vertex_slots, 4, 4))
+        for f in range(len(corners)):
+            for v in corners[f]:
+                Q[v] += K[f]
+        version = np.zeros(mesh.n_vertex_slots, dtype=int)
+        heap, order = [], itertools.count()
+
+        def push(e):
+            a, b = (int(v) for v in mesh.edge(e).vertices)
+            x = optimal_point(Q[a] + Q[b], mesh.positions[a], mesh.positions[b])
+            cost = float(np.append(x, 1.0) @ (Q[a] + Q[b]) @ np.append(x, 1.0))
+            heapq.heappush(heap, (cost, next(order), e, a, b, version[a], version[b], x))
+
+        for edge in mesh.edges:
+            push(edge.index)
+        while mesh.n_faces > target_faces and heap:
+            _, _, e, a, b, version_a, version_b, x = heapq.heappop(heap)
+            if mesh.edge_deleted[e] or (version[a], version[b]) != (version_a, version_b) or not can_collapse(mesh, e):
+                continue
+            survivor = collapse(mesh, e, position=x).index
+            Q[survivor] = Q[a] + Q[b]
+            for v in ((survivor,) if stale_slip else (a, b)):
+                version[v] += 1
+            for h in mesh.vertex(survivor).outgoing():
+                push(h.edge.index)
+        mesh.garbage_collect()
+        return mesh
+    return downsample
+
+
+def test_the_downsampling_loop_passes_public_and_hidden_cases():
+    from halfedge_edu.exercises import check_downsample
+
+    right = _downsampler(optimal_point_with_fallback)
+    assert check_downsample(right).passed
+    assert all(check_downsample(right, seed=seed).passed for seed in (1, 2, 3))
+
+
+def test_midpoints_instead_of_optimal_points_lose_the_corners():
+    from halfedge_edu.exercises import check_downsample
+
+    result = check_downsample(_downsampler(lambda Q, a, b: 0.5 * (a + b)))
+    assert not result.passed and "are not corners of the solid" in result.message
+
+
+def test_entries_of_the_removed_vertex_left_in_the_queue_are_caught():
+    """The first draft of the chapter's answer: after a collapse only the survivor's old queue
+    entries were marked stale, so an edge of the removed vertex was collapsed with its old point."""
+    from halfedge_edu.exercises import check_downsample
+
+    result = check_downsample(_downsampler(optimal_point_with_fallback, stale_slip=True))
+    assert not result.passed and "not corners of the solid" in result.message
