@@ -96,6 +96,7 @@ EXERCISES: tuple[Exercise, ...] = (
     Exercise("vertex_normal", "11", ("my_vertex_normal",), "check_vertex_normal"),
     Exercise("bezier_patch", "12", ("my_patch_point",), "check_bezier_patch"),
     Exercise("upsample", "09", ("my_upsample",), "check_upsample_connectivity"),
+    Exercise("downsample", "10", ("my_downsample",), "check_downsample"),
 )
 
 
