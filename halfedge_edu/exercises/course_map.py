@@ -38,6 +38,7 @@ ACCEPTS: dict[str, str] = {
     "check_vertex_normal": "CS184 and UChicago P4: area weights from the raw cross products",
     "check_de_casteljau": "every level, the control points first",
     "check_upsample_connectivity": "CS184 and CMU: new vertices at the midpoints or at Loop's positions",
+    "check_downsample": "CMU: any tie order, its own queue and staleness bookkeeping (judged by the result)",
     "check_bezier_patch": "CS184: u along each row of the grid (the chapter's S(v, u))",
 }
 
