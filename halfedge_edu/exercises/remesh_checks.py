@@ -38,7 +38,8 @@ from . import harness, hidden
 from .harness import CheckResult
 
 
-__all__ = ["check_tangential_smoothing", "check_vertex_normal", "normal_cases", "smoothing_cases",
+__all__ = ["check_flip_improves", "check_tangential_smoothing", "check_vertex_normal", "degree_deviation_after_flip",
+           "flip_cases_for_degrees", "normal_cases", "smoothing_cases",
            "tangential_smoothing_reference"]
 
 
@@ -378,3 +379,80 @@ def _check_vertex_normal(vertex_normal: Callable, cases: list[tuple[str, Halfedg
         checked.append(case if case.startswith("hidden") else case.split(" (")[0])
     return harness.all_good(name, checked, "meshes", "That is the n chapter 11's smoothing projects the step with, "
                             "and the smooth shading of chapter 05.")
+
+
+# --------------------------------------------------------------------------------------
+# The flip phase's rule (CMU's remeshing step 3): flip when the degrees get closer to 6
+# --------------------------------------------------------------------------------------
+
+def degree_deviation_after_flip(mesh: HalfedgeMesh, e: int) -> tuple[int, int]:
+    """``(before, after)``: the summed distance of edge ``e``'s four vertices from their ideal
+    degree (6 inside, 4 on the boundary) now, and if ``e`` were flipped (its ends lose one
+    edge, the two opposite vertices gain one)."""
+    h = mesh.edge(e).halfedge
+    a, b = h.vertex, h.tip
+    c, d = h.prev.vertex, h.twin.prev.vertex
+    before = after = 0
+    for vertex, change in ((a, -1), (b, -1), (c, +1), (d, +1)):
+        ideal = 4 if vertex.is_boundary else 6
+        before += abs(vertex.degree - ideal)
+        after += abs(vertex.degree + change - ideal)
+    return before, after
+
+
+def flip_cases_for_degrees(seed: int | None = None) -> list[tuple[str, HalfedgeMesh]]:
+    """Meshes whose interior edges ``check_flip_improves`` asks about: degrees from 3 to 8 or so,
+    inside and on a boundary. With a ``seed``, the hidden cases instead."""
+    rng = harness.hidden_rng(12 if seed is None else seed)
+    if seed is None:
+        return [("cube", sample("cube")), ("icosphere after 8 random flips", hidden.flipped(sample("icosphere", subdivisions=1), 8, rng)),
+                ("a 3 x 4 grid patch (a boundary, where the ideal degree is 4)",
+                 HalfedgeMesh.from_faces(*hidden.grid(3, 4, np.random.default_rng(1))))]
+    shape = str(rng.choice(["octahedron", "icosphere(1)", "icosphere(2)"]))
+    flips = int(rng.integers(5, 15))
+    rows, columns = (int(n) for n in rng.integers(2, 5, 2))
+    return [(harness.hidden_name(1, f"{shape} after {flips} random flips"), hidden.flipped(hidden.closed_mesh(shape), flips, rng)),
+            (harness.hidden_name(2, f"a {rows} x {columns} grid patch"), HalfedgeMesh.from_faces(*hidden.grid(rows, columns, rng))),
+            (harness.hidden_name(3, "a cube after 4 random flips"), hidden.flipped(sample("cube"), 4, rng))]
+
+
+def check_flip_improves(flip_improves: Callable, *, seed: int | None = None) -> CheckResult:
+    """Compare the learner's ``flip_improves(mesh, e) -> bool`` with the flip phase's rule on
+    every interior edge of a few meshes: True exactly when flipping ``e`` lowers the summed
+    distance of its four vertices from their ideal degrees (6 inside, 4 on the boundary).
+
+    ``seed``: None for the public cases (the chapter's); an int for only the hidden cases made from it.
+    """
+    name = "flip_improves"
+    cases = flip_cases_for_degrees(seed)
+    if (words := harness.unfinished(flip_improves, name)) is not None:
+        return harness.counted(harness.failed(name, [], None, words), len(cases))
+    checked: list[str] = []
+    for case, mesh in cases:
+        for edge in mesh.edges:
+            if edge.is_boundary:
+                continue
+            status, answer = harness.run(flip_improves, mesh, edge.index)
+            trouble = harness.trouble(status, answer, name)
+            element = ("halfedge", 2 * edge.index)
+            if trouble:
+                return harness.counted(harness.failed(name, checked, case, f"for edge {edge.index}, {trouble}", element,
+                                                      mesh, error=answer), len(cases))
+            before, after = degree_deviation_after_flip(mesh, edge.index)
+            if bool(answer) == (after < before):
+                continue
+            h = edge.halfedge
+            four = [(v.index, v.degree, 4 if v.is_boundary else 6) for v in (h.vertex, h.tip, h.prev.vertex, h.twin.prev.vertex)]
+            text = (f"edge {edge.index}: its ends {four[0][0]} and {four[1][0]} have degrees {four[0][1]} and "
+                    f"{four[1][1]}, the opposite vertices {four[2][0]} and {four[3][0]} have {four[2][1]} and "
+                    f"{four[3][1]}. A flip takes one edge from each end and gives one to each opposite vertex, so the "
+                    f"summed distance from the ideal degrees goes from {before} to {after}: flip only when it drops. "
+                    f"Yours says {bool(answer)}.")
+            if any(ideal == 4 for _, _, ideal in four):
+                text += " On the boundary the ideal degree is 4, not 6."
+            if after == before and answer:
+                text += " Equal is not better: a flip that changes nothing would make the phase flip back and forth."
+            return harness.counted(harness.failed(name, checked, case, text, element, mesh), len(cases))
+        checked.append(case)
+    return harness.counted(harness.all_good(name, checked, "meshes", "That is the flip phase's test: each flip brings "
+                                            "the degrees closer to 6, so the phase ends."), len(cases))

@@ -158,3 +158,35 @@ def test_each_normal_slip_is_named(named):
 
     result = check_vertex_normal(NORMAL_SLIPS[named])
     assert not result.passed and named in result.message, result.message
+
+
+def _four(mesh, e):
+    h = mesh.edge(e).halfedge
+    return [(h.vertex, -1), (h.tip, -1), (h.prev.vertex, +1), (h.twin.prev.vertex, +1)]
+
+
+def flip_improves(mesh, e):
+    """CMU's remeshing step 3: flip when the four vertices' distance from their ideal degree drops."""
+    ideal = lambda v: 4 if v.is_boundary else 6  # noqa: E731
+    four = _four(mesh, e)
+    return sum(abs(v.degree + c - ideal(v)) for v, c in four) < sum(abs(v.degree - ideal(v)) for v, _ in four)
+
+
+def test_the_flip_rule_passes_public_and_hidden_cases():
+    from halfedge_edu.exercises import check_flip_improves
+
+    assert check_flip_improves(flip_improves).passed
+    assert all(check_flip_improves(flip_improves, seed=seed).passed for seed in (1, 2, 3))
+
+
+@pytest.mark.parametrize(("slip", "named"), [
+    (lambda mesh, e: sum(abs(v.degree + c - 6) for v, c in _four(mesh, e)) < sum(abs(v.degree - 6) for v, _ in _four(mesh, e)),
+     "On the boundary the ideal degree is 4"),
+    (lambda mesh, e: sum(abs(v.degree + c - 6) for v, c in _four(mesh, e)[:2]) < sum(abs(v.degree - 6) for v, _ in _four(mesh, e)[:2]),
+     "gives one to each opposite vertex"),
+])
+def test_flip_rule_slips_are_refused_with_the_degrees_named(slip, named):
+    from halfedge_edu.exercises import check_flip_improves
+
+    result = check_flip_improves(slip)
+    assert not result.passed and named in result.message, result.message
