@@ -97,6 +97,7 @@ EXERCISES: tuple[Exercise, ...] = (
     Exercise("bezier_patch", "12", ("my_patch_point",), "check_bezier_patch"),
     Exercise("upsample", "09", ("my_upsample",), "check_upsample_connectivity"),
     Exercise("downsample", "10", ("my_downsample",), "check_downsample"),
+    Exercise("flip_improves", "11", ("my_flip_improves",), "check_flip_improves"),
 )
 
 
