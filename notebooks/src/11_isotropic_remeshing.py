@@ -523,6 +523,31 @@ def my_vertex_normal(mesh, v):
 check_vertex_normal(my_vertex_normal)
 
 # %% [markdown]
+# ### Exercise 3: when does the flip phase flip?
+#
+# CMU's step 3 flips an edge when that brings the degrees closer to 6. Write
+# `my_flip_improves(mesh, e)`: a flip takes one edge from each end of `e` and gives one to
+# each vertex opposite it; return True exactly when the summed distance of those four
+# vertices from their ideal degree (6 inside, 4 on the boundary, section 9) drops.
+
+# %%
+from halfedge_edu.exercises.remesh_checks import check_flip_improves
+
+
+def my_flip_improves(mesh, e):
+    h = mesh.edge(e).halfedge
+    four = [(h.vertex, -1), (h.tip, -1), (h.prev.vertex, +1), (h.twin.prev.vertex, +1)]   # (vertex, change)
+    ### BEGIN SOLUTION
+    ideal = {v.index: 4 if v.is_boundary else 6 for v, _ in four}
+    before = sum(abs(v.degree - ideal[v.index]) for v, _ in four)
+    after = sum(abs(v.degree + change - ideal[v.index]) for v, change in four)
+    return after < before
+    ### END SOLUTION
+
+
+check_flip_improves(my_flip_improves)
+
+# %% [markdown]
 # ## Summary
 #
 # - Isotropic remeshing aims for edges of length about L and degrees near 6, with four
