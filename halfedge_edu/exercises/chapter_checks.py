@@ -27,7 +27,6 @@ from halfedge_edu.core.errors import MeshInputError, MeshWarning
 from halfedge_edu.core.mesh import HalfedgeMesh
 from halfedge_edu.core.ops import can_collapse, collapse, link_condition
 from halfedge_edu.core.ops.link import BOUNDARY
-from halfedge_edu.core.repair import repair_faces
 from halfedge_edu.data import sample
 from halfedge_edu.io import read_obj
 
@@ -161,7 +160,7 @@ def cut_cases(seed: int | None = None) -> list[tuple[str, np.ndarray]]:
 
 
 def check_cut(cut_bowtie: Callable, *, seed: int | None = None) -> CheckResult:
-    """``cut_bowtie(vertices, faces) -> (vertices, faces)`` against ``repair_faces`` on the bowtie.
+    """``cut_bowtie(vertices, faces) -> (vertices, faces)``: the bowtie cut apart, judged by shape.
 
     ``seed``: None for the public cases (the chapter's); an int for only the hidden cases made from it.
     """
