@@ -38,7 +38,7 @@ from . import harness, hidden
 from .harness import CheckResult
 
 
-__all__ = ["check_flip_improves", "check_tangential_smoothing", "check_vertex_normal", "degree_deviation_after_flip",
+__all__ = ["check_flip_improves", "check_split_long_edges", "split_phase_cases", "check_tangential_smoothing", "check_vertex_normal", "degree_deviation_after_flip",
            "flip_cases_for_degrees", "normal_cases", "smoothing_cases",
            "tangential_smoothing_reference"]
 
@@ -456,3 +456,86 @@ def check_flip_improves(flip_improves: Callable, *, seed: int | None = None) -> 
         checked.append(case)
     return harness.counted(harness.all_good(name, checked, "meshes", "That is the flip phase's test: each flip brings "
                                             "the degrees closer to 6, so the phase ends."), len(cases))
+
+
+# --------------------------------------------------------------------------------------
+# The split phase (CMU's remeshing step 1): no edge longer than 4/3 L
+# --------------------------------------------------------------------------------------
+
+def split_phase_cases(seed: int | None = None) -> list[tuple[str, HalfedgeMesh, float]]:
+    """``(name, mesh, L)``: meshes whose edges need one or several rounds of splits to get
+    below 4/3 L. With a ``seed``, the hidden cases instead."""
+    if seed is None:
+        return [("cube, L = 0.5 (edges of 1 and 1.41: split twice)", sample("cube"), 0.5),
+                ("open patch, L = 0.4 (a boundary)", sample("open_patch"), 0.4),
+                ("icosphere, L = 0.3", sample("icosphere", subdivisions=1), 0.3)]
+    rng = harness.hidden_rng(seed)
+    shape = str(rng.choice(["tetrahedron", "octahedron", "icosphere(1)"]))
+    rows, columns = (int(n) for n in rng.integers(1, 4, 2))
+    return [(harness.hidden_name(1, f"{shape}, nudged"), hidden.jittered(hidden.closed_mesh(shape), rng, 0.05),
+             float(rng.uniform(0.2, 0.5))),
+            (harness.hidden_name(2, f"a {rows} x {columns} grid patch"),
+             HalfedgeMesh.from_faces(*hidden.grid(rows, columns, rng)), float(rng.uniform(0.3, 0.6))),
+            (harness.hidden_name(3, "a cube, stretched"), _stretched_cube(rng), float(rng.uniform(0.4, 0.8)))]
+
+
+def _stretched_cube(rng: np.random.Generator) -> HalfedgeMesh:
+    cube = sample("cube")
+    cube.positions[:] *= rng.uniform(0.5, 2.0, 3)
+    return cube
+
+
+def check_split_long_edges(split_long_edges: Callable, *, seed: int | None = None) -> CheckResult:
+    """Run the learner's ``split_long_edges(mesh, L)`` (in place: split every edge longer than
+    4/3 L at its midpoint, again and again, until none is) and judge the result: a valid
+    mesh, no edge longer than 4/3 L, the old vertices where they were, and every new vertex
+    on the old surface. Any order of splits is right (the cross edges a split draws to the
+    opposite corners may be short; the collapse phase deals with those).
+
+    ``seed``: None for the public cases (the chapter's); an int for only the hidden cases made from it.
+    """
+    from halfedge_edu.algorithms.remesh import closest_points_on_triangles
+    from halfedge_edu.core.errors import MeshInvariantError
+
+    name = "split_long_edges"
+    cases = split_phase_cases(seed)
+    if (words := harness.unfinished(split_long_edges, name)) is not None:
+        return harness.counted(harness.failed(name, [], None, words), len(cases))
+    checked: list[str] = []
+    for case, mesh, L in cases:
+        yours = mesh.copy()
+        status, answer = harness.run(split_long_edges, yours, L)
+        trouble = harness.trouble(status, answer, name)
+        if trouble:
+            return harness.counted(harness.failed(name, checked, case, trouble, None, mesh, error=answer), len(cases))
+        yours.topology_changed()
+        try:
+            yours.validate()
+        except MeshInvariantError as error:
+            return harness.counted(harness.failed(name, checked, case, f"after your splits the mesh breaks the rule "
+                                                  f"{error.rule}: {str(error).split('] ', 1)[-1]}", None, mesh),
+                                   len(cases))
+        ends = yours.edge_vertices()[~yours.edge_deleted]                   # (E, 2)
+        lengths = np.linalg.norm(yours.positions[ends[:, 0]] - yours.positions[ends[:, 1]], axis=1)
+        if lengths.max() > 4.0 / 3.0 * L + 1e-9:
+            return harness.counted(harness.failed(name, checked, case, (
+                f"an edge of length {lengths.max():.3g} is left, longer than 4/3 L = {4 * L / 3:.3g}. Splitting "
+                f"makes two halves that may still be too long: keep splitting until no edge is longer (loop until "
+                f"a pass splits nothing)."), None, mesh), len(cases))
+        old = mesh.n_vertex_slots
+        if not np.allclose(yours.positions[:old], mesh.positions):
+            return harness.counted(harness.failed(name, checked, case, "your splits moved an old vertex; a split only "
+                                                  "adds one, at the edge's midpoint."), len(cases))
+        corners = mesh.positions[mesh.face_vertices()]                      # (F, 3, 3)
+        new = yours.positions[old: yours.n_vertex_slots]
+        if len(new):
+            nearest = [np.min(np.linalg.norm(closest_points_on_triangles(np.repeat(p[None], len(corners), 0),
+                                                                         corners[:, 0], corners[:, 1], corners[:, 2])
+                                             - p, axis=1)) for p in new]
+            if max(nearest) > 1e-9:
+                return harness.counted(harness.failed(name, checked, case, (
+                    "a new vertex lies off the old surface; put each at the midpoint of the edge it splits."), None,
+                    mesh), len(cases))
+        checked.append(case)
+    return harness.counted(harness.all_good(name, checked, "meshes", "No edge is longer than 4/3 L, and the surface "
+                                            "is the same: the split phase of the remesher."), len(cases))

@@ -190,3 +190,38 @@ def test_flip_rule_slips_are_refused_with_the_degrees_named(slip, named):
 
     result = check_flip_improves(slip)
     assert not result.passed and named in result.message, result.message
+
+
+def split_long_edges(mesh, L):
+    """CMU's remeshing step 1: split every edge longer than 4/3 L, round after round, until none is."""
+    from halfedge_edu.core.ops import split
+
+    while True:
+        ends = mesh.edge_vertices()
+        long = [e for e in range(mesh.n_edge_slots) if not mesh.edge_deleted[e]
+                and np.linalg.norm(mesh.positions[ends[e, 0]] - mesh.positions[ends[e, 1]]) > 4 / 3 * L]
+        if not long:
+            return
+        for e in long:
+            split(mesh, e)
+
+
+def test_the_split_phase_passes_public_and_hidden_cases():
+    from halfedge_edu.exercises import check_split_long_edges
+
+    assert check_split_long_edges(split_long_edges).passed
+    assert all(check_split_long_edges(split_long_edges, seed=seed).passed for seed in (1, 2, 3))
+
+
+def test_a_single_round_of_splits_is_told_to_keep_splitting():
+    from halfedge_edu.core.ops import split
+    from halfedge_edu.exercises import check_split_long_edges
+
+    def one_round(mesh, L):
+        ends = mesh.edge_vertices()
+        for e in [e for e in range(mesh.n_edge_slots)
+                  if np.linalg.norm(mesh.positions[ends[e, 0]] - mesh.positions[ends[e, 1]]) > 4 / 3 * L]:
+            split(mesh, e)
+
+    result = check_split_long_edges(one_round)
+    assert not result.passed and "keep splitting until no edge is longer" in result.message
