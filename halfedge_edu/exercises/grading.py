@@ -98,6 +98,7 @@ EXERCISES: tuple[Exercise, ...] = (
     Exercise("upsample", "09", ("my_upsample",), "check_upsample_connectivity"),
     Exercise("downsample", "10", ("my_downsample",), "check_downsample"),
     Exercise("flip_improves", "11", ("my_flip_improves",), "check_flip_improves"),
+    Exercise("split_long_edges", "11", ("my_split_long_edges",), "check_split_long_edges"),
 )
 
 
