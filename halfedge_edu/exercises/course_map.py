@@ -40,6 +40,7 @@ ACCEPTS: dict[str, str] = {
     "check_upsample_connectivity": "CS184 and CMU: new vertices at the midpoints or at Loop's positions",
     "check_downsample": "CMU: any tie order, its own queue and staleness bookkeeping (judged by the result)",
     "check_flip_improves": "CMU: its own bookkeeping; boundary vertices aim at degree 4",
+    "check_split_long_edges": "CMU: any order of splits (judged by the result)",
     "check_bezier_patch": "CS184: u along each row of the grid (the chapter's S(v, u))",
 }
 
