@@ -548,6 +548,34 @@ def my_flip_improves(mesh, e):
 check_flip_improves(my_flip_improves)
 
 # %% [markdown]
+# ### Exercise 4: the split phase
+#
+# CMU's step 1. Write `my_split_long_edges(mesh, L)`: split (with `split(mesh, e)` from
+# chapter 06) every edge longer than 4/3 L, in place. The two halves of a long edge may
+# still be too long, so go round again until a round splits nothing.
+# `check_split_long_edges` judges the result, whatever order you split in.
+
+# %%
+from halfedge_edu.core.ops import split
+from halfedge_edu.exercises.remesh_checks import check_split_long_edges
+
+
+def my_split_long_edges(mesh, L):
+    ### BEGIN SOLUTION
+    while True:
+        ends = mesh.edge_vertices()                                        # (E, 2)
+        long = [e for e in range(mesh.n_edge_slots) if not mesh.edge_deleted[e]
+                and np.linalg.norm(mesh.positions[ends[e, 0]] - mesh.positions[ends[e, 1]]) > 4 / 3 * L]
+        if not long:
+            return
+        for e in long:
+            split(mesh, e)
+    ### END SOLUTION
+
+
+check_split_long_edges(my_split_long_edges)
+
+# %% [markdown]
 # ## Summary
 #
 # - Isotropic remeshing aims for edges of length about L and degrees near 6, with four
