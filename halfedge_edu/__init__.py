@@ -39,6 +39,7 @@ from .algorithms import (
 )
 from .core.manifold import ManifoldReport, manifold_report
 from .core.repair import RepairReport, repair_faces
+from .core.soup import SoupTopology
 from .data import RawMesh, sample, samples
 from .io import load, read_obj, save, write_obj
 
@@ -49,6 +50,6 @@ __all__ = [
     "MeshInputError", "MeshInvariantError", "MeshWarning", "RawMesh", "RepairReport",
     "StaleHandleError", "TopologyError", "Vertex", "bezier_curve", "bezier_surface", "build_reference",
     "de_casteljau", "face_normals", "load", "loop_subdivide", "manifold_report", "quality_report", "read_obj", "remesh",
-    "repair_faces", "sample", "samples", "save", "simplify", "simplify_sequential", "smooth",
+    "repair_faces", "sample", "samples", "save", "simplify", "simplify_sequential", "smooth", "SoupTopology",
     "vertex_normals", "write_obj",
 ]

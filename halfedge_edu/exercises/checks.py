@@ -46,7 +46,7 @@ from halfedge_edu.core.build import build_reference
 from halfedge_edu.core.mesh import HalfedgeMesh
 from halfedge_edu.data import sample
 
-from . import harness
+from . import harness, hidden
 from .harness import TIME_LIMIT, CheckResult
 
 __all__ = ["check_build", "check_one_ring", "build_cases", "one_ring_cases"]
@@ -60,8 +60,7 @@ def _describe_error(name: str, error: Exception) -> str:
     if isinstance(error, NotImplementedError) or "ellipsis" in str(error).lower():
         return (f"{name} is not finished yet (it raised {type(error).__name__}: {error}). "
                 f"Fill in the blanks marked ... and run the check again.")
-    return (f"your {name} raised {type(error).__name__}: {error}. Call it yourself on the faces above "
-            f"to see the full traceback.")
+    return f"your {name} raised {type(error).__name__}: {error}.{harness.own_line(error)}"
 
 
 def _has_ellipsis(value) -> bool:
@@ -99,12 +98,24 @@ def _annulus():
     return outer + inner, faces
 
 
-def build_cases() -> list[tuple[str, np.ndarray, np.ndarray]]:
+def build_cases(seed: int | None = None) -> list[tuple[str, np.ndarray, np.ndarray]]:
     """The meshes ``check_build`` uses, in order: ``(name, vertices, faces)``.
 
     Small and open first (where mistakes are easy to read), then closed, several
-    boundary loops, and a shuffled numbering.
+    boundary loops, and a shuffled numbering. With a ``seed``, the hidden cases instead:
+    a jittered grid, a closed mesh and a second grid, each renumbered at random.
     """
+    if seed is not None:
+        rng = harness.hidden_rng(seed)
+        rows, columns = rng.integers(1, 4, 2)
+        shape = str(rng.choice(list(hidden.CLOSED_SHAPES)))
+        other_rows, other_columns = rng.integers(2, 5, 2)
+        hidden_cases = [
+            (f"a {rows} x {columns} grid patch, renumbered at random", *hidden.renumbered(*hidden.grid(rows, columns, rng), rng)),
+            (f"{shape}, renumbered at random", *hidden.renumbered(*hidden.closed_mesh(shape).to_arrays(), rng)),
+            (f"a {other_rows} x {other_columns} grid patch", *hidden.grid(other_rows, other_columns, rng)),
+        ]
+        return [(harness.hidden_name(k, name), v, f) for k, (name, v, f) in enumerate(hidden_cases, start=1)]
     cases = [("two triangles", [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], [[0, 1, 2], [0, 2, 3]])]
     for name in ("lone_triangle", "strip", "tetrahedron", "cube", "open_patch"):
         cases.append((name.replace("_", " "), *sample(name).to_arrays()))
@@ -435,7 +446,7 @@ def _judge_structure(arrays: dict[str, np.ndarray], faces: np.ndarray,
     return None
 
 
-def check_build(learner_build: Callable) -> CheckResult:
+def check_build(learner_build: Callable, *, seed: int | None = None) -> CheckResult:
     """Run ``learner_build(faces)`` on several meshes and compare with ``build_reference``.
 
     Args:
@@ -443,16 +454,24 @@ def check_build(learner_build: Callable) -> CheckResult:
             ``"next"`` (one entry per halfedge, any numbering) and optionally ``"prev"``,
             ``"vertex_halfedge"`` and ``"twin"`` (without it the twin is ``h ^ 1``).
             ``faces`` is an (m, 3) int array; rows are triangles counter-clockwise.
+        seed: None for the public cases (the chapter's); an int for only the hidden
+            cases made from it (see :mod:`halfedge_edu.exercises.hidden`).
 
     Returns:
         A :class:`CheckResult`: on the first difference, what it is in words and which
         halfedge (``result.show()`` draws it); otherwise a short congratulation.
     """
+    cases = build_cases(seed)
     unfinished = harness.unfinished(learner_build, "build")
     if unfinished:
-        return harness.failed("build", [], None, unfinished)
+        return harness.counted(harness.failed("build", [], None, unfinished), len(cases))
+    return harness.counted(_check_build(learner_build, cases), len(cases))
+
+
+def _check_build(learner_build: Callable, cases: list[tuple[str, np.ndarray, np.ndarray]]) -> CheckResult:
+    """:func:`check_build` on the given cases."""
     checked: list[str] = []
-    for name, vertices, faces in build_cases():
+    for name, vertices, faces in cases:
         status, answer = harness.run(learner_build, faces.copy())
         mesh = HalfedgeMesh.from_faces(vertices, faces)
         intro = f"faces {faces.tolist()}: " if len(faces) <= 4 else ""
@@ -461,7 +480,8 @@ def check_build(learner_build: Callable) -> CheckResult:
                            "A loop probably never ends: check the walks that should come back to their start.",
                            None, mesh)
         if status == "error":
-            return harness.failed("build", checked, name, intro + _describe_error("build", answer), None, mesh)
+            return harness.failed("build", checked, name, intro + _describe_error("build", answer), None, mesh,
+                                      error=answer)
         problem = _compare_build(answer, faces, len(vertices))
         if problem is not None:
             text, element = problem
@@ -476,12 +496,25 @@ def check_build(learner_build: Callable) -> CheckResult:
 # check_one_ring
 # --------------------------------------------------------------------------------------
 
-def one_ring_cases() -> list[tuple[str, HalfedgeMesh]]:
+def one_ring_cases(seed: int | None = None) -> list[tuple[str, HalfedgeMesh]]:
     """The meshes ``check_one_ring`` walks around, every vertex of each, in order.
 
     A flat patch comes first: its pictures are the easiest to read, and it has corner,
-    rim and interior vertices.
+    rim and interior vertices. With a ``seed``, the hidden cases instead: a renumbered
+    grid patch, a closed mesh after random flips (degrees from 3 up), and another grid.
     """
+    if seed is not None:
+        rng = harness.hidden_rng(seed)
+        rows, columns = rng.integers(2, 4, 2)
+        shape = str(rng.choice(["cube", "octahedron", "icosphere(1)", "icosphere(2)"]))
+        flips = int(rng.integers(4, 12))
+        hidden_cases = [
+            (f"a {rows} x {columns} grid patch, renumbered at random",
+             HalfedgeMesh.from_faces(*hidden.renumbered(*hidden.grid(rows, columns, rng), rng))),
+            (f"{shape} after {flips} random flips", hidden.flipped(hidden.closed_mesh(shape), flips, rng)),
+            ("a 1 x 3 grid patch (every vertex on the boundary)", HalfedgeMesh.from_faces(*hidden.grid(1, 3, rng))),
+        ]
+        return [(harness.hidden_name(k, name), mesh) for k, (name, mesh) in enumerate(hidden_cases, start=1)]
     cases = [(name.replace("_", " "), sample(name)) for name in ("open_patch", "strip", "tetrahedron", "cube",
                                                                "single_collapse")]
     cases.append(("octahedron, shuffled", HalfedgeMesh.from_faces(*_shuffled(*sample("octahedron").to_arrays(), 3))))
@@ -517,7 +550,59 @@ def _is_clockwise(want: list[int], ring: list[int]) -> bool:
     return len(want) > 2 and ring == want[:1] + want[1:][::-1]
 
 
+def _is_run_of(ring: list[int], want: list[int]) -> bool:
+    """Whether ``ring`` is a piece of ``want`` read without gaps, either way round (a walk that
+    started or stopped too early)."""
+    n = len(ring)
+    return 0 < n < len(want) and any(ring == order[k:k + n] for order in (want, want[::-1])
+                                     for k in range(len(want) - n + 1))
+
+
+#: The one_ring slips a ring can show, in the order they are tried: (name, detector, sentence).
+#: A detector gets ``(v, ring, want, on_boundary)``; the sentence may use ``{v}``, ``{first}``
+#: (ring[0]), ``{start_tip}`` and ``{missing}``. Each row is tested with the slip's own code in
+#: tests/exercises/test_checks.py (``RING_SLIPS``), so no sentence names a bug it did not see.
+RING_SLIPS: tuple[tuple[str, Callable, str], ...] = (
+    ("origins instead of tips",
+     lambda v, ring, want, on_boundary: bool(ring) and all(u == v for u in ring),
+     "Every entry is v itself: append the tip of each outgoing halfedge (h.tip), not h.vertex."),
+    ("walking around a face (h = h.next)",
+     lambda v, ring, want, on_boundary: v in ring,
+     "Your ring contains vertex {v} itself, so the walk went round a triangle: h.next follows the face "
+     "(its tip, the face's third corner, then v). To turn around v, step from one outgoing halfedge of v "
+     "to the next: h = h.prev.twin."),
+    ("a step that gives back its own halfedge (h = h.twin.twin)",
+     lambda v, ring, want, on_boundary: ring == want[:1] and len(want) > 1,
+     "Your walk stopped after one step: the step gave back the halfedge it started from (a twin's twin is "
+     "the halfedge itself, h.twin.twin == h), so the loop ended at once. Step to the next outgoing halfedge "
+     "of v: h = h.prev.twin."),
+    ("circling around the tip (h = h.next.twin)",
+     lambda v, ring, want, on_boundary: len(ring) > 1 and len(set(ring)) == 1 and len(want) > 1,
+     "Every entry is vertex {first}: the walk circles around that vertex instead of around v (h.next.twin "
+     "does that). Step with h = h.prev.twin to stay at v."),
+    ("right order, wrong start",
+     lambda v, ring, want, on_boundary: len(ring) == len(want) and any(ring == want[k:] + want[:k]
+                                                                        for k in range(len(want))),
+     "Right order, wrong start: begin with the tip of v.halfedge, vertex {start_tip}."),
+    ("clockwise from another start",
+     lambda v, ring, want, on_boundary: len(ring) == len(want) and any(ring == want[::-1][k:] + want[::-1][:k]
+                                                                        for k in range(len(want))),
+     "That is the clockwise order (CMU's h.twin.next walk, fine too) but from another start: begin with the "
+     "tip of v.halfedge, vertex {start_tip}."),
+    ("right neighbours, out of order",
+     lambda v, ring, want, on_boundary: sorted(ring) == sorted(want),
+     "Same neighbours, but not in order around v (either way round is fine, one step at a time)."),
+    ("stopping at the boundary halfedge",
+     lambda v, ring, want, on_boundary: on_boundary and _is_run_of(ring, want),
+     "Missing {missing}: the neighbours you have are in order, but the walk stopped (or started) at the "
+     "boundary. On the boundary the walk must also pass through the boundary halfedge: h = h.prev.twin does that by itself, "
+     "so don't stop at h.face is None."),
+)
+
+
 def _compare_ring(mesh: HalfedgeMesh, v: int, ring: list[int]) -> str | None:
+    """None if ``ring`` is vertex ``v``'s ring (either way round); else what is wrong, with the
+    sentence of the first slip in :data:`RING_SLIPS` the ring shows, or what is missing or extra."""
     vertex = mesh.vertex(v)
     want = [int(u) for u in vertex.neighbors()]
     if ring == want or _is_clockwise(want, ring):
@@ -527,19 +612,11 @@ def _compare_ring(mesh: HalfedgeMesh, v: int, ring: list[int]) -> str | None:
              f"{v} -> {int(start.tip)})" if vertex.is_boundary else
              f"vertex {v} has halfedge {start.index} ({v} -> {int(start.tip)})")
     head = f"{where}; its ring, counter-clockwise from {int(start.tip)}, is {want}, but yours is {ring}."
-    if ring and all(u == v for u in ring):
-        return head + " Every entry is v itself: append the tip of each outgoing halfedge (h.tip), not h.vertex."
-    if len(ring) > 1 and len(set(ring)) == 1 and len(want) > 1:
-        return head + (f" Every entry is vertex {ring[0]}: the walk circles around that vertex instead of "
-                       f"around v (h.next.twin does that). Step with h = h.prev.twin to stay at v.")
-    if len(ring) == len(want) and any(ring == want[k:] + want[:k] for k in range(len(want))):
-        return head + f" Right order, wrong start: begin with the tip of v.halfedge, vertex {int(start.tip)}."
-    reversed_ring = want[::-1]
-    if len(ring) == len(want) and any(ring == reversed_ring[k:] + reversed_ring[:k] for k in range(len(want))):
-        return head + (f" That is the clockwise order (CMU's h.twin.next walk, fine too) but from another start: "
-                       f"begin with the tip of v.halfedge, vertex {int(start.tip)}.")
-    if sorted(ring) == sorted(want):
-        return head + " Same neighbours, but not in order around v (either way round is fine, one step at a time)."
+    for _, detector, sentence in RING_SLIPS:
+        if detector(v, ring, want, vertex.is_boundary):
+            missing = [u for u in want if u not in ring]
+            return head + " " + sentence.format(v=v, first=ring[0] if ring else None, start_tip=int(start.tip),
+                                                missing=missing)
     extra = sorted(set(ring) - set(want))
     missing = [u for u in want if u not in ring]
     parts = []
@@ -549,12 +626,8 @@ def _compare_ring(mesh: HalfedgeMesh, v: int, ring: list[int]) -> str | None:
         parts.append(f"{extra} {'is' if len(extra) == 1 else 'are'} not next to vertex {v}")
     if len(ring) > len(set(ring)):
         parts.append("some neighbours appear twice (stop when you are back at the start halfedge)")
-    hint = ""
-    if missing and vertex.is_boundary:
-        hint = (" On the boundary the walk must also pass through the boundary halfedge: h = h.prev.twin "
-                "does that by itself, so don't stop at h.face is None.")
     found = "; ".join(parts)
-    return head + " " + found[:1].upper() + found[1:] + "." + hint
+    return head + " " + found[:1].upper() + found[1:] + "."
 
 
 _CLOCKWISE_PRAISE = (
@@ -565,7 +638,7 @@ _CLOCKWISE_PRAISE = (
     "sign flip; reverse ring[1:] (or step with h.prev.twin) when you use the library's rings.")
 
 
-def check_one_ring(learner_one_ring: Callable) -> CheckResult:
+def check_one_ring(learner_one_ring: Callable, *, seed: int | None = None) -> CheckResult:
     """Run ``learner_one_ring(mesh, v)`` on every vertex of several meshes.
 
     Args:
@@ -574,17 +647,25 @@ def check_one_ring(learner_one_ring: Callable) -> CheckResult:
             ``v.halfedge``, counter-clockwise (the chapter's ``h.prev.twin``) or clockwise
             (the CMU notes' ``h.twin.next``), the same way at every vertex. Vertex
             handles or ints in the list.
+        seed: None for the public cases (the chapter's); an int for only the hidden
+            cases made from it.
 
     Returns:
         A :class:`CheckResult` naming the first vertex whose ring differs and why
         (``result.show()`` draws that vertex's ring); otherwise a congratulation.
     """
+    cases = one_ring_cases(seed)
     unfinished = harness.unfinished(learner_one_ring, "one_ring")
     if unfinished:
-        return harness.failed("one_ring", [], None, unfinished)
+        return harness.counted(harness.failed("one_ring", [], None, unfinished), len(cases))
+    return harness.counted(_check_one_ring(learner_one_ring, cases), len(cases))
+
+
+def _check_one_ring(learner_one_ring: Callable, cases: list[tuple[str, HalfedgeMesh]]) -> CheckResult:
+    """:func:`check_one_ring` on the given cases."""
     checked: list[str] = []
     turns: tuple[str, int] | None = None  # which way the learner's rings go, and where that was first seen
-    for name, mesh in one_ring_cases():
+    for name, mesh in cases:
         for vertex in mesh.vertices:
             status, answer = harness.run(learner_one_ring, mesh, vertex)
             v = vertex.index
@@ -597,7 +678,7 @@ def check_one_ring(learner_one_ring: Callable) -> CheckResult:
                                ("vertex", v), mesh)
             if status == "error":
                 return harness.failed("one_ring", checked, name, f"for vertex {v}, " + _describe_error("one_ring", answer),
-                               ("vertex", v), mesh)
+                               ("vertex", v), mesh, error=answer)
             ring, reason = _ring_as_ints(answer)
             if ring is None:
                 return harness.failed("one_ring", checked, name, f"for vertex {v}, {reason}", ("vertex", v), mesh)

@@ -99,13 +99,14 @@ _COLLAPSE = (f"{_MESH}.collapse", f"{_OPS}.collapse.collapse", f"{_OPS}.collapse
              f"{_OPS}.collapse.prepare_collapse", f"{_OPS}.collapse._apply", f"{_OPS}.collapse._gather",
              f"{_OPS}.collapse._take_place")
 _OBJ = ("halfedge_edu.io.obj", "halfedge_edu.io.formats")
+_SOUP = "halfedge_edu.core.soup.SoupTopology"
 
 #: The checks' own reference code: forbidden to every exercise (``_de_casteljau``, the
 #: debugging lab's right versions, ``smooth_once_in_place`` ...).
 ANSWER_KEYS: tuple[str, ...] = tuple(f"halfedge_edu.exercises.{module}" for module in (
     "algorithm_checks", "chapter_checks", "checks", "classic_bugs", "io_checks", "ops_checks", "remesh_checks"))
 
-#: Every graded exercise, in chapter order. The function names are the ones each
+#: Every graded exercise (the first ones in chapter order, later additions after them). The function names are the ones each
 #: chapter's exercise cell asks the learner to fill in.
 EXERCISES: tuple[Exercise, ...] = (
     Exercise("fan", "01", ("fan",), "check_fan", forbids=_OBJ),
@@ -137,6 +138,22 @@ EXERCISES: tuple[Exercise, ...] = (
              forbids=("halfedge_edu.algorithms.remesh", "halfedge_edu.algorithms.smoothing")),
     Exercise("de_casteljau", "12", ("my_de_casteljau",), "check_de_casteljau",
              forbids=("halfedge_edu.algorithms.bezier",)),
+    Exercise("nonmanifold", "04", ("has_nonmanifold_edges", "has_nonmanifold_vertices"), "check_nonmanifold",
+             forbids=("halfedge_edu.core.manifold", f"{_SOUP}.nonmanifold_edges", f"{_SOUP}.nonmanifold_vertices",
+                      f"{_SOUP}.has_nonmanifold_edges", f"{_SOUP}.has_nonmanifold_vertices", f"{_SOUP}.fans")),
+    Exercise("vertex_normal", "11", ("my_vertex_normal",), "check_vertex_normal",
+             forbids=("halfedge_edu.algorithms.normals",)),
+    Exercise("bezier_patch", "12", ("my_patch_point",), "check_bezier_patch",
+             forbids=("halfedge_edu.algorithms.bezier",)),
+    Exercise("upsample", "09", ("my_upsample",), "check_upsample_connectivity",
+             forbids=("halfedge_edu.algorithms.loop",)),
+    Exercise("downsample", "10", ("my_downsample",), "check_downsample",
+             forbids=("halfedge_edu.algorithms.simplify", "halfedge_edu.algorithms.simplify_queue",
+                      "halfedge_edu.algorithms.collapse_rounds")),
+    Exercise("flip_improves", "11", ("my_flip_improves",), "check_flip_improves",
+             forbids=("halfedge_edu.algorithms.remesh",)),
+    Exercise("split_long_edges", "11", ("my_split_long_edges",), "check_split_long_edges",
+             forbids=("halfedge_edu.algorithms.remesh",)),
 )
 
 

@@ -16,9 +16,14 @@ thread on Linux and macOS); elsewhere such a function simply does not return.
 
 from __future__ import annotations
 
+import copy
+import re
 import signal
+import sysconfig
 import threading
+import traceback
 from contextlib import contextmanager
+from pathlib import Path
 from dataclasses import dataclass, field
 from typing import Callable
 
@@ -27,7 +32,8 @@ import numpy as np
 from halfedge_edu.core.mesh import HalfedgeMesh
 
 __all__ = [
-    "CheckResult", "TIME_LIMIT", "all_good", "close", "failed", "passed", "point_text", "run", "trouble", "unfinished",
+    "CheckResult", "TIME_LIMIT", "all_good", "close", "counted", "failed", "hidden_name", "hidden_rng", "own_line",
+    "passed", "point_text", "run", "trouble", "unfinished",
 ]
 
 #: Seconds a learner's function may run on one small mesh before the check gives up.
@@ -46,10 +52,17 @@ class CheckResult:
         exercise: which exercise was checked ("build" or "one_ring").
         passed: True when the learner's function agreed on every mesh.
         message: the explanation (for a failure: the first difference, in words).
-        checked: names of the meshes the function agreed on before it stopped.
+        checked: names of the cases the function agreed on before it stopped.
+        total: how many cases the check runs (public or hidden), so that a report can say
+            "3 of 5 public cases"; 0 when the check stopped before running any (blanks left).
         mesh_name: the mesh where the first difference was found (None if passed).
         element: ``(kind, index)`` of the offending element, e.g. ``("halfedge", 4)``.
         mesh: that mesh as a ``HalfedgeMesh`` (the reference), for :meth:`show`.
+        names: labels by ``(kind, index)`` for :meth:`show`, the names the message uses
+            (an operation's ``v0``, ``h3``, ``vA``, ...); None labels by index.
+        rerun: when the learner's function raised, calls it again on a fresh copy of the
+            case it failed on, so that the learner sees the whole traceback (and can
+            step into it with ``%debug``); None otherwise.
     """
 
     exercise: str
@@ -59,6 +72,9 @@ class CheckResult:
     mesh_name: str | None = None
     element: tuple | None = None
     mesh: HalfedgeMesh | None = field(default=None, repr=False)
+    total: int = 0
+    rerun: Callable[[], object] | None = field(default=None, repr=False, compare=False)
+    names: dict | None = field(default=None, repr=False, compare=False)
 
     def __bool__(self) -> bool:
         return self.passed
@@ -84,7 +100,9 @@ class CheckResult:
         kind, index = self.element
         scene = HalfedgeScene(self.mesh, **scene_options)
         try:
-            if kind == "halfedge":
+            if self.names:     # one naming scheme: the picture labels what the message names
+                scene.set_roles(_roles_around(self.mesh, kind, index), names=self.names)
+            elif kind == "halfedge":
                 scene.show_halfedge(index)
             elif kind == "vertex":
                 scene.show_one_ring(index)
@@ -95,6 +113,24 @@ class CheckResult:
             scene.close()
 
 
+def _roles_around(mesh: HalfedgeMesh, kind: str, index: int) -> dict[str, list[int]]:
+    """The highlight roles of one element and its neighbourhood (as ``show_halfedge`` /
+    ``show_one_ring`` draw them), for a picture labelled with the operation's names."""
+    if kind == "halfedge":
+        roles = {"current": [index], "twin": [index ^ 1], "next": [int(mesh.halfedge_next[index])],
+                 "prev": [int(mesh.halfedge_prev[index])], "origin": [int(mesh.halfedge_vertex[index])],
+                 "tip": [int(mesh.halfedge_vertex[index ^ 1])]}
+        if mesh.halfedge_face[index] >= 0:
+            roles["face"] = [int(mesh.halfedge_face[index])]
+        return roles
+    if kind == "vertex":
+        vertex = mesh.vertex(index)
+        outgoing = [h.index for h in vertex.outgoing()]
+        return {"center": [index], "outgoing": outgoing, "neighbor": [int(mesh.halfedge_vertex[h ^ 1]) for h in outgoing],
+                "ring_face": [f.index for f in vertex.faces()]}
+    return {"face": [index]}
+
+
 def passed(exercise: str, checked: list[str], praise: str) -> CheckResult:
     """The congratulation for a learner's function that agreed with the reference on every mesh."""
     names = ", ".join(checked)
@@ -103,16 +139,48 @@ def passed(exercise: str, checked: list[str], praise: str) -> CheckResult:
 
 
 def failed(exercise: str, checked: list[str], mesh_name: str | None, text: str,
-            element: tuple | None = None, mesh: HalfedgeMesh | None = None) -> CheckResult:
+            element: tuple | None = None, mesh: HalfedgeMesh | None = None,
+            error: BaseException | None = None, names: dict | None = None) -> CheckResult:
     """The first difference, in words: on which mesh, what is wrong (``text``), what agreed before.
 
     ``element`` and ``mesh`` let :meth:`CheckResult.show` draw the offending element.
+    ``error``, the learner's exception when their function raised (as :func:`run` gave
+    it), gives the result its :attr:`~CheckResult.rerun`; ``names`` labels the picture
+    with the names the message uses.
     """
     where = f"On {mesh_name!r}: " if mesh_name else ""
     if not where:
         text = text[:1].upper() + text[1:]
     before = f" (It agreed on {', '.join(checked)} first.)" if checked else ""
-    return CheckResult(exercise, False, f"Not yet. {where}{text}{before}", list(checked), mesh_name, element, mesh)
+    if (error is not None and getattr(error, "_halfedge_edu_call", None) is not None
+            and not isinstance(error, NotImplementedError) and "ellipsis" not in str(error).lower()):
+        text += " result.rerun() calls it again on this case, to show the whole traceback."
+    return CheckResult(exercise, False, f"Not yet. {where}{text}{before}", list(checked), mesh_name, element, mesh,
+                       rerun=_rerun_of(error), names=names)
+
+
+def counted(result: CheckResult, total: int) -> CheckResult:
+    """``result`` with ``total`` set: how many cases its check runs. Returns the same object."""
+    result.total = total
+    return result
+
+
+# --------------------------------------------------------------------------------------
+# Hidden cases: what a grader runs and the chapter's check cell never shows
+# --------------------------------------------------------------------------------------
+
+def hidden_rng(seed: int) -> np.random.Generator:
+    """The random source of one grading run's hidden cases: the same seed, the same cases."""
+    return np.random.default_rng(seed)
+
+
+def hidden_name(number: int, what: str) -> str:
+    """The name a hidden case is reported under, e.g. ``"hidden case 2: icosphere(2), 8 random flips"``.
+
+    It says what kind of case failed, so that a learner knows where to look, without
+    giving the grader's exact mesh or numbers away.
+    """
+    return f"hidden case {number}: {what}"
 
 
 # --------------------------------------------------------------------------------------
@@ -143,15 +211,88 @@ def _time_limit(seconds: float):
         signal.signal(signal.SIGALRM, previous)
 
 
+def _snapshot(value):
+    """A copy of one argument as it was before the learner's function could change it."""
+    if isinstance(value, (HalfedgeMesh, np.ndarray)):
+        return value.copy()
+    if isinstance(value, (list, dict)):
+        return copy.deepcopy(value)
+    return value
+
+
 def run(function: Callable, *args):
-    """Call the learner's function: ``("ok", value)``, ``("error", exception)`` or ``("timeout", None)``."""
+    """Call the learner's function: ``("ok", value)``, ``("error", exception)`` or ``("timeout", None)``.
+
+    On an error the exception remembers the call (function and copies of the arguments
+    as they were before it), so that :func:`failed` can offer ``result.rerun()``.
+    """
+    saved = tuple(_snapshot(argument) for argument in args)
     try:
         with _time_limit(TIME_LIMIT):
             return "ok", function(*args)
     except _TookTooLong:
         return "timeout", None
     except Exception as error:  # the learner's bug, reported in words below
+        try:
+            error._halfedge_edu_call = (function, saved)
+        except (AttributeError, TypeError):  # an exception type that takes no attributes
+            pass
         return "error", error
+
+
+def _rerun_of(error: BaseException | None) -> Callable[[], object] | None:
+    """``rerun()`` for a failed call: the learner's function again, on fresh copies of the
+    same arguments, through :func:`run`; it returns the value or raises the learner's
+    exception with its own traceback."""
+    call = getattr(error, "_halfedge_edu_call", None) if error is not None else None
+    if call is None:
+        return None
+    function, saved = call
+
+    def rerun():
+        status, value = run(function, *(_snapshot(argument) for argument in saved))
+        if status == "timeout":
+            raise TimeoutError(f"it did not finish within {TIME_LIMIT:g} s")
+        if status == "error":
+            value.__dict__.pop("_halfedge_edu_call", None)
+            raise value
+        return value
+
+    return rerun
+
+
+#: Folders whose frames are not the learner's: this package, Python's own library, installed packages.
+_NOT_LEARNER_FOLDERS = tuple(str(Path(folder).resolve()) for folder in {
+    str(Path(__file__).resolve().parents[1]), sysconfig.get_paths()["stdlib"], sysconfig.get_paths()["purelib"],
+    sysconfig.get_paths()["platlib"]})
+
+_TRACEBACK_FRAME = re.compile(r'File "([^"]+)", line (\d+), in ([^\n]+)\n[ \t]+([^\n]+)')
+
+
+def _learner_frames(error: BaseException) -> list[tuple[str, int, str, str]]:
+    """``(file, line, function, source)`` of the frames in the learner's own code, outermost first.
+
+    From ``error.learner_traceback`` when the error came from another process (the
+    grader's judge puts the formatted traceback there), else from ``error.__traceback__``.
+    """
+    text = getattr(error, "learner_traceback", None)
+    if isinstance(text, str):
+        frames = [(f, int(n), name.strip(), line.strip()) for f, n, name, line in _TRACEBACK_FRAME.findall(text)]
+    else:
+        frames = [(frame.filename, frame.lineno or 0, frame.name, (frame.line or "").strip())
+                  for frame in traceback.extract_tb(error.__traceback__)]
+    return [frame for frame in frames
+            if not str(Path(frame[0]).resolve()).startswith(_NOT_LEARNER_FOLDERS) and frame[3]]
+
+
+def own_line(error: BaseException) -> str:
+    """Where in the learner's own code ``error`` was raised, as a sentence ("" if unknown):
+    e.g. ``" It came from line 7 of your my_flip: `nxt[h1] = h_next[h4]`."``"""
+    frames = _learner_frames(error)
+    if not frames:
+        return ""
+    _, line, function, source = frames[-1]
+    return f" It came from line {line} of your {function}: `{source}`."
 
 
 
@@ -193,6 +334,5 @@ def trouble(status: str, answer, name: str) -> str | None:
     if status == "error":
         if isinstance(answer, NotImplementedError) or "ellipsis" in str(answer).lower():
             return f"{name} is not finished yet ({type(answer).__name__}: {answer}). Fill it in and check again."
-        return (f"your {name} raised {type(answer).__name__}: {answer}. Call it yourself on that case "
-                f"to see the full traceback.")
+        return f"your {name} raised {type(answer).__name__}: {answer}.{own_line(answer)}"
     return None

@@ -44,14 +44,14 @@ import numpy as np
 
 from halfedge_edu.core.errors import MeshInvariantError
 from halfedge_edu.core.mesh import HalfedgeMesh
-from halfedge_edu.core.ops import OperationLog, can_collapse, can_flip, collapse, flip
+from halfedge_edu.core.ops import OperationLog, can_collapse, can_flip, can_split, collapse, flip, split
 from halfedge_edu.data import sample
 
-from . import harness
+from . import harness, hidden
 from .harness import TIME_LIMIT, CheckResult
 
 
-__all__ = ["check_collapse", "check_flip", "collapse_cases", "flip_cases"]
+__all__ = ["COLLAPSE_PHASES", "check_collapse", "check_collapse_steps", "check_flip", "check_split", "collapse_cases", "flip_cases", "split_cases"]
 
 #: Decimals that positions are rounded to when faces are compared by their corners.
 _DECIMALS = 9
@@ -82,12 +82,44 @@ def _random_steps(mesh: HalfedgeMesh, allowed, operate, count: int, seed: int, *
     return steps
 
 
-def flip_cases() -> list[tuple[str, HalfedgeMesh, list[int]]]:
+def _hidden_step_cases(seed: int, allowed, operate, *, halfedges: bool, with_boundary: bool,
+                       what: str) -> list[tuple[str, HalfedgeMesh, list[int]]]:
+    """The hidden cases of ``check_flip`` / ``check_collapse``: random allowed steps on a
+    closed mesh, on a jittered grid patch (a boundary nearby; ``with_boundary``) or a
+    closed mesh after random flips (other degrees), and on an icosphere(2).
+
+    ``check_collapse``'s contract has no boundary (the chapter's collapse is for closed
+    meshes), so its hidden cases are all closed.
+    """
+    rng = harness.hidden_rng(seed)
+    shape, other = (str(name) for name in rng.choice(["cube", "octahedron", "icosphere(1)"], 2, replace=False))
+    rows, columns = (int(n) for n in rng.integers(3, 5, 2))
+    flips = int(rng.integers(3, 8))
+    second = ((f"a {rows} x {columns} grid patch", HalfedgeMesh.from_faces(*hidden.grid(rows, columns, rng)), 3)
+              if with_boundary else
+              (f"{other} after {flips} random flips", hidden.flipped(hidden.closed_mesh(other), flips, rng), 3))
+    meshes = [
+        (shape, hidden.closed_mesh(shape), int(rng.integers(3, 6))),
+        second,
+        ("icosphere(2)", sample("icosphere", subdivisions=2), int(rng.integers(6, 11))),
+    ]
+    cases = []
+    for number, (name, mesh, count) in enumerate(meshes, start=1):
+        steps = _random_steps(mesh, allowed, operate, count, int(rng.integers(2**31)), halfedges=halfedges)
+        cases.append((harness.hidden_name(number, f"{name}, {len(steps)} random {what}"), mesh, steps))
+    return cases
+
+
+def flip_cases(seed: int | None = None) -> list[tuple[str, HalfedgeMesh, list[int]]]:
     """What ``check_flip`` runs: ``(name, mesh, edges)``, the edges flipped one after another.
 
     Small meshes first, where a mistake is easy to draw, then a run of random flips on
-    an icosphere. Every listed flip is allowed at the moment it is made.
+    an icosphere. Every listed flip is allowed at the moment it is made. With a
+    ``seed``, the hidden cases instead (random flips on other meshes).
     """
+    if seed is not None:
+        return _hidden_step_cases(seed, can_flip, lambda mesh, e: flip(mesh, e), halfedges=False,
+                                  with_boundary=True, what="flips")
     strip = sample("strip")
     cube = sample("cube")
     single = sample("single_collapse")
@@ -101,14 +133,18 @@ def flip_cases() -> list[tuple[str, HalfedgeMesh, list[int]]]:
     ]
 
 
-def collapse_cases() -> list[tuple[str, HalfedgeMesh, list[int]]]:
+def collapse_cases(seed: int | None = None) -> list[tuple[str, HalfedgeMesh, list[int]]]:
     """What ``check_collapse`` runs: ``(name, mesh, halfedges)``, collapsed one after another.
 
     Each halfedge runs from the vertex that goes (vB) to the one that stays (vA). The
     cube's halfedge 0 removes vertex 0, of degree 3 (the case where the faces beyond
     both removed edges are one and the same face); halfedge 1 removes vertex 4, of
-    degree 5; ``single_collapse`` removes a vertex of degree 6.
+    degree 5; ``single_collapse`` removes a vertex of degree 6. With a ``seed``, the
+    hidden cases instead (random collapses on other meshes).
     """
+    if seed is not None:
+        return _hidden_step_cases(seed, can_collapse, lambda mesh, h: collapse(mesh, mesh.halfedge(h)),
+                                  halfedges=True, with_boundary=False, what="collapses")
     single = sample("single_collapse")
     sphere = sample("icosphere", subdivisions=1)
     collapse_halfedge = lambda mesh, h: collapse(mesh, mesh.halfedge(h))  # noqa: E731
@@ -206,8 +242,7 @@ def _describe_error(name: str, error: Exception) -> str:
                 f"your code and run the check again.")
     if "ellipsis" in str(error).lower():
         return f"your {name} still has a blank (...) in it. Fill it in and run the check again."
-    return (f"your {name} raised {type(error).__name__}: {error}. Call it yourself on a copy of this mesh to "
-            f"see the full traceback.")
+    return f"your {name} raised {type(error).__name__}: {error}.{harness.own_line(error)}"
 
 
 def _validation_problem(mesh: HalfedgeMesh, log: OperationLog, doing: str) -> tuple[str, tuple] | None:
@@ -234,6 +269,17 @@ def _shown(element):
 # Running the learner's operation step by step (both checks)
 # --------------------------------------------------------------------------------------
 
+def _picture_names(library: Callable, before: HalfedgeMesh, step: int) -> dict[tuple[str, int], str]:
+    """``(kind, index) -> name`` of the operation's picture (``v0``, ``h3``, ``vA`` ...) for
+    this step, so that ``result.show()`` labels the elements as the message names them."""
+    log = OperationLog()
+    try:
+        library(before.copy(), step, log=log)
+    except TypeError:                     # an operation that takes no log: label by index
+        return {}
+    return {element: name for name, element in log.named.items()}
+
+
 def _check_steps(exercise: str, learner: Callable, cases: list, doing: str, element_of: Callable,
                  timeout_hint: str, problem_of: Callable, library: Callable, praise: str) -> CheckResult:
     """Run ``learner(mesh, step)`` on a copy before every step of every case; stop at the first difference.
@@ -244,11 +290,14 @@ def _check_steps(exercise: str, learner: Callable, cases: list, doing: str, elem
         doing: what one step is, with ``{}`` for the step, e.g. ``"flipping edge {}"``.
         element_of: step -> the ``(kind, index)`` to draw when the learner's function fails.
         timeout_hint: what to look for when the function does not finish.
-        problem_of: ``(before, yours, step) -> (words, element) | None``, the comparison.
+        problem_of: ``(before, yours, step, notes) -> (words, element) | None``, the
+            comparison; it may add to ``notes`` (a dict used as an ordered set) the
+            sentence naming a course's convention it recognised, said once on success.
         library: ``(mesh, step)``, the package's operation, which moves the case on.
         praise: the last sentence of the congratulation.
     """
     checked: list[str] = []
+    notes: dict[str, None] = {}
     for name, mesh, steps in cases:
         for step in steps:
             before = mesh.copy()
@@ -260,22 +309,26 @@ def _check_steps(exercise: str, learner: Callable, cases: list, doing: str, elem
                 text = _describe_error(exercise, answer)
             else:
                 yours.topology_changed()  # the learner wrote the arrays by hand
-                problem = problem_of(before, yours, step)
+                problem = problem_of(before, yours, step, notes)
                 if problem is None:
                     library(mesh, step)
                     continue
                 text, element = problem
-                return harness.failed(exercise, checked, name, text, _shown(element), before)
-            return harness.failed(exercise, checked, name, f"{doing.format(step)}, {text}", element_of(step), before)
+                return harness.failed(exercise, checked, name, text, _shown(element), before,
+                                      names=_picture_names(library, before, step))
+            return harness.failed(exercise, checked, name, f"{doing.format(step)}, {text}", element_of(step), before,
+                                  error=answer if status == "error" else None,
+                                  names=_picture_names(library, before, step))
         checked.append(name)
-    return harness.passed(exercise, checked, praise)
+    return harness.passed(exercise, checked, " ".join([praise, *notes]))
 
 
 # --------------------------------------------------------------------------------------
 # check_flip
 # --------------------------------------------------------------------------------------
 
-def _flip_problem(before: HalfedgeMesh, yours: HalfedgeMesh, e: int) -> tuple[str, tuple | None] | None:
+def _flip_problem(before: HalfedgeMesh, yours: HalfedgeMesh, e: int,
+                  notes: dict[str, None] | None = None) -> tuple[str, tuple | None] | None:
     """None if ``yours`` is ``before`` with edge ``e`` flipped; else (words, element)."""
     log = OperationLog()
     wanted = before.copy()
@@ -313,23 +366,27 @@ def _flip_problem(before: HalfedgeMesh, yours: HalfedgeMesh, e: int) -> tuple[st
     return None
 
 
-def check_flip(learner_flip: Callable) -> CheckResult:
+def check_flip(learner_flip: Callable, *, seed: int | None = None) -> CheckResult:
     """Run ``learner_flip(mesh, e)`` on copies of small meshes and compare with the library's flip.
 
     Args:
         learner_flip: a function ``(mesh, e) -> anything`` that flips edge ``e`` (an int)
             of ``mesh`` in place. It is only called on edges that may be flipped.
+        seed: None for the public cases (the chapter's); an int for only the hidden
+            cases made from it.
 
     Returns:
         A :class:`~halfedge_edu.exercises.CheckResult`: at the first difference, what it
         is in words and which element (``result.show()`` draws it on the mesh as it was
         before that flip); otherwise a short congratulation.
     """
-    return _check_steps(
-        "flip", learner_flip, flip_cases(), "flipping edge {}", lambda e: ("halfedge", 2 * e),
+    cases = flip_cases(seed)
+    return harness.counted(_check_steps(
+        "flip", learner_flip, cases, "flipping edge {}", lambda e: ("halfedge", 2 * e),
         "A flip is a fixed number of pointer writes; look for a loop that never ends.",
-        _flip_problem, flip, "Every pointer ends up where it should, and the mesh is still valid.",
-    )
+        _flip_problem, lambda mesh, e, log=None: flip(mesh, e, log=log),
+        "Every pointer ends up where it should, and the mesh is still valid.",
+    ), len(cases))
 
 
 # --------------------------------------------------------------------------------------
@@ -342,8 +399,35 @@ def _deleted(before: HalfedgeMesh, yours: HalfedgeMesh, kind: str) -> set[int]:
     return {int(i) for i in np.flatnonzero(new[: len(old)] & ~old)}
 
 
-def _collapse_problem(before: HalfedgeMesh, yours: HalfedgeMesh, h: int) -> tuple[str, tuple | None] | None:
-    """None if ``yours`` is ``before`` with halfedge ``h`` collapsed; else (words, element)."""
+#: Said once when a learner's collapse keeps ``h.vertex`` instead of ``h.tip``.
+_KEPT_OTHER_END_NOTE = (
+    "Your collapse keeps the other endpoint, h.vertex, and deletes h.tip: UChicago's assignment leaves the "
+    "choice of which vertex to keep free, so that is accepted (judged as the collapse of h.twin). The chapter "
+    "keeps vA = h.tip so that its pictures and pointer tables have one name for each element.")
+
+
+def _kept_end(before: HalfedgeMesh, yours: HalfedgeMesh, h: int) -> int:
+    """The halfedge whose collapse ``yours`` matches in which endpoint survives: ``h`` when
+    ``h.tip`` survives (the chapter's convention), ``h ^ 1`` when only ``h.vertex`` does."""
+    tip, origin = int(before.halfedge_vertex[h ^ 1]), int(before.halfedge_vertex[h])
+    gone = _deleted(before, yours, "vertex")
+    live_halfedges = np.repeat(~yours.edge_deleted, 2)                       # (n_halfedge_slots,) bool
+    tip_still_used = bool(np.any(yours.halfedge_vertex[live_halfedges] == tip))
+    return h ^ 1 if gone == {tip} and origin not in gone and not tip_still_used else h
+
+
+def _collapse_problem(before: HalfedgeMesh, yours: HalfedgeMesh, h: int,
+                      notes: dict[str, None] | None = None) -> tuple[str, tuple | None] | None:
+    """None if ``yours`` is ``before`` with halfedge ``h`` collapsed; else (words, element).
+
+    Either endpoint may survive (UChicago leaves it free): when only ``h.tip`` is
+    deleted, the answer is judged as the collapse of ``h.twin`` and ``notes`` says so.
+    """
+    if _kept_end(before, yours, h) != h:
+        problem = _collapse_problem(before, yours, h ^ 1)
+        if problem is None and notes is not None:
+            notes[_KEPT_OTHER_END_NOTE] = None
+        return problem
     log = OperationLog()
     wanted = before.copy()
     collapse(wanted, wanted.halfedge(h), log=log)
@@ -358,8 +442,10 @@ def _collapse_problem(before: HalfedgeMesh, yours: HalfedgeMesh, h: int) -> tupl
                 f"reused.", ("halfedge", h))
     gone = {kind: _deleted(before, yours, kind) for kind in ("vertex", "edge", "face")}
     if vA in gone["vertex"]:
-        return (f"{doing} {picture} deleted vertex {vA}, vA. Halfedge {h} runs from vB to vA: vA = h.tip survives "
-                f"(at the midpoint) and vB = h.vertex goes.", ("vertex", vA))
+        return (f"{doing} {picture} deleted vertex {vA}, vA, but its halfedges still start at it. Halfedge {h} runs "
+                f"from vB to vA: the chapter keeps vA = h.tip (at the midpoint) and deletes vB = h.vertex. Keeping "
+                f"vB instead is fine too (UChicago leaves it free), but then every halfedge that left vA must "
+                f"leave vB.", ("vertex", vA))
     if gone["vertex"] != {vB}:
         if not gone["vertex"]:
             text = f"{doing} {picture} deleted no vertex; vB = {vB} must go (mesh.delete_vertex(vB))."
@@ -416,7 +502,7 @@ def _collapse_problem(before: HalfedgeMesh, yours: HalfedgeMesh, h: int) -> tupl
     return None
 
 
-def check_collapse(learner_collapse: Callable) -> CheckResult:
+def check_collapse(learner_collapse: Callable, *, seed: int | None = None) -> CheckResult:
     """Run ``learner_collapse(mesh, h)`` on copies of small meshes and compare with the library's collapse.
 
     Args:
@@ -424,16 +510,190 @@ def check_collapse(learner_collapse: Callable) -> CheckResult:
             halfedge ``h`` (an int) in place: ``h.vertex`` (vB) goes, ``h.tip`` (vA) stays
             and moves to the midpoint. It is only called on interior edges that may be
             collapsed, some of them on meshes that already have deleted elements.
+        seed: None for the public cases (the chapter's); an int for only the hidden
+            cases made from it.
 
     Returns:
         A :class:`~halfedge_edu.exercises.CheckResult`: at the first difference, what it
         is in words and which element (``result.show()`` draws it on the mesh as it was
         before that collapse); otherwise a short congratulation.
     """
-    return _check_steps(
-        "collapse", learner_collapse, collapse_cases(), "collapsing halfedge {}", lambda h: ("halfedge", h),
+    cases = collapse_cases(seed)
+    return harness.counted(_check_steps(
+        "collapse", learner_collapse, cases, "collapsing halfedge {}", lambda h: ("halfedge", h),
         "The walk around vB (h = twin(prev(h))) probably never comes back to its start: compare halfedge "
         "indices, and stop before you change the pointers you walk along.",
-        _collapse_problem, lambda mesh, h: collapse(mesh, mesh.halfedge(h)),
+        _collapse_problem, lambda mesh, h, log=None: collapse(mesh, mesh.halfedge(h), log=log),
         "Both cases work, degree 3 and higher, and the mesh stays valid.",
-    )
+    ), len(cases))
+
+
+# --------------------------------------------------------------------------------------
+# check_split (CS184 and CMU's task 2)
+# --------------------------------------------------------------------------------------
+
+def split_cases(seed: int | None = None) -> list[tuple[str, HalfedgeMesh, list[int]]]:
+    """What ``check_split`` runs: ``(name, mesh, edges)``, interior edges split one after another.
+
+    The strip's middle edge first (small enough to draw), then the cube's diagonal and a
+    side, then random splits on an icosphere. With a ``seed``, the hidden cases instead.
+    """
+    split_edge = lambda mesh, e: split(mesh, e)  # noqa: E731
+    if seed is not None:
+        return _hidden_step_cases(seed, can_split, split_edge, halfedges=False, with_boundary=True, what="splits")
+    strip = sample("strip")
+    cube = sample("cube")
+    sphere = sample("icosphere", subdivisions=1)
+    return [
+        ("strip", strip, [int(strip.find_edge(1, 2))]),
+        ("cube", cube, [1, 0]),
+        ("icosphere, 5 random splits", sphere, _random_steps(sphere, can_split, split_edge, 5, seed=5, halfedges=False)),
+    ]
+
+
+def _split_problem(before: HalfedgeMesh, yours: HalfedgeMesh, e: int,
+                   notes: dict[str, None] | None = None) -> tuple[str, tuple | None] | None:
+    """None if ``yours`` is ``before`` with interior edge ``e`` split at its midpoint; else (words, element)."""
+    log = OperationLog()
+    wanted = before.copy()
+    split(wanted, e, log=log)
+    ids = {n: index for n, (_, index) in log.named.items()}
+    doing = f"your split of edge {e}"
+    picture = f"(v0 = {ids['v0']}, v1 = {ids['v1']}; opposite it v2 = {ids['v2']} and v3 = {ids['v3']})"
+    counts = [(kind, getattr(before, f"n_{kind}"), getattr(yours, f"n_{kind}"), add)
+              for kind, add in (("vertices", 1), ("edges", 3), ("faces", 2))]
+    wrong = [f"{have - had} new {kind} instead of {add}" for kind, had, have, add in counts if have - had != add]
+    if wrong:
+        return (f"after {doing} {picture} the mesh has {', '.join(wrong)}. A split of an interior edge adds 1 vertex "
+                f"m, 3 edges (m - v1, m - v2, m - v3; the old edge keeps its v0 half) and 2 faces "
+                f"(mesh.add_vertex, mesh.add_edge, mesh.add_face).", ("halfedge", 2 * e))
+    m = int(np.flatnonzero(~yours.vertex_deleted)[-1]) if yours.n_vertex_slots > before.n_vertex_slots else -1
+    midpoint = 0.5 * (before.positions[ids["v0"]] + before.positions[ids["v1"]])
+    if m < 0 or not np.allclose(yours.positions[m], midpoint):
+        where = f"at {np.round(yours.positions[m], 4).tolist()}" if m >= 0 else "nowhere"
+        return (f"after {doing} {picture}, the new vertex is {where}; it goes at the midpoint of the edge, "
+                f"{np.round(midpoint, 4).tolist()}.", ("halfedge", 2 * e))
+    moved = np.flatnonzero(np.any(yours.positions[: before.n_vertex_slots] != before.positions, axis=1))
+    if len(moved):
+        return f"{doing} moved vertex {int(moved[0])}; a split only adds m.", ("vertex", int(moved[0]))
+    problem = _validation_problem(yours, log, doing)
+    if problem is not None:
+        return problem
+    different = _compare_faces(yours, wanted)
+    if different is not None:
+        return (f"after {doing} {picture}, {different}. The four triangles around m are (v0, m, v2), (m, v1, v2), "
+                f"(m, v0, v3) and (v1, m, v3), and no other face changes.", ("halfedge", 2 * e))
+    return None
+
+
+def check_split(learner_split: Callable, *, seed: int | None = None) -> CheckResult:
+    """Run ``learner_split(mesh, e)`` on copies of small meshes and compare with the library's split.
+
+    Args:
+        learner_split: a function ``(mesh, e) -> anything`` that splits interior edge ``e``
+            (an int) in place: a new vertex ``m`` at the midpoint, joined to the two
+            opposite vertices (CS184's and CMU's task). Any numbering of the new elements.
+        seed: None for the public cases (the chapter's); an int for only the hidden
+            cases made from it.
+
+    Returns:
+        A :class:`~halfedge_edu.exercises.CheckResult`: at the first difference, what it
+        is in words, with the picture's names; otherwise a short congratulation.
+    """
+    cases = split_cases(seed)
+    if (words := harness.unfinished(learner_split, "split")) is not None:
+        return harness.counted(harness.failed("split", [], None, words), len(cases))
+    return harness.counted(_check_steps(
+        "split", learner_split, cases, "splitting edge {}", lambda e: ("halfedge", 2 * e),
+        "A split is a fixed number of allocations and pointer writes; look for a loop that never ends.",
+        _split_problem, lambda mesh, e, log=None: split(mesh, e, log=log),
+        "Four triangles around the new vertex, +1 vertex, +3 edges, +2 faces, and the mesh stays valid.",
+    ), len(cases))
+
+
+# --------------------------------------------------------------------------------------
+# check_collapse_steps: chapter 07's intermediate checks, one per phase of the collapse
+# --------------------------------------------------------------------------------------
+
+#: Chapter 07's phases, by the last step each one ends with.
+COLLAPSE_PHASES = {2: "move vA and reassign vB's halfedges (steps 1 and 2)",
+                   4: "relink h_A_L and h_R_A in place of h_B_L and h_R_B (steps 3 and 4)",
+                   5: "give vL, vR and vA live halfedges (step 5)",
+                   6: "delete (step 6): the whole collapse"}
+
+
+def _phase_problem(before: HalfedgeMesh, yours: HalfedgeMesh, h: int, upto: int) -> tuple[str, tuple] | None:
+    """What steps 1..``upto`` of the chapter's collapse got wrong on ``yours``, or None."""
+    log = OperationLog()
+    wanted = before.copy()
+    collapse(wanted, wanted.halfedge(h), log=log)
+    ids = {n: index for n, (_, index) in log.named.items()}
+    vA, vB = ids["vA"], ids["vB"]
+    midpoint = 0.5 * (before.positions[vA] + before.positions[vB])
+    if not np.allclose(yours.positions[vA], midpoint):
+        return (f"step 1: vA = {vA} is at {np.round(yours.positions[vA], 4).tolist()}, not at the edge's midpoint "
+                f"{np.round(midpoint, 4).tolist()}.", ("vertex", vA))
+    skipped = {ids["h_BA"], ids["h_L_B"] ^ 1, ids["h_B_R"]}
+    for g in before.vertex(vB).outgoing():
+        if g.index not in skipped and yours.halfedge_vertex[g.index] != vA:
+            return (f"step 2: halfedge {g.index} left vB = {vB}; it should now leave vA = {vA}, but yours leaves "
+                    f"{int(yours.halfedge_vertex[g.index])}.", ("halfedge", g.index))
+    if upto < 4:
+        return None
+    for new, old in (("h_A_L", "h_B_L"), ("h_R_A", "h_R_B")):
+        g = ids[new]
+        for array, word in (("halfedge_next", "next"), ("halfedge_prev", "prev"), ("halfedge_face", "face")):
+            if getattr(yours, array)[g] != getattr(wanted, array)[g]:
+                return (f"step {3 if new == 'h_A_L' else 4}: {new} = halfedge {g} takes the place of {old} = "
+                        f"halfedge {ids[old]}, so its {word} should be {int(getattr(wanted, array)[g])} (what {old}'s "
+                        f"was, read before you change anything of it), but yours is {int(getattr(yours, array)[g])}.",
+                        ("halfedge", g))
+    if upto < 5:
+        return None
+    going = {ids["h_BA"] >> 1, ids["h_L_B"] >> 1, ids["h_B_R"] >> 1}
+    for name in ("vL", "vR", "vA"):
+        v = ids[name]
+        g = int(yours.vertex_halfedge[v])
+        if yours.halfedge_vertex[g] != v or (g >> 1) in going:
+            return (f"step 5: {name} = vertex {v}'s halfedge is {g}, which "
+                    f"{'is on an edge that step 6 deletes' if (g >> 1) in going else 'does not leave it'}; point it "
+                    f"at a live halfedge that leaves {name}.", ("vertex", v))
+    return None
+
+
+def check_collapse_steps(learner_collapse: Callable, upto: int) -> CheckResult:
+    """Chapter 07's intermediate check: the steps of ``learner_collapse`` up to ``upto`` (2, 4,
+    5 or 6), on ``single_collapse`` and the cube's two cases, before the rest is written.
+
+    It runs the learner's function (steps after ``upto`` may still be missing) and
+    compares only what steps 1 to ``upto`` change with the library's collapse, in the
+    chapter's numbering (``h_A_L`` and ``h_R_A`` are the edges kept). ``upto=6`` is
+    :func:`check_collapse` itself.
+    """
+    if upto not in COLLAPSE_PHASES:
+        raise ValueError(f"upto must be one of {sorted(COLLAPSE_PHASES)}, the last step of a phase; got {upto!r}")
+    if upto == 6:
+        return check_collapse(learner_collapse)
+    name = "collapse"
+    cases = [(case, mesh, steps) for case, mesh, steps in collapse_cases()[:3]]
+    checked: list[str] = []
+    for case, mesh, steps in cases:
+        h = steps[0]
+        yours = mesh.copy()
+        status, answer = harness.run(learner_collapse, yours, h)
+        trouble = harness.trouble(status, answer, name)
+        if trouble:
+            return harness.counted(harness.failed(name, checked, case, f"collapsing halfedge {h}, {trouble}",
+                                                  ("halfedge", h), mesh, error=answer), len(cases))
+        problem = _phase_problem(mesh, yours, h, upto)
+        if problem is not None:
+            text, element = problem
+            return harness.counted(harness.failed(name, checked, case, f"collapsing halfedge {h}, {text}", element,
+                                                  mesh, names=_picture_names(
+                                                      lambda m, s, log=None: collapse(m, m.halfedge(s), log=log),
+                                                      mesh, h)), len(cases))
+        checked.append(case)
+    following = min(k for k in COLLAPSE_PHASES if k > upto)
+    return harness.counted(harness.passed(name, checked, f"Steps 1 to {upto} are right. Next: "
+                                          f"{COLLAPSE_PHASES[following]}, then check_collapse_steps(my_collapse, "
+                                          f"{following})."), len(cases))

@@ -34,11 +34,13 @@ from halfedge_edu.algorithms.remesh import tangential_smoothing
 from halfedge_edu.core.mesh import HalfedgeMesh
 from halfedge_edu.data import sample
 
-from . import harness
+from . import harness, hidden
 from .harness import CheckResult
 
 
-__all__ = ["check_tangential_smoothing", "smoothing_cases", "tangential_smoothing_reference"]
+__all__ = ["check_flip_improves", "check_split_long_edges", "split_phase_cases", "check_tangential_smoothing", "check_vertex_normal", "degree_deviation_after_flip",
+           "flip_cases_for_degrees", "normal_cases", "smoothing_cases",
+           "tangential_smoothing_reference"]
 
 
 def _bumpy(mesh: HalfedgeMesh, seed: int, amount: float) -> HalfedgeMesh:
@@ -49,8 +51,22 @@ def _bumpy(mesh: HalfedgeMesh, seed: int, amount: float) -> HalfedgeMesh:
     return mesh
 
 
-def smoothing_cases() -> list[tuple[str, HalfedgeMesh]]:
-    """The meshes ``check_tangential_smoothing`` uses, in order."""
+def smoothing_cases(seed: int | None = None) -> list[tuple[str, HalfedgeMesh]]:
+    """The meshes ``check_tangential_smoothing`` uses, in order; with a ``seed``, the
+    hidden cases: two nudged closed meshes (one after random flips) and a grid patch."""
+    if seed is not None:
+        rng = harness.hidden_rng(seed)
+        shape, other = (str(name) for name in rng.choice(["cube", "octahedron", "icosphere(1)", "icosphere(2)"], 2,
+                                                          replace=False))
+        flips = int(rng.integers(3, 9))
+        rows, columns = (int(n) for n in rng.integers(2, 5, 2))
+        return [
+            (harness.hidden_name(1, f"{shape}, nudged"), hidden.jittered(hidden.closed_mesh(shape), rng, 0.04)),
+            (harness.hidden_name(2, f"{other} after {flips} random flips, nudged"),
+             hidden.jittered(hidden.flipped(hidden.closed_mesh(other), flips, rng), rng, 0.04)),
+            (harness.hidden_name(3, f"a {rows} x {columns} grid patch (a boundary)"),
+             HalfedgeMesh.from_faces(*hidden.grid(rows, columns, rng))),
+        ]
     patch = sample("open_patch")
     bumpy_patch = _bumpy(patch, 3, 0.05)
     return [
@@ -113,6 +129,8 @@ def _damping(before: np.ndarray, yours: np.ndarray, target: np.ndarray) -> float
     if length_squared == 0.0:
         return None
     weight = float(np.sum((yours - before) * step)) / length_squared
+    if abs(weight - 1.0) < 1e-6:                  # the full step, with rounding: not a damped one
+        return None
     if not 0.0 < weight < 1.0 or not harness.close(yours, before + weight * step):
         return None
     return weight
@@ -183,12 +201,14 @@ def _explain(mesh: HalfedgeMesh, v: int, yours: np.ndarray, wanted: np.ndarray) 
     return text
 
 
-def check_tangential_smoothing(tangential_smoothing: Callable) -> CheckResult:
+def check_tangential_smoothing(tangential_smoothing: Callable, *, seed: int | None = None) -> CheckResult:
     """Compare the learner's ``tangential_smoothing(mesh)`` with the remesher's smoothing phase.
 
     Args:
         tangential_smoothing: ``(mesh) -> (n_vertex_slots, 3)`` the new positions; the
             mesh must not change.
+        seed: None for the public cases (the chapter's); an int for only the hidden
+            cases made from it.
 
     Returns:
         A :class:`~halfedge_edu.exercises.harness.CheckResult`; at the first vertex that
@@ -196,17 +216,24 @@ def check_tangential_smoothing(tangential_smoothing: Callable) -> CheckResult:
         one-ring.
     """
     name = "tangential_smoothing"
+    cases = smoothing_cases(seed)
     unfinished = harness.unfinished(tangential_smoothing, name)
     if unfinished:
-        return harness.failed(name, [], None, unfinished)
+        return harness.counted(harness.failed(name, [], None, unfinished), len(cases))
+    return harness.counted(_check_tangential_smoothing(tangential_smoothing, cases), len(cases))
+
+
+def _check_tangential_smoothing(tangential_smoothing: Callable, cases: list[tuple[str, HalfedgeMesh]]) -> CheckResult:
+    """:func:`check_tangential_smoothing` on the given cases."""
+    name = "tangential_smoothing"
     checked: list[str] = []
     weights: list[float] = []  # the learner's damping weight w, if they damp the step (CMU's notes)
-    for case, mesh in smoothing_cases():
+    for case, mesh in cases:
         before = mesh.positions.copy()
         status, answer = harness.run(tangential_smoothing, mesh)
         trouble = harness.trouble(status, answer, name)
         if trouble:
-            return harness.failed(name, checked, case, trouble)
+            return harness.failed(name, checked, case, trouble, None, mesh, error=answer)
         if not np.array_equal(mesh.positions, before):
             mesh.positions[:] = before
             return harness.failed(name, checked, case, "your tangential_smoothing changed mesh.positions. Compute every "
@@ -226,11 +253,11 @@ def check_tangential_smoothing(tangential_smoothing: Callable) -> CheckResult:
                                   f"{_weight_text(weights[0])} before: use one weight for every step.")
         if damping is not None:
             weights.append(damping)
-            checked.append(case.split(" (")[0])
+            checked.append(case if case.startswith("hidden") else case.split(" (")[0])
             continue
         wrong = np.flatnonzero(~np.isclose(yours, wanted, rtol=1e-7, atol=1e-9).all(axis=1))
         if len(wrong) == 0:
-            checked.append(case.split(" (")[0])
+            checked.append(case if case.startswith("hidden") else case.split(" (")[0])
             continue
         v = int(wrong[0])
         kept_normal = _damping(before, yours, _plain_centroids(mesh))
@@ -250,3 +277,265 @@ def check_tangential_smoothing(tangential_smoothing: Callable) -> CheckResult:
             f"a damped step moves more gently and needs more of them."))
     return harness.all_good(name, checked, "meshes", "That is the smoothing phase of the remesher: the vertices spread "
                      "out evenly and the surface keeps its shape.")
+
+
+# --------------------------------------------------------------------------------------
+# Area-weighted vertex normals (CS184's Vertex::normal, UChicago P4 and chapter 11's n)
+# --------------------------------------------------------------------------------------
+
+def normal_cases(seed: int | None = None) -> list[tuple[str, HalfedgeMesh]]:
+    """The meshes ``check_vertex_normal`` asks every vertex of: faces of different sizes
+    around a vertex (where the weights matter), a boundary, other degrees."""
+    if seed is not None:
+        rng = harness.hidden_rng(seed)
+        shape = str(rng.choice(["cube", "octahedron", "icosphere(1)"]))
+        flips = int(rng.integers(3, 8))
+        rows, columns = (int(n) for n in rng.integers(2, 4, 2))
+        return [
+            (harness.hidden_name(1, f"{shape}, nudged"), hidden.jittered(hidden.closed_mesh(shape), rng, 0.08)),
+            (harness.hidden_name(2, f"icosphere(1) after {flips} random flips, nudged"),
+             hidden.jittered(hidden.flipped(hidden.closed_mesh("icosphere(1)"), flips, rng), rng, 0.05)),
+            (harness.hidden_name(3, f"a {rows} x {columns} grid patch, bent"),
+             HalfedgeMesh.from_faces(*hidden.grid(rows, columns, rng, amount=0.3))),
+        ]
+    return [
+        ("cube", sample("cube")),
+        ("open patch, bent (a boundary)", _bumpy(sample("open_patch"), 7, 0.15)),
+        ("icosphere, nudged", _bumpy(sample("icosphere", subdivisions=1), 8, 0.05)),
+    ]
+
+
+def _normal_words(mesh: HalfedgeMesh, v: int, yours: np.ndarray, wanted: np.ndarray) -> str:
+    """What is wrong with one vertex normal, naming the slip where the answer shows it."""
+    P = mesh.positions
+    crosses = []
+    for f in mesh.vertex(v).faces():
+        a, b, c = (P[u.index] for u in f.vertices())
+        crosses.append(np.cross(b - a, c - a))
+    area_sum = np.sum(crosses, axis=0)
+    text = (f"vertex {v} touches {len(crosses)} faces; the area-weighted normal sums their cross products "
+            f"(b - a) x (c - a) (each is twice the face's area long) and divides by the length once: "
+            f"{harness.point_text(wanted)}. Yours is {harness.point_text(yours)}.")
+    unit = lambda x: x / np.linalg.norm(x)  # noqa: E731
+    if harness.close(yours, -wanted):
+        text += " It points inwards: take the corners in the face's own counter-clockwise order, a -> b -> c."
+    elif harness.close(yours, area_sum) or harness.close(yours, 0.5 * area_sum):
+        text += " Right direction, wrong length: a normal has length 1, so divide the sum by its length."
+    elif harness.close(yours, unit(np.sum([unit(x) for x in crosses], axis=0))):
+        text += (" That is every face counted the same (each cross product made unit first). Leave them as they "
+                 "are: their lengths are the area weights, so big faces count more.")
+    elif harness.close(yours, vertex_normals(mesh, weighting="angle")[v]):
+        text += " That weights the faces by their corner angles; this exercise asks for area weights."
+    elif any(harness.close(yours, unit(x)) for x in crosses):
+        text += " That is the normal of one face only: sum over every face around the vertex (v.faces())."
+    return text
+
+
+def check_vertex_normal(vertex_normal: Callable, *, seed: int | None = None) -> CheckResult:
+    """Compare the learner's ``vertex_normal(mesh, v) -> (3,)`` with ``hx.vertex_normals(mesh)``
+    (area weights) at every vertex of a few meshes.
+
+    Args:
+        vertex_normal: ``(mesh, v) -> (3,)``, the unit area-weighted normal of vertex
+            ``v`` (a Vertex handle); the mesh must not change.
+        seed: None for the public cases (the chapter's); an int for only the hidden
+            cases made from it.
+    """
+    name = "vertex_normal"
+    cases = normal_cases(seed)
+    if (words := harness.unfinished(vertex_normal, name)) is not None:
+        return harness.counted(harness.failed(name, [], None, words), len(cases))
+    return harness.counted(_check_vertex_normal(vertex_normal, cases), len(cases))
+
+
+def _check_vertex_normal(vertex_normal: Callable, cases: list[tuple[str, HalfedgeMesh]]) -> CheckResult:
+    """:func:`check_vertex_normal` on the given meshes."""
+    name = "vertex_normal"
+    checked: list[str] = []
+    for case, mesh in cases:
+        wanted = vertex_normals(mesh)
+        before = mesh.positions.copy()
+        for vertex in mesh.vertices:
+            status, answer = harness.run(vertex_normal, mesh, vertex)
+            trouble = harness.trouble(status, answer, name)
+            element = ("vertex", vertex.index)
+            if trouble:
+                return harness.failed(name, checked, case, f"at vertex {vertex.index}, {trouble}", element, mesh,
+                                      error=answer)
+            if not np.array_equal(mesh.positions, before):
+                mesh.positions[:] = before
+                return harness.failed(name, checked, case, "your vertex_normal changed mesh.positions; it should "
+                                      "only read them.", element, mesh)
+            try:
+                yours = np.asarray(answer, dtype=np.float64).reshape(-1)
+            except (TypeError, ValueError):
+                yours = np.zeros(0)
+            if yours.shape != (3,):
+                return harness.failed(name, checked, case, f"vertex_normal should return 3 numbers, but at vertex "
+                                      f"{vertex.index} yours returned {answer!r:.80}.", element, mesh)
+            if not np.allclose(yours, wanted[vertex.index], rtol=1e-6, atol=1e-8):
+                return harness.failed(name, checked, case, _normal_words(mesh, vertex.index, yours,
+                                                                         wanted[vertex.index]), element, mesh)
+        checked.append(case if case.startswith("hidden") else case.split(" (")[0])
+    return harness.all_good(name, checked, "meshes", "That is the n chapter 11's smoothing projects the step with, "
+                            "and the smooth shading of chapter 05.")
+
+
+# --------------------------------------------------------------------------------------
+# The flip phase's rule (CMU's remeshing step 3): flip when the degrees get closer to 6
+# --------------------------------------------------------------------------------------
+
+def degree_deviation_after_flip(mesh: HalfedgeMesh, e: int) -> tuple[int, int]:
+    """``(before, after)``: the summed distance of edge ``e``'s four vertices from their ideal
+    degree (6 inside, 4 on the boundary) now, and if ``e`` were flipped (its ends lose one
+    edge, the two opposite vertices gain one)."""
+    h = mesh.edge(e).halfedge
+    a, b = h.vertex, h.tip
+    c, d = h.prev.vertex, h.twin.prev.vertex
+    before = after = 0
+    for vertex, change in ((a, -1), (b, -1), (c, +1), (d, +1)):
+        ideal = 4 if vertex.is_boundary else 6
+        before += abs(vertex.degree - ideal)
+        after += abs(vertex.degree + change - ideal)
+    return before, after
+
+
+def flip_cases_for_degrees(seed: int | None = None) -> list[tuple[str, HalfedgeMesh]]:
+    """Meshes whose interior edges ``check_flip_improves`` asks about: degrees from 3 to 8 or so,
+    inside and on a boundary. With a ``seed``, the hidden cases instead."""
+    rng = harness.hidden_rng(12 if seed is None else seed)
+    if seed is None:
+        return [("cube", sample("cube")), ("icosphere after 8 random flips", hidden.flipped(sample("icosphere", subdivisions=1), 8, rng)),
+                ("a 3 x 4 grid patch (a boundary, where the ideal degree is 4)",
+                 HalfedgeMesh.from_faces(*hidden.grid(3, 4, np.random.default_rng(1))))]
+    shape = str(rng.choice(["octahedron", "icosphere(1)", "icosphere(2)"]))
+    flips = int(rng.integers(5, 15))
+    rows, columns = (int(n) for n in rng.integers(2, 5, 2))
+    return [(harness.hidden_name(1, f"{shape} after {flips} random flips"), hidden.flipped(hidden.closed_mesh(shape), flips, rng)),
+            (harness.hidden_name(2, f"a {rows} x {columns} grid patch"), HalfedgeMesh.from_faces(*hidden.grid(rows, columns, rng))),
+            (harness.hidden_name(3, "a cube after 4 random flips"), hidden.flipped(sample("cube"), 4, rng))]
+
+
+def check_flip_improves(flip_improves: Callable, *, seed: int | None = None) -> CheckResult:
+    """Compare the learner's ``flip_improves(mesh, e) -> bool`` with the flip phase's rule on
+    every interior edge of a few meshes: True exactly when flipping ``e`` lowers the summed
+    distance of its four vertices from their ideal degrees (6 inside, 4 on the boundary).
+
+    ``seed``: None for the public cases (the chapter's); an int for only the hidden cases made from it.
+    """
+    name = "flip_improves"
+    cases = flip_cases_for_degrees(seed)
+    if (words := harness.unfinished(flip_improves, name)) is not None:
+        return harness.counted(harness.failed(name, [], None, words), len(cases))
+    checked: list[str] = []
+    for case, mesh in cases:
+        for edge in mesh.edges:
+            if edge.is_boundary:
+                continue
+            status, answer = harness.run(flip_improves, mesh, edge.index)
+            trouble = harness.trouble(status, answer, name)
+            element = ("halfedge", 2 * edge.index)
+            if trouble:
+                return harness.counted(harness.failed(name, checked, case, f"for edge {edge.index}, {trouble}", element,
+                                                      mesh, error=answer), len(cases))
+            before, after = degree_deviation_after_flip(mesh, edge.index)
+            if bool(answer) == (after < before):
+                continue
+            h = edge.halfedge
+            four = [(v.index, v.degree, 4 if v.is_boundary else 6) for v in (h.vertex, h.tip, h.prev.vertex, h.twin.prev.vertex)]
+            text = (f"edge {edge.index}: its ends {four[0][0]} and {four[1][0]} have degrees {four[0][1]} and "
+                    f"{four[1][1]}, the opposite vertices {four[2][0]} and {four[3][0]} have {four[2][1]} and "
+                    f"{four[3][1]}. A flip takes one edge from each end and gives one to each opposite vertex, so the "
+                    f"summed distance from the ideal degrees goes from {before} to {after}: flip only when it drops. "
+                    f"Yours says {bool(answer)}.")
+            if any(ideal == 4 for _, _, ideal in four):
+                text += " On the boundary the ideal degree is 4, not 6."
+            if after == before and answer:
+                text += " Equal is not better: a flip that changes nothing would make the phase flip back and forth."
+            return harness.counted(harness.failed(name, checked, case, text, element, mesh), len(cases))
+        checked.append(case)
+    return harness.counted(harness.all_good(name, checked, "meshes", "That is the flip phase's test: each flip brings "
+                                            "the degrees closer to 6, so the phase ends."), len(cases))
+
+
+# --------------------------------------------------------------------------------------
+# The split phase (CMU's remeshing step 1): no edge longer than 4/3 L
+# --------------------------------------------------------------------------------------
+
+def split_phase_cases(seed: int | None = None) -> list[tuple[str, HalfedgeMesh, float]]:
+    """``(name, mesh, L)``: meshes whose edges need one or several rounds of splits to get
+    below 4/3 L. With a ``seed``, the hidden cases instead."""
+    if seed is None:
+        return [("cube, L = 0.5 (edges of 1 and 1.41: split twice)", sample("cube"), 0.5),
+                ("open patch, L = 0.4 (a boundary)", sample("open_patch"), 0.4),
+                ("icosphere, L = 0.3", sample("icosphere", subdivisions=1), 0.3)]
+    rng = harness.hidden_rng(seed)
+    shape = str(rng.choice(["tetrahedron", "octahedron", "icosphere(1)"]))
+    rows, columns = (int(n) for n in rng.integers(1, 4, 2))
+    return [(harness.hidden_name(1, f"{shape}, nudged"), hidden.jittered(hidden.closed_mesh(shape), rng, 0.05),
+             float(rng.uniform(0.2, 0.5))),
+            (harness.hidden_name(2, f"a {rows} x {columns} grid patch"),
+             HalfedgeMesh.from_faces(*hidden.grid(rows, columns, rng)), float(rng.uniform(0.3, 0.6))),
+            (harness.hidden_name(3, "a cube, stretched"), _stretched_cube(rng), float(rng.uniform(0.4, 0.8)))]
+
+
+def _stretched_cube(rng: np.random.Generator) -> HalfedgeMesh:
+    cube = sample("cube")
+    cube.positions[:] *= rng.uniform(0.5, 2.0, 3)
+    return cube
+
+
+def check_split_long_edges(split_long_edges: Callable, *, seed: int | None = None) -> CheckResult:
+    """Run the learner's ``split_long_edges(mesh, L)`` (in place: split every edge longer than
+    4/3 L at its midpoint, again and again, until none is) and judge the result: a valid
+    mesh, no edge longer than 4/3 L, the old vertices where they were, and every new vertex
+    on the old surface. Any order of splits is right (the cross edges a split draws to the
+    opposite corners may be short; the collapse phase deals with those).
+
+    ``seed``: None for the public cases (the chapter's); an int for only the hidden cases made from it.
+    """
+    from halfedge_edu.algorithms.remesh import closest_points_on_triangles
+    from halfedge_edu.core.errors import MeshInvariantError
+
+    name = "split_long_edges"
+    cases = split_phase_cases(seed)
+    if (words := harness.unfinished(split_long_edges, name)) is not None:
+        return harness.counted(harness.failed(name, [], None, words), len(cases))
+    checked: list[str] = []
+    for case, mesh, L in cases:
+        yours = mesh.copy()
+        status, answer = harness.run(split_long_edges, yours, L)
+        trouble = harness.trouble(status, answer, name)
+        if trouble:
+            return harness.counted(harness.failed(name, checked, case, trouble, None, mesh, error=answer), len(cases))
+        yours.topology_changed()
+        try:
+            yours.validate()
+        except MeshInvariantError as error:
+            return harness.counted(harness.failed(name, checked, case, f"after your splits the mesh breaks the rule "
+                                                  f"{error.rule}: {str(error).split('] ', 1)[-1]}", None, mesh),
+                                   len(cases))
+        ends = yours.edge_vertices()[~yours.edge_deleted]                   # (E, 2)
+        lengths = np.linalg.norm(yours.positions[ends[:, 0]] - yours.positions[ends[:, 1]], axis=1)
+        if lengths.max() > 4.0 / 3.0 * L + 1e-9:
+            return harness.counted(harness.failed(name, checked, case, (
+                f"an edge of length {lengths.max():.3g} is left, longer than 4/3 L = {4 * L / 3:.3g}. Splitting "
+                f"makes two halves that may still be too long: keep splitting until no edge is longer (loop until "
+                f"a pass splits nothing)."), None, mesh), len(cases))
+        old = mesh.n_vertex_slots
+        if not np.allclose(yours.positions[:old], mesh.positions):
+            return harness.counted(harness.failed(name, checked, case, "your splits moved an old vertex; a split only "
+                                                  "adds one, at the edge's midpoint."), len(cases))
+        corners = mesh.positions[mesh.face_vertices()]                      # (F, 3, 3)
+        new = yours.positions[old: yours.n_vertex_slots]
+        if len(new):
+            nearest = [np.min(np.linalg.norm(closest_points_on_triangles(np.repeat(p[None], len(corners), 0),
+                                                                         corners[:, 0], corners[:, 1], corners[:, 2])
+                                             - p, axis=1)) for p in new]
+            if max(nearest) > 1e-9:
+                return harness.counted(harness.failed(name, checked, case, (
+                    "a new vertex lies off the old surface; put each at the midpoint of the edge it splits."), None,
+                    mesh), len(cases))
+        checked.append(case)
+    return harness.counted(harness.all_good(name, checked, "meshes", "No edge is longer than 4/3 L, and the surface "
+                                            "is the same: the split phase of the remesher."), len(cases))

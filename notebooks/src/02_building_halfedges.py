@@ -287,9 +287,10 @@ print(walker.describe())
 # ## The readable loop and the fast build agree
 #
 # `hx.build_reference` is the course's loop: one face at a time, one corner at a
-# time, with dictionaries, as in the exercise below (read it with
-# `hx.build_reference??`). `HalfedgeMesh.from_faces` does the same work with whole-array
-# numpy operations: it sorts all directed edges by their vertex pair at once, so that
+# time, with dictionaries, as in the exercise below (it is that exercise's answer, so
+# read its source only after you have written your own). `HalfedgeMesh.from_faces` does
+# the same work with whole-array numpy operations: it sorts all directed edges by their
+# vertex pair at once, so that
 # the two sightings of each edge sit side by side. The numbering is chosen so that
 # both give **identical** arrays, index for index:
 

@@ -323,6 +323,62 @@ def cut_bowtie(vertices, faces):
 check_cut(cut_bowtie)
 
 # %% [markdown]
+# **3. Ask a soup what is wrong with it.** `from_faces` refuses these face lists, so
+# to *ask* them anything we need a structure that builds for any face list.
+# `hx.SoupTopology(faces)` is one (UChicago's P3 asks for exactly this: "build topology
+# for non-manifold objs without breaking"): three halfedges per face, and each edge keeps
+# every face that uses it. You answer with its queries:
+# `soup.edges()`, `soup.faces_of_edge(a, b)`, `soup.faces_of_vertex(v)`,
+# `soup.faces[f]` and `soup.n_vertices`. Here is the book of exercise 1 as one:
+
+# %%
+book = hx.SoupTopology(soups["book"])
+print(book)
+print("faces on edge (0, 1):", book.faces_of_edge(0, 1))
+print("faces at vertex 0:   ", book.faces_of_vertex(0))
+
+# %% [markdown]
+# Write both questions. An edge is manifold with one face or two. A vertex is manifold
+# when its faces form one fan: starting from one of them, you reach all the others by
+# crossing edges **that touch the vertex**. (The methods `soup.has_nonmanifold_edges()`
+# and `soup.fans(v)` exist too; answer without them, then compare.)
+
+# %%
+from halfedge_edu.exercises.chapter_checks import check_nonmanifold
+
+
+def has_nonmanifold_edges(soup):
+    """True when some edge of the soup has more than two faces."""
+    ### BEGIN SOLUTION
+    return any(len(soup.faces_of_edge(a, b)) > 2 for a, b in soup.edges())
+    ### END SOLUTION
+
+
+def has_nonmanifold_vertices(soup):
+    """True when the faces around some vertex form more than one fan."""
+    ### BEGIN SOLUTION
+    for v in range(soup.n_vertices):
+        faces = soup.faces_of_vertex(v)
+        if not faces:
+            continue
+        fan, stack = {faces[0]}, [faces[0]]          # grow one fan across edges at v
+        while stack:
+            f = stack.pop()
+            for u in soup.faces[f]:
+                if u != v:
+                    for g in soup.faces_of_edge(v, int(u)):
+                        if g not in fan:
+                            fan.add(g)
+                            stack.append(g)
+        if len(fan) < len(faces):                  # a face left over: a second fan
+            return True
+    return False
+    ### END SOLUTION
+
+
+check_nonmanifold(has_nonmanifold_edges, has_nonmanifold_vertices)
+
+# %% [markdown]
 # ## Summary
 #
 # - **Manifold edge:** one or two faces, running along it in opposite directions.
@@ -335,6 +391,8 @@ check_cut(cut_bowtie)
 #   the file's line, when there is one).
 # - `hx.repair_faces` and `hx.load(..., repair=True)` give each fan its own copy of the
 #   vertex (and drop or turn bad faces); read the report to know what changed.
+# - `hx.SoupTopology(faces)` builds for any face list, so you can ask a non-manifold
+#   soup where it is non-manifold before you repair it.
 #
 # **Next:** chapter 05 puts geometry on the mesh: normals, areas and smoothing.
 

@@ -337,14 +337,64 @@ from halfedge_edu.exercises import check_flip
 check_flip(my_flip)
 
 # %% [markdown]
-# ### What a mistake looks like
+# ### Exercise 2: write the split
+#
+# The split is CS184's and CMU's second local operation. Write `my_split(mesh, e)` for an
+# **interior** edge `e`, with the names of the picture in section 3. New elements come
+# from `mesh.add_vertex(position)`, `mesh.add_edge(a, b)` (halfedge `2e` runs a -> b,
+# `2e + 1` is its twin) and `mesh.add_face(halfedge)`. Adding may grow the arrays, so
+# read `mesh.halfedge_next` and the others only after the last `add_`. `check_split`
+# runs it on the strip, the cube and random splits on an icosphere.
+
+# %%
+from halfedge_edu.exercises import check_split
+
+
+def my_split(mesh, e):
+    # gather (done for you): the flip's names
+    h0, h1 = 2 * e, 2 * e + 1
+    h2, h3 = int(mesh.halfedge_next[h0]), int(mesh.halfedge_prev[h0])
+    h4, h5 = int(mesh.halfedge_next[h1]), int(mesh.halfedge_prev[h1])
+    v0, v1 = int(mesh.halfedge_vertex[h0]), int(mesh.halfedge_vertex[h1])
+    v2, v3 = int(mesh.halfedge_vertex[h3]), int(mesh.halfedge_vertex[h5])
+    f0, f1 = int(mesh.halfedge_face[h0]), int(mesh.halfedge_face[h1])
+
+    # 1. allocate m (at the midpoint), the edges m-v1, m-v2, m-v3 and the faces f2, f3
+    # 2. read the pointer arrays only now
+    # 3. h1 now leaves m; relink f0 = (h0, h_m2, h3), f2 = (h_m1, h2, h_2m),
+    #    f1 = (h1, h4, h_3m), f3 = (h_1m, h_m3, h5): next, prev and face; f0, f1 keep h0, h1
+    # 4. m leaves along h_m1; if v1's halfedge was h1 (which now leaves m), give it h2
+    ### BEGIN SOLUTION
+    m = mesh.add_vertex(0.5 * (mesh.positions[v0] + mesh.positions[v1]))       # 1
+    h_m1, h_m2, h_m3 = (2 * mesh.add_edge(m, v) for v in (v1, v2, v3))
+    h_1m, h_2m, h_3m = h_m1 + 1, h_m2 + 1, h_m3 + 1
+    f2, f3 = mesh.add_face(h_m1), mesh.add_face(h_1m)
+    nxt, prv = mesh.halfedge_next, mesh.halfedge_prev                          # 2
+    origin, face = mesh.halfedge_vertex, mesh.halfedge_face
+    origin[h1] = m                                                             # 3
+    for loop, f in (((h0, h_m2, h3), f0), ((h_m1, h2, h_2m), f2), ((h1, h4, h_3m), f1), ((h_1m, h_m3, h5), f3)):
+        for a, b in zip(loop, loop[1:] + loop[:1]):
+            nxt[a], prv[b] = b, a
+            face[a] = f
+    mesh.face_halfedge[f0], mesh.face_halfedge[f1] = h0, h1
+    mesh.vertex_halfedge[m] = h_m1                                             # 4
+    if mesh.vertex_halfedge[v1] == h1:
+        mesh.vertex_halfedge[v1] = h2
+    ### END SOLUTION
+    return m
+
+
+check_split(my_split)
+
+# %% [markdown] tags=["solution"]
+# ### What a mistake looks like (solution edition: it holds most of the answer)
 #
 # Here is a flip with one step forgotten: it does everything except step 4. The check
 # finds the vertex whose `halfedge` no longer leaves it and says which name it has in
 # the picture of the operation (`result.show()` draws that element with its one-ring on
 # the mesh as it was before; below, the wrong pointer itself is drawn after the flip).
 
-# %%
+# %% tags=["solution"]
 def flip_without_step_4(mesh, e):
     nxt, prv = mesh.halfedge_next, mesh.halfedge_prev
     origin, face = mesh.halfedge_vertex, mesh.halfedge_face
@@ -362,7 +412,7 @@ def flip_without_step_4(mesh, e):
 buggy = check_flip(flip_without_step_4)
 buggy
 
-# %%
+# %% tags=["solution"]
 def wrong_pointer_picture(mesh, log, owner, wrong, right, size=(440, 330)):
     """``mesh`` with the pointer a check complains about: element ``owner`` (kind, index)
     points at halfedge ``wrong`` where the library's operation points at ``right``. The
@@ -382,7 +432,7 @@ side_by_side([wrong_pointer_picture(learner, reference_log, ("vertex", vertex), 
                                     reference.vertex_halfedge[vertex])],
              ["after flip_without_step_4(1) on the cube"])
 
-# %% [markdown]
+# %% [markdown] tags=["solution"]
 # `v1` (vertex 2) still points at `h1`, which the flip has turned to leave `v2`; the
 # library's flip moves that pointer to `h2`, which leaves `v1`.
 #

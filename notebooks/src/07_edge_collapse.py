@@ -376,19 +376,29 @@ def my_collapse(mesh, h):
     mesh.delete_vertex(vB)
     ### END SOLUTION
 
+# %% [markdown]
+# Check each phase as soon as you have written it: `upto=2` after steps 1 and 2, then
+# 4, then 5. Each says what the next phase is. (Steps you have not written yet are simply
+# not there; the check looks only at what the earlier steps change.)
+
+# %%
+from halfedge_edu.exercises.ops_checks import check_collapse_steps
+
+check_collapse_steps(my_collapse, 2)
+
 # %%
 from halfedge_edu.exercises import check_collapse
 
 check_collapse(my_collapse)
 
-# %% [markdown]
-# ### What a mistake looks like
+# %% [markdown] tags=["solution"]
+# ### What a mistake looks like (solution edition: it holds most of the answer)
 #
 # This collapse does everything right except one thing: in steps 3 and 4 it reads the
 # neighbours of `h_B_L` and `h_R_B` at the *start*, before the first replacement. It
 # works on `single_collapse`. On the cube's corner it does not, and the check says why:
 
-# %%
+# %% tags=["solution"]
 def collapse_reading_too_early(mesh, h):
     nxt, prv = mesh.halfedge_next, mesh.halfedge_prev
     origin, face = mesh.halfedge_vertex, mesh.halfedge_face
@@ -428,7 +438,7 @@ def collapse_reading_too_early(mesh, h):
 buggy = check_collapse(collapse_reading_too_early)
 buggy
 
-# %%
+# %% tags=["solution"]
 def wrong_pointer_picture(mesh, log, owner, wrong, right, size=(440, 330), camera=None):
     """``mesh`` with the pointer a check complains about: element ``owner`` (kind, index)
     points at halfedge ``wrong`` where the library's operation points at ``right``. The
@@ -452,7 +462,7 @@ grid([[wrong_pointer_picture(cube, cube_log, ("halfedge", halfedge), learner.hal
                              cube_after.halfedge_next[halfedge], camera=corner_view)]],
      [["the cube before the collapse: h_R_A's next"]])
 
-# %% [markdown]
+# %% [markdown] tags=["solution"]
 # The picture shows halfedge 22 (`h_R_A`) on the cube before the collapse, and its
 # `next`: the wrong value `h_B_L` (halfedge 5), which the collapse deletes, and the
 # right one. That `next` was copied from `h_R_B` at the start, when it was still `h_B_L`;

@@ -210,6 +210,31 @@ for name, e in (("single_collapse", 0), ("cube", 1), ("tetrahedron", 0)):
 # inside, on which no flip, split or collapse works any more.
 
 # %% [markdown]
+# The same collapses on the halfedge mesh, done the way UChicago's P6 asks (gather every
+# element first with `prepare_collapse`, then rewire with `apply_collapse`) and without
+# P8's link condition (`check_link=False`), so that nothing refuses:
+
+# %%
+from halfedge_edu.core.ops import apply_collapse, prepare_collapse
+
+for name, e in (("cube", 1), ("tetrahedron", 0)):
+    mesh = hx.sample(name)
+    print(f"{name}, edge {e}: with the link condition, prepare_collapse gives {prepare_collapse(mesh, e)}")
+    apply_collapse(mesh, prepare_collapse(mesh, e, check_link=False))     # P6 without P8
+    try:
+        mesh.validate()
+        print(f"  without it: still valid, {mesh.n_faces} faces on {mesh.n_vertices} vertices")
+    except hx.MeshInvariantError as error:
+        print(f"  without it: {error.rule}: {str(error).split('] ', 1)[-1]}")
+
+# %% [markdown]
+# With the link condition, `prepare_collapse` refuses both (None). Without it, the cube's
+# halfedge mesh breaks a rule that `validate` names: two edges between the same two
+# vertices, the doubled edge of the face list above. The tetrahedron's pillow is still a
+# valid structure (every pointer is consistent), which is why the link condition, not
+# `validate`, has to keep it out.
+
+# %% [markdown]
 # ## 4. The boundary counts as one more vertex
 #
 # **Convention: for the link condition, the boundary counts as one extra vertex `∂`,
@@ -391,10 +416,10 @@ check_collapse_is_safe(collapse_is_safe)
 # %% [markdown]
 # ### The vertex part alone
 #
-# Here is the first half of the answer, the one-rings only. It is the link condition as
-# the UChicago assignment states it ("the one-rings of `a` and `b` share exactly two
-# vertices"), so the check accepts it, and says where this package refuses one more
-# collapse, and why:
+# Now that you have tried, here is the first half of the answer, the one-rings only. It
+# is the link condition as the UChicago assignment states it ("the one-rings of `a` and
+# `b` share exactly two vertices"). This chapter asks for the whole condition, so the
+# check refuses it on the tetrahedron and names the shared link edge:
 
 # %%
 def rings_only(mesh, e):
@@ -406,6 +431,13 @@ def rings_only(mesh, e):
 
 
 check_collapse_is_safe(rings_only)
+
+# %% [markdown]
+# A UChicago learner, whose assignment states only the vertex part, asks the check to
+# judge by that statement; it accepts and says why this package refuses one more collapse:
+
+# %%
+check_collapse_is_safe(rings_only, vertices_only=True)
 
 # %% [markdown]
 # ## Summary

@@ -27,12 +27,21 @@ import halfedge_edu as hx
 from halfedge_edu.exercises.classic_bugs import BUGS, catch, picture
 
 
+#: The bugs you fix yourself at the end of the lab: their right version stays hidden until then.
+YOUR_FIXES = {"flip_forgetting_face_halfedge", "one_ring_endless_at_the_boundary",
+              "collapse_reading_neighbours_too_early"}
+
+
 def lab(name):
-    """Run bug ``name`` the way this lab does: the wrong code beside the right one, what catches it,
-    why, the fix; returns the picture of the element that breaks the rule."""
+    """Run bug ``name`` the way this lab does: the wrong code beside the right one (unless fixing it
+    is one of your exercises), what catches it, why, the fix; returns the picture of the element
+    that breaks the rule."""
     bug = BUGS[name]
     print(inspect.getsource(bug.wrong))
-    print(inspect.getsource(bug.right))
+    if name in YOUR_FIXES:
+        print(f"# The right version is yours to write at the end of this lab ({bug.right.__name__} is kept out of sight).\n")
+    else:
+        print(inspect.getsource(bug.right))
     caught = catch(bug)
     print(f"caught by {bug.caught_by}: rule {caught.rule!r}, element {caught.element}")
     print(caught.message)

@@ -580,6 +580,36 @@ print()
 print(check_loop_rules(vertex_point=no_special_case))
 
 # %% [markdown]
+# **1b. The connectivity (CS184's and CMU's `upsample`).** Write `my_upsample(mesh)` with
+# the `split` and `flip` of chapter 06, by the route of section 2: split every old edge,
+# then flip the new edges that join an old vertex and a new one, and return the mesh.
+# The new vertices may stay at the midpoints; `check_upsample_connectivity` compares
+# the triangles with `loop_subdivide`'s.
+
+# %%
+from halfedge_edu.core.ops import flip, split
+from halfedge_edu.exercises.algorithm_checks import check_upsample_connectivity
+
+
+def my_upsample(mesh):
+    n_old_vertices = mesh.n_vertices
+    ### BEGIN SOLUTION
+    across = []                                   # the new edges cutting across old triangles
+    for e in range(mesh.n_edges):
+        ends = {int(v) for v in mesh.edge(e).vertices}
+        m = split(mesh, e)
+        across += [h.edge.index for h in m.outgoing() if h.tip.index not in ends]
+    for e in across:
+        a, b = (int(v) for v in mesh.edge(e).vertices)
+        if (a < n_old_vertices) != (b < n_old_vertices):
+            flip(mesh, e)
+    ### END SOLUTION
+    return mesh
+
+
+check_upsample_connectivity(my_upsample)
+
+# %% [markdown]
 # **2. Think about it.** The octahedron shrinks with every level. Would a mesh shaped
 # like a saddle (curving up one way and down the other) also shrink everywhere? Where
 # does a vertex move when its neighbours lie in a plane around it, evenly spaced?

@@ -453,6 +453,65 @@ print()
 print(check_optimal_point(lambda Q, a, b: np.linalg.solve(Q[:3, :3], -Q[:3, 3])))
 
 # %% [markdown]
+# **2b. The whole loop (CMU's downsampling).** Write `my_downsample(mesh, target_faces)`
+# with your `optimal_point`, a heap (`heapq`) and the library's `can_collapse` and
+# `collapse(mesh, e, position=x)`. The quadrics, the vertex versions and `push(e)` are
+# there; write the loop. An entry is stale when either end of its edge has changed since
+# it was pushed. `check_downsample` asks for what the loop must achieve: the target face
+# count, a flat-faced cube reduced to its exact corners, a sphere that keeps its shape.
+
+# %%
+from halfedge_edu.core.ops import can_collapse, collapse
+from halfedge_edu.exercises.algorithm_checks import check_downsample
+
+
+def my_downsample(mesh, target_faces):
+    mesh = mesh.copy()
+    corners = mesh.face_vertices()                                       # (F, 3)
+    K = face_quadrics(mesh.positions, corners)                           # (F, 4, 4)
+    Q = np.zeros((mesh.n_vertex_slots, 4, 4))
+    for f in range(len(corners)):
+        for v in corners[f]:
+            Q[v] += K[f]                                                 # each vertex: the sum of its faces'
+    version = np.zeros(mesh.n_vertex_slots, dtype=int)                  # bumped when a vertex changes
+    heap, pushed = [], 0
+
+    def push(e):
+        nonlocal pushed
+        a, b = (int(v) for v in mesh.edge(e).vertices)
+        Qe = Q[a] + Q[b]
+        x = optimal_point(Qe, mesh.positions[a], mesh.positions[b])
+        cost = float(np.append(x, 1.0) @ Qe @ np.append(x, 1.0))
+        heapq.heappush(heap, (cost, pushed, e, a, b, version[a], version[b], x))
+        pushed += 1
+
+    # 1. every edge into the queue, with its best point and cost
+    # 2. pop the cheapest; skip it if it is stale (an end changed since) or may not collapse
+    # 3. collapse it to its best point; the survivor's quadric is the sum of both ends'
+    # 4. re-insert the edges around the survivor with their new costs
+    ### BEGIN SOLUTION
+    for edge in mesh.edges:                                              # 1
+        push(edge.index)
+    while mesh.n_faces > target_faces and heap:
+        cost, _, e, a, b, version_a, version_b, x = heapq.heappop(heap)  # 2
+        if mesh.edge_deleted[e] or (version[a], version[b]) != (version_a, version_b):
+            continue
+        if not can_collapse(mesh, e):
+            continue
+        survivor = collapse(mesh, e, position=x).index                   # 3
+        Q[survivor] = Q[a] + Q[b]
+        version[a] += 1                                                  # both ends changed: their
+        version[b] += 1                                                  # old entries are stale
+        for h in mesh.vertex(survivor).outgoing():                       # 4
+            push(h.edge.index)
+    ### END SOLUTION
+    mesh.garbage_collect()
+    return mesh
+
+
+check_downsample(my_downsample)
+
+# %% [markdown]
 # **3. Think about it.** Why does the queue need the *stamps* at all? What would go
 # wrong if stale entries were popped and collapsed as if they were current?
 #

@@ -495,6 +495,87 @@ buggy.show(window_size=(420, 320))
 # centroid was not the one of the old mesh.
 
 # %% [markdown]
+# ### Exercise 2: the normal you projected with
+#
+# `hx.vertex_normals(mesh)` gave the smoothing its `n`. Write it for one vertex, as
+# CS184's `Vertex::normal()` and UChicago's P4 ask: sum the cross products
+# `(b - a) x (c - a)` of the faces around `v` (corners in each face's own order; each
+# is twice its face's area long, so big faces count more), then divide by the length
+# once. `check_vertex_normal` compares yours with the library's at every vertex of a
+# cube, a bent patch and a nudged icosphere, and names the slip it recognises.
+
+# %%
+from halfedge_edu.exercises.remesh_checks import check_vertex_normal
+
+
+def my_vertex_normal(mesh, v):
+    total = np.zeros(3)
+    for f in v.faces():
+        a, b, c = (u.position for u in f.vertices())
+        ### BEGIN SOLUTION
+        total += np.cross(b - a, c - a)   # this face's normal, as long as twice its area
+        ### END SOLUTION
+    ### BEGIN SOLUTION
+    return total / np.linalg.norm(total)   # unit length, divided once at the end
+    ### END SOLUTION
+
+
+check_vertex_normal(my_vertex_normal)
+
+# %% [markdown]
+# ### Exercise 3: when does the flip phase flip?
+#
+# CMU's step 3 flips an edge when that brings the degrees closer to 6. Write
+# `my_flip_improves(mesh, e)`: a flip takes one edge from each end of `e` and gives one to
+# each vertex opposite it; return True exactly when the summed distance of those four
+# vertices from their ideal degree (6 inside, 4 on the boundary, section 9) drops.
+
+# %%
+from halfedge_edu.exercises.remesh_checks import check_flip_improves
+
+
+def my_flip_improves(mesh, e):
+    h = mesh.edge(e).halfedge
+    four = [(h.vertex, -1), (h.tip, -1), (h.prev.vertex, +1), (h.twin.prev.vertex, +1)]   # (vertex, change)
+    ### BEGIN SOLUTION
+    ideal = {v.index: 4 if v.is_boundary else 6 for v, _ in four}
+    before = sum(abs(v.degree - ideal[v.index]) for v, _ in four)
+    after = sum(abs(v.degree + change - ideal[v.index]) for v, change in four)
+    return after < before
+    ### END SOLUTION
+
+
+check_flip_improves(my_flip_improves)
+
+# %% [markdown]
+# ### Exercise 4: the split phase
+#
+# CMU's step 1. Write `my_split_long_edges(mesh, L)`: split (with `split(mesh, e)` from
+# chapter 06) every edge longer than 4/3 L, in place. The two halves of a long edge may
+# still be too long, so go round again until a round splits nothing.
+# `check_split_long_edges` judges the result, whatever order you split in.
+
+# %%
+from halfedge_edu.core.ops import split
+from halfedge_edu.exercises.remesh_checks import check_split_long_edges
+
+
+def my_split_long_edges(mesh, L):
+    ### BEGIN SOLUTION
+    while True:
+        ends = mesh.edge_vertices()                                        # (E, 2)
+        long = [e for e in range(mesh.n_edge_slots) if not mesh.edge_deleted[e]
+                and np.linalg.norm(mesh.positions[ends[e, 0]] - mesh.positions[ends[e, 1]]) > 4 / 3 * L]
+        if not long:
+            return
+        for e in long:
+            split(mesh, e)
+    ### END SOLUTION
+
+
+check_split_long_edges(my_split_long_edges)
+
+# %% [markdown]
 # ## Summary
 #
 # - Isotropic remeshing aims for edges of length about L and degrees near 6, with four

@@ -393,6 +393,26 @@ def backwards(points, t):
 check_de_casteljau(backwards)
 
 # %% [markdown]
+# **1b. A point of a patch (CS184's `BezierPatch::evaluate`).** Write
+# `my_patch_point(grid, u, v)` with your own `my_de_casteljau` and nothing else: any grid
+# of `(m + 1) x (n + 1)` control points, not only 4 x 4. Either convention is right, the
+# chapter's (`u` down the columns) or CS184's (`u` along each row), as long as you keep
+# to one; `check_bezier_patch` says which one it recognised.
+
+# %%
+from halfedge_edu.exercises.algorithm_checks import check_bezier_patch
+
+
+def my_patch_point(grid, u, v):
+    ### BEGIN SOLUTION
+    columns = [my_de_casteljau(grid[:, j], u)[-1][0] for j in range(grid.shape[1])]
+    return my_de_casteljau(np.array(columns), v)[-1][0]
+    ### END SOLUTION
+
+
+check_bezier_patch(my_patch_point)
+
+# %% [markdown]
 # **2. Think about it.** A curve has control points `P_0 = (0, 0)`, `P_1 = (1, 1)`,
 # `P_2 = (2, 2)`, `P_3 = (3, 3)`. What does it look like, and where is `C(1/3)`?
 #

@@ -15,6 +15,7 @@ import halfedge_edu as hx
 from halfedge_edu.core.build import build_reference
 from halfedge_edu.exercises import CheckResult, check_build, check_one_ring
 from halfedge_edu.exercises import checks, harness
+from halfedge_edu.exercises.checks import RING_SLIPS
 
 
 # --------------------------------------------------------------------------------------
@@ -472,3 +473,57 @@ def test_build_cases_are_valid_meshes(name):
     cases = {case[0]: case for case in checks.build_cases()}
     _, vertices, faces = cases[name]
     hx.HalfedgeMesh.from_faces(vertices, faces).validate()
+
+
+# --------------------------------------------------------------------------------------
+# Every row of the slip table, from the slip's own code
+# --------------------------------------------------------------------------------------
+
+def _walk_until_back(step):
+    """A learner's one_ring with one step rule; at most 50 steps, so a walk that never comes back ends."""
+    def one_ring(mesh, v):
+        start = v.halfedge
+        ring, h = [], start
+        for _ in range(50):
+            ring.append(h.tip.index)
+            h = step(h)
+            if h == start:
+                break
+        return ring
+    return one_ring
+
+
+SLIP_CODE = {
+    "origins instead of tips": walk(lambda h: h.prev.twin, take=lambda h: h.vertex.index),
+    "walking around a face (h = h.next)": _walk_until_back(lambda h: h.next),
+    "a step that gives back its own halfedge (h = h.twin.twin)": _walk_until_back(lambda h: h.twin.twin),
+    "circling around the tip (h = h.next.twin)": walk(lambda h: h.next.twin),
+    "right order, wrong start": lambda mesh, v: [int(u) for u in v.neighbors()][1:] + [int(u) for u in v.neighbors()][:1],
+    "clockwise from another start":
+        lambda mesh, v: (lambda r: r[1:] + r[:1])(walk(lambda h: h.twin.next)(mesh, v)),
+    "right neighbours, out of order":     # two neighbours swapped: not a turn of the ring either way
+        lambda mesh, v: (lambda r: r[:1] + r[2:3] + r[1:2] + r[3:] if len(r) > 3 else r)([int(u) for u in v.neighbors()]),
+    "stopping at the boundary halfedge": lambda mesh, v: [h.tip.index for h in v.outgoing() if h.face is not None],
+}
+SENTENCES = {name: sentence for name, _, sentence in RING_SLIPS}
+
+
+@pytest.mark.parametrize("slip", sorted(SLIP_CODE))
+def test_each_ring_slip_gets_its_own_sentence_and_no_other(slip):
+    result = check_one_ring(SLIP_CODE[slip])
+    assert not result.passed
+    own = SENTENCES[slip].split("{")[0][:40]
+    assert own in result.message, result.message
+    for other, sentence in SENTENCES.items():
+        if other != slip and not sentence.startswith(SENTENCES[slip][:20]):
+            assert sentence.split("{")[0][:40] not in result.message, (other, result.message)
+
+
+def test_twin_twin_is_not_told_to_pass_the_boundary_halfedge():
+    result = check_one_ring(SLIP_CODE["a step that gives back its own halfedge (h = h.twin.twin)"])
+    assert "h.twin.twin == h" in result.message
+    assert "so don't stop at h.face is None" not in result.message
+
+
+def test_every_row_of_the_slip_table_is_tested_with_its_code():
+    assert {name for name, _, _ in RING_SLIPS} == set(SLIP_CODE)

@@ -67,18 +67,38 @@ def package_is_safe(mesh, e):
     return bool(can_collapse(mesh, e))
 
 
-@pytest.mark.parametrize("is_safe", [uchicago_is_safe, cmu_is_safe, package_is_safe],
-                         ids=["uchicago", "cmu", "package"])
-def test_each_courses_rule_is_accepted_on_closed_meshes(is_safe):
-    result = check_collapse_is_safe(is_safe)
+@pytest.mark.parametrize(("is_safe", "vertices_only"), [(uchicago_is_safe, True), (cmu_is_safe, False),
+                                                      (package_is_safe, False)], ids=["uchicago", "cmu", "package"])
+def test_each_courses_rule_is_accepted_on_closed_meshes(is_safe, vertices_only):
+    result = check_collapse_is_safe(is_safe, vertices_only=vertices_only)
     assert result and result.message.startswith("All good!"), result.message
     assert len(result.checked) == 4
 
 
-def test_the_uchicago_rule_on_the_tetrahedron_is_accepted_and_the_package_rule_explained():
-    message = check_collapse_is_safe(uchicago_is_safe).message
+def test_the_uchicago_rule_on_the_tetrahedron_is_accepted_as_uchicago_states_it_and_the_package_rule_explained():
+    message = check_collapse_is_safe(uchicago_is_safe, vertices_only=True).message
     assert "as UChicago's assignment states it" in message
     assert "'tetrahedron'" in message and "two triangles glued back to back" in message
+
+
+def rings_only(mesh, e):
+    """Chapter 08's 'vertex part alone': the rings share exactly the opposite vertices."""
+    edge = mesh.edge(e)
+    a, b = edge.vertices
+    return ring(a) & ring(b) == {edge.halfedge.prev.vertex.index, edge.halfedge.twin.prev.vertex.index}
+
+
+@pytest.mark.parametrize("is_safe", [rings_only, uchicago_is_safe], ids=["rings-only", "uchicago"])
+def test_the_vertex_part_alone_is_refused_where_the_chapter_asks_for_the_whole_link_condition(is_safe):
+    result = check_collapse_is_safe(is_safe)
+    assert not result.passed and result.mesh_name == "tetrahedron"
+    assert "lies in both links" in result.message and "vertices_only=True" in result.message
+
+
+def test_return_true_is_refused_on_the_tetrahedron_with_the_link_edge_named():
+    result = check_collapse_is_safe(lambda mesh, e: True)
+    assert not result.passed and result.mesh_name == "tetrahedron" and "lies in both links" in result.message
+    assert not check_collapse_is_safe(lambda mesh, e: True, vertices_only=True).passed
 
 
 def test_a_function_that_agrees_with_the_package_everywhere_gets_no_note():
@@ -86,10 +106,11 @@ def test_a_function_that_agrees_with_the_package_everywhere_gets_no_note():
     assert message.endswith("It agrees with link_condition on every edge.")
 
 
-@pytest.mark.parametrize("is_safe", [uchicago_with_boundary, cmu_is_safe, package_is_safe],
+@pytest.mark.parametrize(("is_safe", "vertices_only"), [(uchicago_with_boundary, True), (cmu_is_safe, False),
+                                                      (package_is_safe, False)],
                          ids=["uchicago-with-boundary", "cmu", "package"])
-def test_each_courses_rule_is_accepted_with_boundary(is_safe):
-    result = check_collapse_is_safe(is_safe, with_boundary=True)
+def test_each_courses_rule_is_accepted_with_boundary(is_safe, vertices_only):
+    result = check_collapse_is_safe(is_safe, with_boundary=True, vertices_only=vertices_only)
     assert result and len(result.checked) == 8, result.message
 
 
@@ -126,6 +147,6 @@ def at_most_two_shared(mesh, e):
      "lone triangle"),
 ])
 def test_a_wrong_rule_is_refused_naming_the_mistake(is_safe, with_boundary, where, named):
-    result = check_collapse_is_safe(is_safe, with_boundary=with_boundary)
+    result = check_collapse_is_safe(is_safe, with_boundary=with_boundary, vertices_only=True)
     assert not result and result.mesh_name == where and named in result.message, result.message
     assert result.element[0] == "halfedge"

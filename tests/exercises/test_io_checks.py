@@ -143,14 +143,15 @@ def read_skipping_polygons(source):
                                                               "dropped it"),
     (read_taking_the_last_number_of_a_corner, "vt/vn records and v/vt/vn corners", "took the normal index"),
     (read_vt_lines_as_vertices, "vt/vn records and v/vt/vn corners", "read the 'vt' and 'vn' lines as vertices"),
-    (read_skipping_polygons, "a quad", "skipped the quad on line 6"),
 ])
 def test_a_wrong_reader_is_refused_naming_its_mistake(read, where, named):
     result = check_obj_reader(read)
     assert not result and result.mesh_name == where and named in result.message, result.message
 
 
-def test_a_reader_that_cannot_split_corners_is_told_the_rule():
+def test_a_reader_that_cannot_split_corners_is_accepted_by_the_loop_spec_and_told_the_rule():
+    """The Loop assignment asks only for 'v', 'f' and '#' lines: raising on 'v/vt/vn' corners is
+    turning down what it does not ask for, so the check passes and says what chapter 01 adds."""
     def read_int_of_whole_corner(source):
         vertices, _ = polygon_style_read(source)
         text = source.read_text() if isinstance(source, Path) else source
@@ -158,8 +159,57 @@ def test_a_reader_that_cannot_split_corners_is_told_the_rule():
                           for line in text.splitlines() if line.startswith("f ")]
 
     result = check_obj_reader(read_int_of_whole_corner)
-    assert not result and "raised ValueError" in result.message
+    assert result.passed and "Loop assignment's OBJ spec" in result.message
+    assert "raised ValueError on vt/vn records and v/vt/vn corners" in result.message
     assert "the vertex is the number before the first '/'" in result.message
+
+
+def test_a_reader_skipping_polygons_is_accepted_by_the_loop_spec_which_allows_it():
+    result = check_obj_reader(read_skipping_polygons)
+    assert result.passed and "skipped a face of four corners ('a quad')" in result.message
+    assert "as that assignment allows" in result.message
+
+
+def loop_spec_read_obj(source):
+    """A reader written to the Loop assignment's words: 'v', 'f' and '#' lines, triangles only."""
+    text = source.read_text() if isinstance(source, Path) else source
+    vertices, faces = [], []
+    for line in text.splitlines():
+        if line.startswith("#"):
+            continue
+        parts = line.split()
+        if parts[0] == "v":
+            vertices.append([float(x) for x in parts[1:4]])
+        elif parts[0] == "f":
+            if len(parts) != 4:
+                raise ValueError("this reader reads triangles only")
+            faces.append([int(x) - 1 for x in parts[1:]])
+    return np.array(vertices), faces
+
+
+def loop_spec_write_obj(vertices, faces):
+    """A writer of the Loop assignment's triangle meshes: three corners per face."""
+    lines = [f"v {x!r} {y!r} {z!r}" for x, y, z in np.asarray(vertices).tolist()]
+    lines += [f"f {face[0] + 1} {face[1] + 1} {face[2] + 1}" for face in faces]
+    return "\n".join(lines) + "\n"
+
+
+def test_a_reader_and_writer_of_the_loop_assignments_spec_get_full_marks_and_the_convention_named():
+    for seed in (None, 1, 2):
+        result = check_obj_io(loop_spec_read_obj, loop_spec_write_obj, seed=seed)
+        assert result.passed, result.message
+        assert "Your read_obj follows the Loop assignment's OBJ spec" in result.message
+        assert "Your write_obj follows the Loop assignment's OBJ spec" in result.message
+        assert result.total == len(result.checked)
+
+
+def test_a_loop_spec_reader_still_fails_on_what_the_spec_asks():
+    def one_based(source):
+        vertices, faces = loop_spec_read_obj(source)
+        return vertices, [[i + 1 for i in face] for face in faces]
+
+    result = check_obj_io(one_based, loop_spec_write_obj)
+    assert not result.passed and result.mesh_name == "one triangle" and "subtract 1" in result.message
 
 
 def test_a_reader_of_text_only_is_told_to_accept_a_path():

@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from halfedge_edu.exercises.harness import CheckResult
+from tests.exercises.chapter_solutions import chapter_namespace
 from halfedge_edu.exercises.ops_checks import check_collapse, check_flip, collapse_cases, flip_cases
 from halfedge_edu.core.ops import can_collapse, can_flip, collapse, flip
 
@@ -326,3 +327,79 @@ def test_show_draws_the_offending_element():
     result = check_collapse(lambda mesh, h: student_collapse(mesh, h, delete_faces=False))
     picture = result.show(window_size=(200, 150))
     assert picture is not None and picture.data[:4] == b"\x89PNG"
+
+
+def test_a_collapse_that_keeps_the_other_endpoint_is_accepted_and_the_convention_named():
+    """UChicago's P6: 'which vertex to keep will be ambiguous'; keeping h.vertex is right there."""
+    result = check_collapse(lambda mesh, h: collapse(mesh, mesh.halfedge(h ^ 1)))
+    assert result.passed, result.message
+    assert "UChicago's assignment leaves the choice of which vertex to keep free" in result.message
+
+
+def split_keeping_face_halfedges(mesh, e):
+    """A split that relinks every halfedge but leaves f0 pointing at h2, which has moved to f2."""
+    right = CHAPTER_06_SPLIT
+    f0 = int(mesh.halfedge_face[2 * e])
+    kept = int(mesh.face_halfedge[f0])
+    m = right(mesh, e)
+    mesh.face_halfedge[f0] = kept
+    return m
+
+
+CHAPTER_06_SPLIT = chapter_namespace("06")["my_split"]
+
+
+def test_check_split_names_a_face_left_pointing_at_a_halfedge_that_moved():
+    from halfedge_edu.exercises import check_split
+
+    result = check_split(split_keeping_face_halfedges)
+    assert not result.passed and "face-halfedge" in result.message and "is f0" in result.message
+
+
+def test_check_split_counts_the_new_elements():
+    from halfedge_edu.exercises import check_split
+
+    result = check_split(lambda mesh, e: mesh.add_vertex([0.0, 0.0, 0.0]))
+    assert not result.passed and "0 new edges instead of 3" in result.message
+
+
+def test_a_failed_operation_labels_its_picture_with_the_names_its_message_uses():
+    result = check_flip(lambda mesh, e: student_flip(mesh, e, keep_vertex_halfedges=False))
+    assert not result.passed and result.names
+    named = {name for name in result.names.values()}
+    assert {"v0", "v1", "v2", "v3", "h0", "h1"} <= named
+    for kind, index in [result.element]:
+        if (kind, index) in result.names:
+            assert result.names[(kind, index)] in result.message
+
+
+def test_the_phase_checks_pass_the_library_collapse_at_every_phase():
+    from halfedge_edu.exercises.ops_checks import check_collapse_steps
+
+    for upto in (2, 4, 5, 6):
+        assert check_collapse_steps(lambda mesh, h: collapse(mesh, mesh.halfedge(h)), upto).passed
+
+
+def test_the_phase_check_after_steps_1_and_2_passes_a_collapse_written_that_far():
+    from halfedge_edu.exercises.ops_checks import check_collapse_steps
+
+    def steps_1_and_2(mesh, h):
+        vB, vA = int(mesh.halfedge_vertex[h]), int(mesh.halfedge_vertex[h ^ 1])
+        h_L_B, h_B_R = int(mesh.halfedge_prev[h]), int(mesh.halfedge_next[h ^ 1])
+        ring = _ring(mesh, h)
+        mesh.positions[vA] = 0.5 * (mesh.positions[vA] + mesh.positions[vB])
+        for g in ring:
+            if g not in (h, h_L_B ^ 1, h_B_R):
+                mesh.halfedge_vertex[g] = vA
+
+    assert check_collapse_steps(steps_1_and_2, 2).passed
+    later = check_collapse_steps(steps_1_and_2, 4)
+    assert not later.passed and "step 3: h_A_L" in later.message
+
+
+def test_the_phase_check_of_steps_3_and_4_names_reading_the_neighbours_too_early():
+    from halfedge_edu.exercises.ops_checks import check_collapse_steps
+
+    result = check_collapse_steps(lambda mesh, h: student_collapse(mesh, h, copy_first=True), 4)
+    assert not result.passed and result.mesh_name == "cube, removing the degree-3 vertex 0"
+    assert "read before you change anything of it" in result.message

@@ -114,3 +114,114 @@ def test_a_weight_that_changes_between_meshes_is_named():
     result = check_tangential_smoothing(changing)
     assert not result.passed and result.mesh_name.startswith("icosphere")
     assert "damped with w = 0.5 here but w = 0.2 (CMU's 1/5) before" in result.message
+
+
+def test_the_exact_answer_is_not_praised_as_a_damped_step():
+    """Rounding makes the fitted weight 0.99999999...: that is the full step, not CMU's damping."""
+    from halfedge_edu.exercises.remesh_checks import check_tangential_smoothing, tangential_smoothing_reference
+
+    for seed in (None, 1, 2):
+        result = check_tangential_smoothing(tangential_smoothing_reference, seed=seed)
+        assert result.passed and "damp" not in result.message, result.message
+
+
+def _cross_products(v):
+    for f in v.faces():
+        a, b, c = (u.position for u in f.vertices())
+        yield np.cross(b - a, c - a)
+
+
+def area_weighted_normal(mesh, v):
+    total = sum(_cross_products(v))
+    return total / np.linalg.norm(total)
+
+
+NORMAL_SLIPS = {
+    "every face counted the same": lambda mesh, v: (lambda t: t / np.linalg.norm(t))(
+        sum(x / np.linalg.norm(x) for x in _cross_products(v))),
+    "It points inwards": lambda mesh, v: -area_weighted_normal(mesh, v),
+    "Right direction, wrong length": lambda mesh, v: sum(_cross_products(v)),
+    "the normal of one face only": lambda mesh, v: (lambda x: x / np.linalg.norm(x))(next(_cross_products(v))),
+}
+
+
+def test_the_area_weighted_normal_passes_public_and_hidden_cases():
+    from halfedge_edu.exercises import check_vertex_normal
+
+    assert check_vertex_normal(area_weighted_normal).passed
+    assert all(check_vertex_normal(area_weighted_normal, seed=seed).passed for seed in (1, 2, 3))
+
+
+@pytest.mark.parametrize("named", sorted(NORMAL_SLIPS))
+def test_each_normal_slip_is_named(named):
+    from halfedge_edu.exercises import check_vertex_normal
+
+    result = check_vertex_normal(NORMAL_SLIPS[named])
+    assert not result.passed and named in result.message, result.message
+
+
+def _four(mesh, e):
+    h = mesh.edge(e).halfedge
+    return [(h.vertex, -1), (h.tip, -1), (h.prev.vertex, +1), (h.twin.prev.vertex, +1)]
+
+
+def flip_improves(mesh, e):
+    """CMU's remeshing step 3: flip when the four vertices' distance from their ideal degree drops."""
+    ideal = lambda v: 4 if v.is_boundary else 6  # noqa: E731
+    four = _four(mesh, e)
+    return sum(abs(v.degree + c - ideal(v)) for v, c in four) < sum(abs(v.degree - ideal(v)) for v, _ in four)
+
+
+def test_the_flip_rule_passes_public_and_hidden_cases():
+    from halfedge_edu.exercises import check_flip_improves
+
+    assert check_flip_improves(flip_improves).passed
+    assert all(check_flip_improves(flip_improves, seed=seed).passed for seed in (1, 2, 3))
+
+
+@pytest.mark.parametrize(("slip", "named"), [
+    (lambda mesh, e: sum(abs(v.degree + c - 6) for v, c in _four(mesh, e)) < sum(abs(v.degree - 6) for v, _ in _four(mesh, e)),
+     "On the boundary the ideal degree is 4"),
+    (lambda mesh, e: sum(abs(v.degree + c - 6) for v, c in _four(mesh, e)[:2]) < sum(abs(v.degree - 6) for v, _ in _four(mesh, e)[:2]),
+     "gives one to each opposite vertex"),
+])
+def test_flip_rule_slips_are_refused_with_the_degrees_named(slip, named):
+    from halfedge_edu.exercises import check_flip_improves
+
+    result = check_flip_improves(slip)
+    assert not result.passed and named in result.message, result.message
+
+
+def split_long_edges(mesh, L):
+    """CMU's remeshing step 1: split every edge longer than 4/3 L, round after round, until none is."""
+    from halfedge_edu.core.ops import split
+
+    while True:
+        ends = mesh.edge_vertices()
+        long = [e for e in range(mesh.n_edge_slots) if not mesh.edge_deleted[e]
+                and np.linalg.norm(mesh.positions[ends[e, 0]] - mesh.positions[ends[e, 1]]) > 4 / 3 * L]
+        if not long:
+            return
+        for e in long:
+            split(mesh, e)
+
+
+def test_the_split_phase_passes_public_and_hidden_cases():
+    from halfedge_edu.exercises import check_split_long_edges
+
+    assert check_split_long_edges(split_long_edges).passed
+    assert all(check_split_long_edges(split_long_edges, seed=seed).passed for seed in (1, 2, 3))
+
+
+def test_a_single_round_of_splits_is_told_to_keep_splitting():
+    from halfedge_edu.core.ops import split
+    from halfedge_edu.exercises import check_split_long_edges
+
+    def one_round(mesh, L):
+        ends = mesh.edge_vertices()
+        for e in [e for e in range(mesh.n_edge_slots)
+                  if np.linalg.norm(mesh.positions[ends[e, 0]] - mesh.positions[ends[e, 1]]) > 4 / 3 * L]:
+            split(mesh, e)
+
+    result = check_split_long_edges(one_round)
+    assert not result.passed and "keep splitting until no edge is longer" in result.message
