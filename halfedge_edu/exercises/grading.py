@@ -106,8 +106,8 @@ _SOUP = "halfedge_edu.core.soup.SoupTopology"
 ANSWER_KEYS: tuple[str, ...] = tuple(f"halfedge_edu.exercises.{module}" for module in (
     "algorithm_checks", "chapter_checks", "checks", "classic_bugs", "io_checks", "ops_checks", "remesh_checks"))
 
-#: Every graded exercise (the first ones in chapter order, later additions after them). The function names are the ones each
-#: chapter's exercise cell asks the learner to fill in.
+#: Every graded exercise (the first ones in chapter order, later additions after them).
+#: The function names are the ones each chapter's exercise cell asks the learner to fill in.
 EXERCISES: tuple[Exercise, ...] = (
     Exercise("fan", "01", ("fan",), "check_fan", forbids=_OBJ),
     Exercise("obj_io", "01", ("read_obj", "write_obj"), "check_obj_io", forbids=_OBJ),
