@@ -896,6 +896,11 @@ def _downsample_cases(seed: int | None = None) -> list[tuple[str, HalfedgeMesh, 
     ]
 
 
+#: Seconds a learner's whole downsampling loop may take on one case (a Python loop of
+#: collapses with quadrics; the solution takes about 0.3 s on the larger case).
+DOWNSAMPLE_SECONDS = 10.0
+
+
 def check_downsample(downsample: Callable, *, seed: int | None = None) -> CheckResult:
     """Run the learner's ``downsample(mesh, target_faces) -> HalfedgeMesh`` (CMU's quadric
     simplification: a priority queue of edges by quadric cost, pop the cheapest, collapse
@@ -917,7 +922,7 @@ def check_downsample(downsample: Callable, *, seed: int | None = None) -> CheckR
         return harness.counted(harness.failed(name, [], None, words), len(cases))
     checked: list[str] = []
     for case, mesh, target, corners in cases:
-        status, answer = harness.run(downsample, mesh.copy(), target)
+        status, answer = harness.run(downsample, mesh.copy(), target, seconds=DOWNSAMPLE_SECONDS)
         trouble = harness.trouble(status, answer, name)
         if trouble:
             return harness.counted(harness.failed(name, checked, case, trouble, None, mesh, error=answer), len(cases))

@@ -220,15 +220,20 @@ def _snapshot(value):
     return value
 
 
-def run(function: Callable, *args):
+def run(function: Callable, *args, seconds: float | None = None):
     """Call the learner's function: ``("ok", value)``, ``("error", exception)`` or ``("timeout", None)``.
 
-    On an error the exception remembers the call (function and copies of the arguments
-    as they were before it), so that :func:`failed` can offer ``result.rerun()``.
+    ``seconds`` is the time limit (default ``TIME_LIMIT``; a whole-mesh exercise such as
+    a downsampling loop gets more). On an error the exception remembers the call
+    (function and copies of the arguments as they were before it), so that
+    :func:`failed` can offer ``result.rerun()``.
     """
+    global _limit_now
     saved = tuple(_snapshot(argument) for argument in args)
+    limit = TIME_LIMIT if seconds is None else seconds
+    previous, _limit_now = _limit_now, limit
     try:
-        with _time_limit(TIME_LIMIT):
+        with _time_limit(limit):
             return "ok", function(*args)
     except _TookTooLong:
         return "timeout", None
@@ -238,6 +243,18 @@ def run(function: Callable, *args):
         except (AttributeError, TypeError):  # an exception type that takes no attributes
             pass
         return "error", error
+    finally:
+        _limit_now = previous
+
+
+#: The time limit of the call :func:`run` is making now (the grader's judge passes it on
+#: to the learner's kernel, which enforces it there).
+_limit_now = TIME_LIMIT
+
+
+def limit_now() -> float:
+    """The time limit of the learner's call under way (``TIME_LIMIT`` outside one)."""
+    return _limit_now
 
 
 def _rerun_of(error: BaseException | None) -> Callable[[], object] | None:

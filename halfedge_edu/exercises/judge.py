@@ -88,8 +88,9 @@ class Link:
                 encoded.append({"t": "mesh", "arg": -1, "state": wire.mesh_state(arg)})
             else:
                 encoded.append(wire.encode(arg, meshes))
+        seconds = harness.limit_now()
         reply = self.ask({"do": "call", "exercise": exercise, "function": name, "args": encoded,
-                          "seconds": harness.TIME_LIMIT}, harness.TIME_LIMIT)
+                          "seconds": seconds}, seconds)
         if "forbidden" in reply:
             self.forbidden.setdefault(exercise, str(reply["forbidden"])[:500])
             raise UsedTheAnswer(str(reply["forbidden"])[:500])

@@ -15,6 +15,7 @@ socket is the learner's. Everything here is JSON with a few tagged shapes::
     {"t": "nd", "dtype": "<f8", "shape": [4, 3], "b64": "..."}     (numbers and bools only)
     {"t": "mesh", "state": {...}}                                   (a HalfedgeMesh's arrays)
     {"t": "handle", "kind": "Vertex", "index": 3, "mesh": 0}        (of argument 0)
+    {"t": "soup", "faces": {"t": "nd", ...}, "n_vertices": 5}        (a SoupTopology, built again)
     {"t": "float", "v": "nan"}       {"t": "path", "v": "/..."}     {"t": "other", "type": ..., "repr": ...}
 
 Decoding refuses what a message may not hold (object arrays, a nesting deeper than
@@ -127,6 +128,9 @@ def encode(value, meshes: list | None = None, depth: int = 0):
     if kind in _HANDLE_KINDS and hasattr(value, "index") and hasattr(value, "mesh"):
         owner = next((i for i, mesh in enumerate(meshes) if mesh is value.mesh), -1)
         return {"t": "handle", "kind": kind, "index": int(value.index), "mesh": owner}
+    if kind == "SoupTopology" and hasattr(value, "faces") and hasattr(value, "n_vertices"):
+        # Rebuilt from what it was built from: its faces and vertex count, never its inner state.
+        return {"t": "soup", "faces": _array(np.asarray(value.faces)), "n_vertices": int(value.n_vertices)}
     if kind == "HalfedgeMesh":
         owner = next((i for i, mesh in enumerate(meshes) if mesh is value), -1)
         return {"t": "mesh", "arg": owner, "state": None if owner >= 0 else mesh_state(value)}
@@ -202,6 +206,13 @@ def decode(data, meshes: list | None = None, mesh_factory=None, depth: int = 0):
         if mesh_factory is None:
             raise WireError("a mesh where none can be made")
         return mesh_factory(_field(data, "state", dict))
+    if tag == "soup":
+        from halfedge_edu.core.soup import SoupTopology
+
+        try:
+            return SoupTopology(array_of(_field(data, "faces", dict)), _field(data, "n_vertices", int))
+        except ValueError as error:
+            raise WireError(f"a soup that cannot be built: {error}") from None
     if tag == "other":
         return Opaque(str(data.get("type", "?"))[:80], str(data.get("repr", ""))[:200])
     raise WireError(f"an unknown tag {tag!r}")

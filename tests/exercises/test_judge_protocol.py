@@ -1,0 +1,61 @@
+"""The judge and the serving loop joined in one process: every graded exercise's solution crosses the wire.
+
+``halfedge-edu grade`` runs the judge and the learner's kernel in two processes joined by
+a socket. Here the same two halves run in one process, each request and reply going
+through JSON exactly as on the socket, so a few seconds show that every exercise's
+arguments and answers (meshes, handles, soups, arrays, paths, None) cross the wire and
+that each chapter's solution earns its point this way, public and hidden cases; and that
+the package's own answer is refused. The real processes and sandbox: test_grading*.py.
+"""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from halfedge_edu.exercises import judge, serve
+from halfedge_edu.exercises.grading import ANSWER_KEYS, EXERCISES
+
+from .chapter_solutions import chapter_namespace
+
+
+class InProcessLink(judge.Link):
+    """The judge's link, with the notebook's serving loop answering in this process."""
+
+    def __init__(self, namespace: dict, forbids: dict):
+        self.namespace, self.forbids = namespace, forbids
+        self.last_id, self.gone, self.forbidden = 0, None, {}
+
+    def ask(self, request: dict, seconds: float) -> dict:
+        self.last_id += 1
+        request = json.loads(json.dumps(dict(request, id=self.last_id), allow_nan=False))
+        if request["do"] == "describe":
+            reply = {"id": self.last_id, "functions": serve.describe(self.namespace, request["names"])}
+        else:
+            reply = serve._answer(self.namespace, request, self.forbids)
+        return json.loads(json.dumps(reply, allow_nan=False))
+
+
+def _judged(namespace: dict, exercises: list) -> dict:
+    forbids = {e.name: [*e.forbids, *ANSWER_KEYS] for e in exercises}
+    for keys in forbids.values():
+        for key in keys:
+            function = serve.resolve(key, namespace)
+            if callable(function):
+                serve._GUARDS.install(key, function)
+    return judge.judge(InProcessLink(namespace, forbids), exercises, seed=20261128)
+
+
+@pytest.mark.parametrize("exercise", EXERCISES, ids=lambda e: e.name)
+def test_each_chapters_solution_earns_its_point_across_the_wire_public_and_hidden(exercise):
+    result = _judged(chapter_namespace(exercise.chapter), [exercise])[exercise.name]
+    assert result["passed"] is True, result["output"]
+    assert result["public"][0] == result["public"][1] > 0, result
+    assert result["hidden"][0] == result["hidden"][1] > 0, result
+
+
+def test_the_packages_own_flip_is_refused_across_the_wire():
+    flip = next(e for e in EXERCISES if e.name == "flip")
+    result = _judged({"my_flip": lambda mesh, e: mesh.flip(e)}, [flip])["flip"]
+    assert result["passed"] is False and "This is the exercise" in result["output"], result
