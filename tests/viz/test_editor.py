@@ -82,16 +82,66 @@ def test_smooth_button_moves_only_the_selection_and_its_neighbours():
         widget.close()
 
 
-def test_keys_do_what_the_buttons_do(editor):
-    assert set(KEYS) == {"f", "s", "c", "l", "u"}
+def test_keys_are_cmus_with_l_for_smoothing_and_z_for_undo(editor):
+    assert KEYS == {"f": "flip", "s": "split", "c": "collapse", "l": "smooth", "u": "upsample",
+                    "d": "downsample", "r": "remesh", "i": "info", "z": "undo"}
     editor.key("f")
     assert editor.last_log.operation == "flip"
-    editor.key("u")
+    editor.key("z")
     assert editor.can_undo == 0
-    editor._keys.value = "s"                   # typing into the keys box
-    assert editor.last_log.operation == "split" and editor._keys.value == ""
     with pytest.raises(ValueError, match="unknown key 'q'"):
         editor.key("q")
+
+
+def test_each_key_pressed_in_the_keys_box_is_one_edit(editor):
+    def press(key):                            # what ipyevents sends for a key in the box
+        editor._key_events._handle_mouse_msg(None, {"event": "keydown", "key": key}, None)
+
+    for key in "lll":
+        press(key)
+    assert editor.can_undo == 3 and editor._last_text.startswith("smooth")
+    press("Backspace")
+    press("L")                                 # Shift or Caps Lock: the same key
+    assert editor.can_undo == 4
+    assert editor._keys.value == ""
+
+
+def test_upsample_downsample_and_remesh_replace_the_whole_mesh_and_undo_restores_it(cube, editor):
+    assert editor.apply("upsample")
+    assert editor.mesh.n_faces == 4 * cube.n_faces and editor.valid
+    assert editor.selection == ("edge", 4)
+    assert editor.apply("downsample")
+    assert editor.mesh.n_faces <= cube.n_faces and editor.valid
+    assert editor.apply("remesh") and editor.valid
+    assert "remesh:" in editor.describe()
+    for _ in range(3):
+        editor.key("z")
+    assert same_arrays(editor.mesh, cube)
+
+
+def test_info_says_the_selected_elements_pointers_and_changes_nothing(cube, editor):
+    assert editor.key("i") is None
+    text = editor.info()
+    h = cube.halfedge(8)
+    assert text.startswith("edge 4: halfedges 8 and 9")
+    assert f"vertices {h.vertex.index} - {h.tip.index}" in text
+    assert text in editor._status.value and editor.can_undo == 0
+    editor.select("halfedge", 8)
+    assert f"next {h.next.index}" in editor.info() and f"twin 9" in editor.info()
+
+
+def test_a_whole_mesh_edit_that_raises_is_refused_and_changes_nothing(cube, editor, monkeypatch):
+    import halfedge_edu.viz.editor as editor_module
+
+    def refuse(mesh):
+        raise hx.MeshInputError("this mesh cannot be subdivided")
+
+    monkeypatch.setattr(editor_module, "loop_subdivide", refuse)
+    check = editor.apply("upsample")
+    assert not check and check.reason == "this mesh cannot be subdivided"
+    assert editor.can_undo == 0 and same_arrays(editor.mesh, cube)
+    assert "upsample refused: this mesh cannot be subdivided" in editor._status.value
+
 
 
 def test_undo_button_goes_back_through_every_edit_to_identical_arrays(cube, editor):
