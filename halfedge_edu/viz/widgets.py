@@ -273,16 +273,16 @@ class StepperWidget(SceneWidget):
 
     def go(self, target) -> int:
         """Go to a step (a number or a named move; see the class). Returns the step shown."""
-        resolved = self._resolve(target)
+        resolved, move = self._resolve(target), None
         if resolved is not None:
             target = resolved
         elif isinstance(target, str):
             moves = self._named_moves()
-            name = target.strip().lower()
-            if name not in moves:
+            move = target.strip().lower()
+            if move not in moves:
                 raise ValueError(f"unknown move {target!r}: use {self._moves_help} or one of "
                                  f"{', '.join(repr(m) for m in moves)}")
-            target = moves[name]
+            target = moves[move]
         target = int(target)
         if not 0 <= target <= self.n_steps:
             raise IndexError(f"there is no step {target}: steps run from 0 to {self.n_steps}")
@@ -297,16 +297,25 @@ class StepperWidget(SceneWidget):
             self._show_step(shown)
             self._changed()
             raise
-        self._say("")
+        self._say(self._why_not_moved(move) if move is not None and target == shown else "")
         return self._step
 
+    def _why_not_moved(self, move: str) -> str:
+        """What a named move that leaves the step where it is says (at the end, at the start)."""
+        if self._step == self.n_steps and move not in ("back", "start", "phase back"):
+            return (f"{move}: step {self._step} of {self.n_steps} is the last one; "
+                    f"← back or Home to go through it again")
+        if self._step == 0:
+            return f"{move}: this is the start (step 0 of {self.n_steps}); → or space steps forward"
+        return f"{move}: already at step {self._step} of {self.n_steps}"
+
     def step(self) -> int:
-        """One step forward (stays at the end)."""
-        return self.go(min(self._step + 1, self.n_steps))
+        """One step forward (stays at the end, and says so)."""
+        return self.go("step")
 
     def back(self) -> int:
-        """One step back (stays at the start)."""
-        return self.go(max(self._step - 1, 0))
+        """One step back (stays at the start, and says so)."""
+        return self.go("back")
 
 
 class HalfedgeExplorer(SceneWidget):
@@ -391,6 +400,8 @@ class HalfedgeExplorer(SceneWidget):
             self._trail.pop()
             self._say("")
             self._changed()
+        else:
+            self._say(f"back: halfedge {self.halfedge.index} is where the walk started; nothing to go back to")
         return self.halfedge
 
     def _controls(self) -> list:

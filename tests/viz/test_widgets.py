@@ -45,6 +45,13 @@ def test_step_is_next_and_back_undoes(explorer):
     assert explorer.trail == [h.index]
 
 
+def test_back_at_the_start_of_the_walk_says_why_it_does_not_move(explorer):
+    explorer.buttons["back"].click()
+    assert "is where the walk started" in explorer._status.value
+    explorer.buttons["next"].click()
+    assert "walk started" not in explorer._status.value
+
+
 def test_three_nexts_come_back_around_a_triangle(explorer):
     h = explorer.halfedge
     for _ in range(3):
