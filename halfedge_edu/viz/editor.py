@@ -504,6 +504,8 @@ class MeshEditor(SceneWidget):
                                       for name in names])
                         for names, what in ((OPERATIONS[:4], "the selection"), (WHOLE_MESH, "the whole mesh")))
         whole.children += (self._later_button("info", "key i: the selected element's pointers", self.info),)
+        for button in whole.children[:-1]:                   # "downsample" is a longer word
+            button.layout.width = f"calc({css['button_width']} * 1.4)"
         self._keys = widgets.Text(value="", placeholder="click, type " + " ".join(KEYS),
                                   description="keys",
                                   layout=widgets.Layout(width=f"calc({css['button_width']} * 2.6)"))
