@@ -20,6 +20,7 @@ import pyvista as pv
 
 import halfedge_edu as hx
 from halfedge_edu import face_normals, smooth, vertex_normals
+from halfedge_edu.viz import show
 
 spot = hx.sample("spot")
 V, F = spot.to_arrays()
@@ -35,7 +36,7 @@ for column, shading in enumerate(["flat", "smooth"]):
     picture.add_text(f"{shading} shading", font_size=11)
 picture.link_views()
 picture.camera_position = [(2.6, 0.9, -2.2), (0.0, 0.1, 0.1), (0.0, 1.0, 0.0)]
-picture.show()
+show(picture)
 
 # %% [markdown]
 # The same 5,856 triangles twice. On the left every triangle is lit as one flat piece;
@@ -151,7 +152,7 @@ picture.add_point_labels(P[[0, 1]], ["vertex 0", "vertex 1"], font_size=14, text
                          shape_color="#FFFFFF", shape_opacity=0.8, show_points=False, always_visible=True)
 picture.camera_position = [(1.6, -3.2, 2.0), (0.5, 0.5, 0.3), (0.0, 0.0, 1.0)]
 picture.camera.zoom(0.85)
-picture.show()
+show(picture)
 
 # %% [markdown]
 # Look at the two labelled corners. Vertex 0 touches three triangles, one from each of
@@ -319,7 +320,7 @@ for column, n in enumerate(steps):
     print(f"{n:3d} iterations: volume {volume(smoothed):.4f}")
 picture.link_views()
 picture.camera_position = [(2.6, 0.9, -2.2), (0.0, 0.1, 0.1), (0.0, 1.0, 0.0)]
-picture.show()
+show(picture)
 
 # %% [markdown]
 # After 5 iterations Spot has lost its facets but kept its shape. After 25 the legs
