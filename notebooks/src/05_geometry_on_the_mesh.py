@@ -400,14 +400,16 @@ viewer = SmoothingViewer(noisy)
 viewer
 
 # %% [markdown]
-# The panel can also be driven from code, which is how this notebook checks itself:
+# The panel can also be driven from code, which is how this notebook checks itself. The
+# cell drives a panel of its own, so the one above stays as you leave it:
 
 # %%
+by_code = SmoothingViewer(noisy)
 for n in (0, 2, 10, 60):
-    viewer.iterations.value = n
-    print(viewer.describe())
-viewer.shading.value = "smooth"
-print(viewer.describe())
+    by_code.iterations.value = n
+    print(by_code.describe())
+by_code.shading.value = "smooth"
+print(by_code.describe())
 
 # %% [markdown]
 # ## Check yourself
