@@ -495,13 +495,14 @@ class MeshEditor(SceneWidget):
         self._kind_box.observe(lambda change: self._show_hint(change["new"]), names="value")
         self._show_hint(kind)
         self.buttons = {}
-        choose = widgets.HBox([self._kind_box, self._index_box,
+        choose = widgets.HBox([self._kind_box, self._index_box.widget,
                                self._later_button("select", "select this element",
-                                                  lambda: self.select(self._kind_box.value, self._index_box.value))])
+                                                  lambda: self.select(self._kind_box.value, self._index_box.value))],
+                              layout=widgets.Layout(flex_flow="row wrap"))
         key_of = {name: key for key, name in KEYS.items()}
         edits, whole = (widgets.HBox([self._later_button(name, f"key {key_of[name]}: {name} {what}",
                                                          lambda name=name: self.apply(name))
-                                      for name in names])
+                                      for name in names], layout=widgets.Layout(flex_flow="row wrap"))
                         for names, what in ((OPERATIONS[:4], "the selection"), (WHOLE_MESH, "the whole mesh")))
         whole.children += (self._later_button("info", "key i: the selected element's pointers", self.info),)
         for button in whole.children[:-1]:                   # "downsample" is a longer word
@@ -511,7 +512,8 @@ class MeshEditor(SceneWidget):
                                   layout=widgets.Layout(width=f"calc({css['button_width']} * 2.6)"))
         self._keys.style.description_width = "auto"
         self._key_events = _key_listener(self._keys, self._pressed)
-        undo = widgets.HBox([self._later_button("undo", "key z: back to before the last edit", self.undo), self._keys])
+        undo = widgets.HBox([self._later_button("undo", "key z: back to before the last edit", self.undo), self._keys],
+                            layout=widgets.Layout(flex_flow="row wrap"))
         self._sliders = [widgets.FloatSlider(description=axis, continuous_update=False, readout_format=".3f",
                                              layout=widgets.Layout(width=f"calc({css['button_width']} * 3.5)"))
                          for axis in "xyz"]
@@ -523,8 +525,9 @@ class MeshEditor(SceneWidget):
     def _show_hint(self, kind: str) -> None:
         """Say how to select a ``kind`` here (only a widget value: safe on any thread)."""
         size = panel_css(self.look)["font"]
-        how = (f"right-click the view to pick a {kind}, or type its index" if self.mode == "live"
-               else f"type a {kind} index and press select")
+        a = "an" if kind == "edge" else "a"
+        how = (f"right-click the view to pick {a} {kind}, or type its index" if self.mode == "live"
+               else f"type {a} {kind} index and press select")
         self._hint.value = f'<span style="font-size:{size};color:#555">{html.escape(how)}</span>'
 
 

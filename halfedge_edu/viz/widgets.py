@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import base64
 import html
+import re
 from collections.abc import Callable
 
 from .keys import KeyArea
@@ -97,6 +98,45 @@ def table_html(rows, look: Preset, *, header=None, mark_row: int | None = None) 
     return "".join(lines)
 
 
+#: The width the side panel asks for beside the view: with the default 600-pixel view it
+#: fits a 1366-pixel laptop screen with JupyterLab's file browser open (946 pixels of
+#: output), so the pointer table and the view are seen together there.
+PANEL_BASIS = "300px"
+
+
+class IndexBox:
+    """A box to type an element's index in: ``box.widget`` goes into the panel,
+    ``box.value`` is the index typed (an int; setting it shows that index).
+
+    A text box, not an ``ipywidgets.IntText``: the browser reads what is typed into an
+    IntText as far as it is a whole number, so "1e3" went to index 1 without a word.
+    Here the kernel reads the whole text, and anything but a whole number is refused in
+    words when the index is asked for.
+    """
+
+    def __init__(self, value: int, label: str, look: Preset):
+        import ipywidgets as widgets
+
+        css = panel_css(look)
+        self.label = label
+        self.widget = widgets.Text(value=str(int(value)), description=label,
+                                   layout=widgets.Layout(width=f"calc({css['button_width']} * 1.6)",
+                                                         height=css["button_height"]))
+        self.widget.style.description_width = "auto"
+
+    @property
+    def value(self) -> int:
+        """The index typed. Raises ValueError (in words) for anything but a whole number."""
+        text = self.widget.value.strip()
+        if not re.fullmatch(r"[+-]?\d+", text):
+            raise ValueError(f"{text!r} is not an index: type a whole number, such as 12")
+        return int(text)
+
+    @value.setter
+    def value(self, index: int) -> None:
+        self.widget.value = str(int(index))
+
+
 class SceneWidget:
     """What every widget shares: a scene, its view, a side panel, text and PNG output.
 
@@ -131,9 +171,11 @@ class SceneWidget:
         self.key_area = KeyArea([self._status, self._info, self._legend], getattr(self, "buttons", {}),
                                 self.KEYS, self.look)
         side = widgets.VBox([heading, *controls, self.key_area.widget],
-                            layout=widgets.Layout(padding="0 0 0 16px", flex="1 1 auto"))
-        # Where the notebook is too narrow for both, the panel goes below the view instead
-        # of being cut off on the right.
+                            layout=widgets.Layout(padding="0 0 0 16px", flex=f"1 1 {PANEL_BASIS}",
+                                                  min_width=PANEL_BASIS))
+        # The panel asks for PANEL_BASIS beside the view and takes what is left; its rows
+        # wrap. Only where even that is not left does it go below the view (rather than
+        # being cut off on the right).
         self.widget = widgets.HBox([self.view.widget, side],
                                    layout=widgets.Layout(align_items="flex-start", flex_flow="row wrap"))
         self._refresh_panel()
@@ -176,15 +218,8 @@ class SceneWidget:
         self.buttons = {button.description: button for button in row.children}
         return [row]
 
-    def _number_box(self, value: int, label: str):
-        import ipywidgets as widgets
-
-        css = panel_css(self.look)
-        box = widgets.IntText(value=int(value), description=label,
-                              layout=widgets.Layout(width=f"calc({css['button_width']} * 1.6)",
-                                                    height=css["button_height"]))
-        box.style.description_width = "auto"
-        return box
+    def _number_box(self, value: int, label: str) -> "IndexBox":
+        return IndexBox(value, label, self.look)
 
     def press(self, key: str) -> str | None:
         """What pressing ``key`` does in the Lab: click the button it is bound to (see
@@ -412,12 +447,12 @@ class HalfedgeExplorer(SceneWidget):
             self._button("prev", "h = h.prev", lambda: self.go("prev")),
             self._button("next", "h = h.next", lambda: self.go("next")),
             self._button("twin", "h = h.twin", lambda: self.go("twin")),
-        ])
+        ], layout=widgets.Layout(flex_flow="row wrap"))
         jump = widgets.HBox([
-            self._index_box,
+            self._index_box.widget,
             self._button("go to", "jump to this halfedge index", lambda: self.pick(self._index_box.value)),
             self._button("back", "undo the last move", self.back),
-        ])
+        ], layout=widgets.Layout(flex_flow="row wrap"))
         self.buttons = {b.description: b for row in (moves, jump) for b in row.children
                         if isinstance(b, widgets.Button)}
         return [moves, jump]
@@ -542,11 +577,11 @@ class OneRingViewer(SceneWidget):
             self._button("cw", "h = h.twin.next (clockwise)", lambda: self.go("cw")),
             self._button("ccw", "h = h.prev.twin (counter-clockwise)", lambda: self.go("ccw")),
             self._button("to tip", "move the centre to h.tip", lambda: self.go("tip")),
-        ])
+        ], layout=widgets.Layout(flex_flow="row wrap"))
         jump = widgets.HBox([
-            self._index_box,
+            self._index_box.widget,
             self._button("go to", "centre on this vertex", lambda: self.pick(self._index_box.value)),
-        ])
+        ], layout=widgets.Layout(flex_flow="row wrap"))
         self.buttons = {b.description: b for row in (turns, jump) for b in row.children
                         if isinstance(b, widgets.Button)}
         return [turns, jump]

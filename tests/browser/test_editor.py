@@ -62,6 +62,12 @@ class EditorInLab(LiveViewInLab):
         match = re.search(r"selected: (\w+ \d+)", self.output.inner_text())
         return match.group(1) if match else None
 
+    def index_box(self):
+        return self.output.locator("input[type=text]").first
+
+    def keys_box(self):
+        return self.output.get_by_placeholder(re.compile("^click, type"))
+
     def diff_rows(self) -> int:
         return self.output.locator("table tr").count() - 1
 
@@ -93,7 +99,7 @@ def _drive(page, lab, shots: Path) -> None:
 
     # Select an edge by the index controls.
     editor.output.locator("select").first.select_option("edge")
-    editor.output.locator("input[type=number]").first.fill(str(EDGE))
+    editor.index_box().fill(str(EDGE))
     click_in_place(editor.output.get_by_role("button", name="select", exact=True))
     wait_for(lambda: editor.selected() == f"edge {EDGE}", 30, f"the panel to show edge {EDGE} selected")
     png, selected = editor.settled_picture(before, "the live view to highlight the edge")
@@ -115,7 +121,7 @@ def _drive(page, lab, shots: Path) -> None:
     timings["flip by button"] = lap()
 
     # Flip back by key: type f into the keys box.
-    click_in_place(editor.output.locator("input[type=text]").first)
+    click_in_place(editor.keys_box())
     page.keyboard.type("f")
     cube.flip(EDGE)
     back_ends = [v.index for v in cube.edge(EDGE).vertices]
@@ -137,10 +143,10 @@ def _drive(page, lab, shots: Path) -> None:
         wait_for(lambda: INFO_LINE in editor.output.inner_text(), 30,
                  f"the key i to say the selected edge's pointers after {keys}")
         assert undo_count(editor) == expected, f"{keys} typed fast made {undo_count(editor) - undos} edits"
-        assert editor.output.locator("input[type=text]").first.input_value() == "", "keys went into the box's text"
+        assert editor.keys_box().input_value() == "", "keys went into the box's text"
         click_in_place(editor.output.get_by_role("button", name="select", exact=True))   # clears the line
         wait_for(lambda: INFO_LINE not in editor.output.inner_text(), 30, "the info line to go")
-        click_in_place(editor.output.locator("input[type=text]").first)
+        click_in_place(editor.keys_box())
     timings["keys typed fast"] = lap()
 
     # Pick a face by right-clicking the live view: the face under the pointer turns yellow.

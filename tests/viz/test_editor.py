@@ -261,3 +261,10 @@ def random_edit(widget, rng, done: dict) -> None:
     done[str(action)] += bool(check)
     widget.mesh.validate()
     assert widget.valid
+
+
+def test_the_hint_says_an_edge_and_a_vertex(editor):
+    editor._kind_box.value = "edge"
+    assert "type an edge index" in editor._hint.value
+    editor._kind_box.value = "vertex"
+    assert "type a vertex index" in editor._hint.value
