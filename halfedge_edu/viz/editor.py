@@ -92,6 +92,9 @@ KEYS = {"f": "flip", "s": "split", "c": "collapse", "l": "smooth",
         "u": "upsample", "d": "downsample", "r": "remesh", "i": "info", "z": "undo"}
 #: The ball on the selected vertex that a drag in the live view moves (reddish purple).
 HANDLE_COLOUR = "#CC79A7"
+#: The most faces an upsample may make: each u multiplies them by 4, and a student who
+#: keeps pressing it would otherwise wait minutes for a mesh the view cannot turn.
+MAX_UPSAMPLED_FACES = 20_000
 #: Diff rows shown in the panel (``describe()`` lists them all).
 PANEL_DIFF_ROWS = 40
 
@@ -333,6 +336,9 @@ class MeshEditor(SceneWidget):
     def _whole_mesh(self, operation: str) -> OpCheck:
         """Upsample, downsample or remesh: a new mesh, kept whole for undo."""
         mesh = self.mesh
+        if operation == "upsample" and 4 * mesh.n_faces > MAX_UPSAMPLED_FACES:
+            return self._refuse(operation, OpCheck.refuse(
+                "size", f"it would make {4 * mesh.n_faces} faces, more than the editor's {MAX_UPSAMPLED_FACES}"))
         run = {"upsample": lambda: loop_subdivide(mesh),
                "downsample": lambda: simplify(mesh, max(mesh.n_faces // 4, 4)),
                "remesh": lambda: remesh(mesh)}[operation]

@@ -632,7 +632,7 @@ class CollapseAtlas:
             widgets.VBox([widgets.HTML(f'<b style="font-size:{css["font"]}">{html.escape(title)}</b>'),
                           stepper.view.widget, caption])
             for title, stepper, caption in zip(self.titles, self.steppers, self._captions)
-        ] + [self._legend])
+        ] + [self._legend], layout=widgets.Layout(flex_flow="row wrap"))     # narrow: the legend goes below
         refusals = widgets.HBox([
             widgets.VBox([widgets.HTML(f'<b style="font-size:{css["font"]}">{html.escape(title)}</b>'),
                           stepper.view.widget,
@@ -641,7 +641,7 @@ class CollapseAtlas:
                                        f"{html.escape(stepper.check.reason)}</div>")],
                          layout=widgets.Layout(margin="0 12px 0 0"))
             for title, stepper in zip(self.refused_titles, self.refused)
-        ])
+        ], layout=widgets.Layout(flex_flow="row wrap"))
         heading = f'<b style="font-size:calc({css["font"]} * 1.25)">{html.escape(self.title)}</b>'
         self.key_area = KeyArea([self._status], self.buttons, self.KEYS, self.look)
         self.widget = widgets.VBox([

@@ -268,3 +268,12 @@ def test_the_hint_says_an_edge_and_a_vertex(editor):
     assert "type an edge index" in editor._hint.value
     editor._kind_box.value = "vertex"
     assert "type a vertex index" in editor._hint.value
+
+
+def test_upsample_past_the_editors_size_is_refused_in_words(editor, monkeypatch):
+    import halfedge_edu.viz.editor as editor_module
+
+    monkeypatch.setattr(editor_module, "MAX_UPSAMPLED_FACES", 4 * editor.mesh.n_faces - 1)
+    check = editor.apply("upsample")
+    assert not check and f"would make {4 * editor.mesh.n_faces} faces" in check.reason
+    assert editor.can_undo == 0
