@@ -36,7 +36,7 @@ The modules, one concern each (as pyvista splits its plotting package), from the
 - ``scene``: :class:`HalfedgeScene`, which owns the surface and decides what is redrawn when.
 - ``painted_scene``: a mesh with coloured layers (Loop, QEM, remeshing, Bezier widgets).
 - ``editor``: :class:`MeshEditor`, edit a mesh by hand (select, flip/split/collapse/smooth,
-  drag a vertex, undo, the pointer diff of the last edit).
+  upsample/downsample/remesh, drag a vertex, undo, the pointer diff of the last edit).
 - ``main_thread``: :func:`on_main_thread`, which runs a widget callback (a click, a slider
   move) on the kernel's main thread, where VTK's OpenGL context lives; every button and
   observer of these widgets goes through it, and so should a chapter's own widget.
