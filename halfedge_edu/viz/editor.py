@@ -39,9 +39,10 @@ A whole-mesh edit numbers the mesh anew, so its pointer diff is not shown; the s
 keeps its kind and index if the new mesh has that element, else goes to element 0.
 
 Keys are typed into the panel's "keys" box (a notebook page keeps the keyboard for
-itself, so the box is where the editor listens). Each key pressed there is one edit,
-however fast the keys come: the box listens to the keys themselves (an
-``ipyevents.Event``), never to its text. A vertex is moved by dragging the
+itself, so the box is where the editor listens). Each key typed there is one edit,
+however fast the keys come: the kernel never writes the box, and each time its text
+arrives the characters added after what it had seen are the keys (deleting does
+nothing). A vertex is moved by dragging the
 ball on the selected vertex in the live view (a VTK sphere widget; the vertex moves
 when the mouse is let go), with the x, y, z sliders, or :meth:`MeshEditor.move_vertex`.
 Many edits from code draw once inside ``with editor.held(): ...``.
@@ -79,7 +80,6 @@ from ..algorithms.simplify import simplify
 from ..algorithms.smoothing import smooth
 from ..core.errors import MeshInvariantError
 from ..core.ops import OpCheck, OperationLog, PointerChange, collapse, flip, split
-from .keys import key_name
 from .palette import panel_css
 from .widgets import SceneWidget, table_html
 
@@ -514,10 +514,11 @@ class MeshEditor(SceneWidget):
         for button in whole.children[:-1]:                   # "downsample" is a longer word
             button.layout.width = f"calc({css['button_width']} * 1.4)"
         self._keys = widgets.Text(value="", placeholder="click, type " + " ".join(KEYS),
-                                  description="keys",
+                                  description="keys", continuous_update=True,
                                   layout=widgets.Layout(width=f"calc({css['button_width']} * 2.6)"))
         self._keys.style.description_width = "auto"
-        self._key_events = _key_listener(self._keys, self._pressed)
+        self._keys_seen = ""
+        self._keys.observe(self._typed, names="value")
         undo = widgets.HBox([self._later_button("undo", "key z: back to before the last edit", self.undo), self._keys],
                             layout=widgets.Layout(flex_flow="row wrap"))
         self._sliders = [widgets.FloatSlider(description=axis, continuous_update=False, readout_format=".3f",
@@ -556,16 +557,23 @@ class MeshEditor(SceneWidget):
         except (IndexError, ValueError) as error:
             self._say(str(error), error=True)
 
-    def _pressed(self, event: dict) -> None:
-        """A key pressed in the keys box (an ipyevents ``keydown``): one edit per key.
+    def _typed(self, change) -> None:
+        """The keys box's text arrived: the characters after the part it shares with the
+        text seen last are the keys typed since, each one edit.
 
-        The box's text is never read: the Lab sends it only now and then, so a fast
-        typist's keys would arrive in batches that overlap. A key the editor does not
-        use does nothing (the box stays empty).
+        Only the browser writes the box. (Clearing it from here raced the next key: the
+        browser sent "ll" before the "" arrived, and three l made four edits.) A fast
+        typist's keys may come several at once; deleting or a key the editor does not
+        use does nothing.
         """
-        name = key_name(event)
-        if name in KEYS:
-            call_on_main_thread(self._guarded, self.key, name)
+        text, seen = change["new"], self._keys_seen
+        self._keys_seen = text
+        shared = 0
+        while shared < min(len(text), len(seen)) and text[shared] == seen[shared]:
+            shared += 1
+        for key in text[shared:].lower():
+            if key in KEYS:
+                call_on_main_thread(self._guarded, self.key, key)
 
     def _slid(self, change) -> None:
         if self._syncing or self._selection[0] != "vertex":
@@ -624,17 +632,6 @@ class MeshEditor(SceneWidget):
                          f"{html.escape(self._last_text)}, {len(changes)} changes</div>"
                          + table_html(rows, self.look, header=("element", "field", "old", "new")) + more)
         return "".join(parts)
-
-
-def _key_listener(box, handle: Callable[[dict], None]):
-    """An ``ipyevents.Event`` calling ``handle`` with every key pressed in ``box``; the
-    editor's keys do not go into the box's text (their default action is prevented)."""
-    import ipyevents
-
-    event = ipyevents.Event(source=box, watched_events=["keydown"], ignore_modifier_key_events=True,
-                            prevent_default_action=True)
-    event.on_dom_event(handle)
-    return event
 
 
 # -- geometry helpers ------------------------------------------------------------------------

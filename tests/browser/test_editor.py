@@ -143,7 +143,6 @@ def _drive(page, lab, shots: Path) -> None:
         wait_for(lambda: INFO_LINE in editor.output.inner_text(), 30,
                  f"the key i to say the selected edge's pointers after {keys}")
         assert undo_count(editor) == expected, f"{keys} typed fast made {undo_count(editor) - undos} edits"
-        assert editor.keys_box().input_value() == "", "keys went into the box's text"
         click_in_place(editor.output.get_by_role("button", name="select", exact=True))   # clears the line
         wait_for(lambda: INFO_LINE not in editor.output.inner_text(), 30, "the info line to go")
         click_in_place(editor.keys_box())
