@@ -453,9 +453,10 @@ print(bool(check), "-", check.reason)
 print(scripted.can_undo, "edits to undo: nothing changed")
 
 # %% [markdown]
-# Code is how a sequence of edits is written down and repeated. P7 by script: collapse the five shortest edges that may be collapsed,
-# then smooth around the last merged vertex. `editor.held()` draws once at the end
-# instead of after every edit; every edit is still validated and can be undone.
+# Code is how a sequence of edits is written down and repeated. P7 by script: collapse
+# the five shortest edges that may be collapsed, then smooth around the last merged
+# vertex. `scripted.held()` draws once at the end instead of after every edit; every
+# edit is still validated and can be undone.
 
 # %%
 def shortest_collapsible(mesh):
