@@ -50,8 +50,9 @@ Many edits from code draw once inside ``with editor.held(): ...``.
 After every edit the editor runs ``mesh.validate()`` and says "valid" or the broken
 rule, and shows the pointer diff of the edit: every pointer and position it wrote,
 old -> new (the operation's :class:`~halfedge_edu.core.ops.log.OperationLog`). A refused
-operation (``can_flip`` and friends say no) shows its reason, highlights the edge and
-the elements the reason names, and changes nothing. Undo keeps a copy of the mesh
+operation (``can_flip`` and friends say no) shows its reason in vermillion (the colour
+of the refused edge; red is for errors), highlights the edge and the elements the
+reason names, and changes nothing. Undo keeps a copy of the mesh
 before each edit (at most ``undo_limit``), so undoing back to the start gives the very
 same arrays.
 
@@ -80,7 +81,7 @@ from ..algorithms.simplify import simplify
 from ..algorithms.smoothing import smooth
 from ..core.errors import MeshInvariantError
 from ..core.ops import OpCheck, OperationLog, PointerChange, collapse, flip, split
-from .palette import panel_css
+from .palette import VERMILLION, panel_css
 from .widgets import SceneWidget, table_html
 
 KINDS = ("vertex", "edge", "halfedge", "face")
@@ -380,7 +381,7 @@ class MeshEditor(SceneWidget):
 
     def _refuse(self, operation: str, check: OpCheck) -> OpCheck:
         self._last_check, self._last_text = check, f"{operation} of {self._selection_text()}"
-        self._say(f"{operation} refused: {check.reason}", error=True)
+        self._say(f"{operation} refused: {check.reason}", color=VERMILLION)
         self._draw()
         return check
 
@@ -620,7 +621,7 @@ class MeshEditor(SceneWidget):
                  f'{mesh.n_faces} faces: <b style="color:{colour}">{html.escape(self._validity)}</b><br>'
                  f"selected: <b>{html.escape(self._selection_text())}</b>; undo: {len(self._history)}</div>"]
         if self._last_check is not None and not self._last_check:
-            parts.append(f'<div style="font-size:{size};color:#B00020">refused: {html.escape(self._last_text)}: '
+            parts.append(f'<div style="font-size:{size};color:{VERMILLION}">refused: {html.escape(self._last_text)}: '
                          f"{html.escape(self._last_check.reason)}</div>")
         elif self._last_log is not None:
             changes = self._last_log.changes

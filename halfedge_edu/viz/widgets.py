@@ -226,8 +226,9 @@ class SceneWidget:
         ``KEYS``). Returns that button's label, or None for a key the widget does not use."""
         return self.key_area.press(key)
 
-    def _say(self, text: str, *, error: bool = False) -> None:
-        color = "#B00020" if error else "#333333"
+    def _say(self, text: str, *, error: bool = False, color: str | None = None) -> None:
+        """Put ``text`` in the status line: red for an error, else ``color`` (dark grey)."""
+        color = "#B00020" if error else (color or "#333333")
         size = panel_css(self.look)["font"]
         self._status.value = f'<span style="color:{color};font-size:{size}">{html.escape(text)}</span>'
 

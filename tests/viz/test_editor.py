@@ -279,3 +279,13 @@ def test_upsample_past_the_editors_size_is_refused_in_words(editor, monkeypatch)
     check = editor.apply("upsample")
     assert not check and f"would make {4 * editor.mesh.n_faces} faces" in check.reason
     assert editor.can_undo == 0
+
+
+def test_a_refusal_is_shown_in_vermillion_not_in_the_red_of_an_error(editor):
+    editor.select("vertex", 0)
+    editor.apply("collapse")                   # needs an edge: refused, not an error
+    assert "#D55E00" in editor._status.value and "#D55E00" in editor._info.value
+    assert "#B00020" not in editor._status.value + editor._info.value
+    editor._index_box.value = 999
+    editor.buttons["select"].click()           # no such vertex: an error
+    assert "#B00020" in editor._status.value
