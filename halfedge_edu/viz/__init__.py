@@ -24,7 +24,8 @@ The modules, one concern each (as pyvista splits its plotting package), from the
 - ``screen``: unit vectors and placing points a few pixels aside on screen.
 - ``neighbourhood``: rings of vertices and the halfedges between them (what "near" means).
 - ``pictures``: PNG encoding, screenshots, rows and grids of titled pictures.
-- ``renderer``: static or live mode, and the plotters the scenes draw into.
+- ``renderer``: static or live mode, and the plotters the scenes draw into; :func:`show`,
+  how a chapter shows a plotter of its own (menu collapsed, no stray wasm line).
 - ``actors``: a scene's named parts in a plotter, refilled in place.
 - ``arrows``: halfedge arrows, their geometry and the arrow layer that colours them by role.
 - ``geometry``: what a scene knows about its mesh (normals, centre, faces as drawn).
@@ -35,7 +36,7 @@ The modules, one concern each (as pyvista splits its plotting package), from the
 - ``scene``: :class:`HalfedgeScene`, which owns the surface and decides what is redrawn when.
 - ``painted_scene``: a mesh with coloured layers (Loop, QEM, remeshing, Bezier widgets).
 - ``editor``: :class:`MeshEditor`, edit a mesh by hand (select, flip/split/collapse/smooth,
-  drag a vertex, undo, the pointer diff of the last edit).
+  upsample/downsample/remesh, drag a vertex, undo, the pointer diff of the last edit).
 - ``main_thread``: :func:`on_main_thread`, which runs a widget callback (a click, a slider
   move) on the kernel's main thread, where VTK's OpenGL context lives; every button and
   observer of these widgets goes through it, and so should a chapter's own widget.
@@ -67,13 +68,13 @@ from .palette import PRESETS, ROLES
 from .pictures import grid, plotter_png, side_by_side, surface_png
 from .qem_stepper import QEMStepper
 from .remesh_stepper import RemeshStepper
-from .renderer import choose_mode
+from .renderer import choose_mode, show
 from .scene import HalfedgeScene, scene_picture
 from .steppers import CollapseAtlas, CollapseStepper, FlipStepper, SplitStepper
 from .widgets import HalfedgeExplorer, OneRingViewer
 
 __all__ = [
-    "PRESETS", "ROLES", "choose_mode", "HalfedgeScene", "HalfedgeExplorer", "OneRingViewer",
+    "PRESETS", "ROLES", "choose_mode", "show", "HalfedgeScene", "HalfedgeExplorer", "OneRingViewer",
     "FlipStepper", "SplitStepper", "CollapseStepper", "CollapseAtlas", "LoopStepper",
     "QEMStepper", "RemeshStepper", "DeCasteljauViewer", "BezierSurfaceEditor", "side_by_side", "grid",
     "plotter_png", "surface_png", "scene_picture", "MeshEditor", "on_main_thread",

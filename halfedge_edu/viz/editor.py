@@ -5,6 +5,7 @@
     editor                          # the view, index controls, buttons, keys, the last diff
     editor.select("edge", 4)        # what a click in the view or the index boxes does
     editor.apply("flip")            # the same as the "flip" button or the key f
+    editor.apply("upsample")        # the whole mesh: the key u, as in CMU's MeshEdit
     editor.move_vertex(3, (0, 0, 1.5))
     editor.undo()
     print(editor.describe())        # mesh counts, "valid", selection, the pointer diff
@@ -14,22 +15,34 @@ view, **right-click** the mesh: the element of the chosen kind nearest to the cl
 point is selected (:meth:`MeshEditor.pick_at`; left-drag turns the view as usual). The
 static picture has nothing to click, so there the index boxes are the way.
 
-Editing, by button, by key or from code (:meth:`MeshEditor.apply`):
+Editing, by button, by key or from code (:meth:`MeshEditor.apply`). The keys are those
+of CMU 15-462's MeshEdit viewer (f, s, c on the selection; u, d, r on the whole mesh;
+i for information), with l for a Laplacian step and z for undo:
 
-====  =========  ===============================================================
-key   operation  what it does to the selection
-====  =========  ===============================================================
-f     flip       flips the selected edge (or the edge of the selected halfedge)
-s     split      splits it at its midpoint; the new vertex is selected
-c     collapse   collapses it at its midpoint (a halfedge: its origin goes); the
-                 surviving vertex is selected
-l     smooth     one uniform Laplacian step (``hx.smooth``) for the selection's
-                 vertices and their neighbours; boundary vertices stay put
-u     undo       back to the mesh before the last edit
-====  =========  ===============================================================
+====  ==========  ==============================================================
+key   operation   what it does
+====  ==========  ==============================================================
+f     flip        flips the selected edge (or the edge of the selected halfedge)
+s     split       splits it at its midpoint; the new vertex is selected
+c     collapse    collapses it at its midpoint (a halfedge: its origin goes); the
+                  surviving vertex is selected
+l     smooth      one uniform Laplacian step (``hx.smooth``) for the selection's
+                  vertices and their neighbours; boundary vertices stay put
+u     upsample    Loop subdivision of the whole mesh (``hx.loop_subdivide``)
+d     downsample  quadric simplification to a quarter of the faces (``hx.simplify``)
+r     remesh      isotropic remeshing at the mean edge length (``hx.remesh``)
+i     info        says the selected element's pointers; changes nothing
+z     undo        back to the mesh before the last edit
+====  ==========  ==============================================================
+
+A whole-mesh edit numbers the mesh anew, so its pointer diff is not shown; the selection
+keeps its kind and index if the new mesh has that element, else goes to element 0.
 
 Keys are typed into the panel's "keys" box (a notebook page keeps the keyboard for
-itself, so the box is where the editor listens). A vertex is moved by dragging the
+itself, so the box is where the editor listens). Each key typed there is one edit,
+however fast the keys come: the kernel never writes the box, and each time its text
+arrives the characters added after what it had seen are the keys (deleting does
+nothing). A vertex is moved by dragging the
 ball on the selected vertex in the live view (a VTK sphere widget; the vertex moves
 when the mouse is let go), with the x, y, z sliders, or :meth:`MeshEditor.move_vertex`.
 Many edits from code draw once inside ``with editor.held(): ...``.
@@ -37,8 +50,9 @@ Many edits from code draw once inside ``with editor.held(): ...``.
 After every edit the editor runs ``mesh.validate()`` and says "valid" or the broken
 rule, and shows the pointer diff of the edit: every pointer and position it wrote,
 old -> new (the operation's :class:`~halfedge_edu.core.ops.log.OperationLog`). A refused
-operation (``can_flip`` and friends say no) shows its reason, highlights the edge and
-the elements the reason names, and changes nothing. Undo keeps a copy of the mesh
+operation (``can_flip`` and friends say no) shows its reason in vermillion (the colour
+of the refused edge; red is for errors), highlights the edge and the elements the
+reason names, and changes nothing. Undo keeps a copy of the mesh
 before each edit (at most ``undo_limit``), so undoing back to the start gives the very
 same arrays.
 
@@ -54,24 +68,34 @@ from __future__ import annotations
 
 import html
 import threading
+import warnings
 from collections.abc import Callable
 from contextlib import contextmanager
 
 import numpy as np
 
 from .main_thread import call_on_main_thread
+from ..algorithms.loop import loop_subdivide
+from ..algorithms.remesh import remesh
+from ..algorithms.simplify import simplify
 from ..algorithms.smoothing import smooth
 from ..core.errors import MeshInvariantError
 from ..core.ops import OpCheck, OperationLog, PointerChange, collapse, flip, split
-from .palette import panel_css
+from .palette import VERMILLION, panel_css
 from .widgets import SceneWidget, table_html
 
 KINDS = ("vertex", "edge", "halfedge", "face")
-OPERATIONS = ("flip", "split", "collapse", "smooth")
-#: Key -> what it does (the CMU viewer's f, s, c; l for Laplacian smoothing; u for undo).
-KEYS = {"f": "flip", "s": "split", "c": "collapse", "l": "smooth", "u": "undo"}
+#: Edits of the selection, then edits of the whole mesh (each makes a new mesh).
+OPERATIONS = ("flip", "split", "collapse", "smooth", "upsample", "downsample", "remesh")
+WHOLE_MESH = ("upsample", "downsample", "remesh")
+#: Key -> what it does: CMU MeshEdit's f, s, c, u, d, r, i; l for Laplacian smoothing; z for undo.
+KEYS = {"f": "flip", "s": "split", "c": "collapse", "l": "smooth",
+        "u": "upsample", "d": "downsample", "r": "remesh", "i": "info", "z": "undo"}
 #: The ball on the selected vertex that a drag in the live view moves (reddish purple).
 HANDLE_COLOUR = "#CC79A7"
+#: The most faces an upsample may make: each u multiplies them by 4, and a student who
+#: keeps pressing it would otherwise wait minutes for a mesh the view cannot turn.
+MAX_UPSAMPLED_FACES = 20_000
 #: Diff rows shown in the panel (``describe()`` lists them all).
 PANEL_DIFF_ROWS = 40
 
@@ -185,7 +209,8 @@ class MeshEditor(SceneWidget):
         return self.select(kind, _nearest(self.mesh, kind, point))
 
     def apply(self, operation: str) -> OpCheck:
-        """Apply ``"flip"``, ``"split"``, ``"collapse"`` or ``"smooth"`` to the selection.
+        """Apply ``"flip"``, ``"split"``, ``"collapse"`` or ``"smooth"`` to the selection,
+        or ``"upsample"``, ``"downsample"`` or ``"remesh"`` to the whole mesh.
 
         Returns the check: truthy when the edit was made, falsy (with ``.reason``) when it
         was refused, in which case nothing changed.
@@ -197,6 +222,8 @@ class MeshEditor(SceneWidget):
             raise ValueError(f"unknown operation {operation!r}: use one of {', '.join(OPERATIONS)}")
         if operation == "smooth":
             return self._smooth()
+        if operation in WHOLE_MESH:
+            return self._whole_mesh(operation)
         return self._edge_operation(operation)
 
     def move_vertex(self, vertex: int, position) -> OpCheck:
@@ -221,7 +248,8 @@ class MeshEditor(SceneWidget):
         return self._commit(log, edit)
 
     def key(self, key: str) -> OpCheck | None:
-        """What pressing ``key`` does (see :data:`KEYS`); returns the check, None for undo.
+        """What pressing ``key`` does (see :data:`KEYS`); returns the check, None for
+        undo and info.
 
         Raises:
             ValueError: a key the editor does not use.
@@ -232,7 +260,16 @@ class MeshEditor(SceneWidget):
         if KEYS[name] == "undo":
             self.undo()
             return None
+        if KEYS[name] == "info":
+            self.info()
+            return None
         return self.apply(KEYS[name])
+
+    def info(self) -> str:
+        """The selected element and its pointers in one line (also shown in the panel)."""
+        text = _pointers_text(self.mesh, *self._selection)
+        self._say(text)
+        return text
 
     def undo(self) -> bool:
         """Go back to the mesh and selection before the last edit; False if there is none."""
@@ -297,6 +334,34 @@ class MeshEditor(SceneWidget):
         log.notes.append(f"one uniform Laplacian step for vertices {', '.join(map(str, region))}")
         return self._commit(log, log.replay, OpCheck.ok(f"smoothed {len(log.changes)} of {len(region)} vertices"))
 
+    def _whole_mesh(self, operation: str) -> OpCheck:
+        """Upsample, downsample or remesh: a new mesh, kept whole for undo."""
+        mesh = self.mesh
+        if operation == "upsample" and 4 * mesh.n_faces > MAX_UPSAMPLED_FACES:
+            return self._refuse(operation, OpCheck.refuse(
+                "size", f"it would make {4 * mesh.n_faces} faces, more than the editor's {MAX_UPSAMPLED_FACES}"))
+        run = {"upsample": lambda: loop_subdivide(mesh),
+               "downsample": lambda: simplify(mesh, max(mesh.n_faces // 4, 4)),
+               "remesh": lambda: remesh(mesh)}[operation]
+        try:
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                new = run()
+        except ValueError as error:
+            return self._refuse(operation, OpCheck.refuse("mesh", str(error)))
+        self._history.append((mesh, self._selection))
+        del self._history[:-self._undo_limit]
+        kind, index = self._selection
+        self._mesh = new
+        self._selection = (kind, index if _is_live(new, kind, index) else _first_live(new, kind))
+        self._last_log, self._last_check = None, None
+        self._last_text = f"{operation}: {mesh.n_faces} -> {new.n_faces} faces"
+        self._validity = self._validity_of(new)
+        notes = "".join(f"; {w.message}" for w in caught)
+        self._say(f"{self._last_text}; {self._validity}{notes}", error=self._validity != "valid")
+        self._draw(rebuild=True)
+        return OpCheck.ok(self._last_text)
+
     def _commit(self, log: OperationLog, edit: Callable, check: OpCheck | None = None) -> OpCheck:
         """Keep a copy for undo, run ``edit(mesh)`` (which fills ``log`` and may return the
         new selection), validate, redraw."""
@@ -316,7 +381,7 @@ class MeshEditor(SceneWidget):
 
     def _refuse(self, operation: str, check: OpCheck) -> OpCheck:
         self._last_check, self._last_text = check, f"{operation} of {self._selection_text()}"
-        self._say(f"{operation} refused: {check.reason}", error=True)
+        self._say(f"{operation} refused: {check.reason}", color=VERMILLION)
         self._draw()
         return check
 
@@ -437,31 +502,40 @@ class MeshEditor(SceneWidget):
         self._kind_box.observe(lambda change: self._show_hint(change["new"]), names="value")
         self._show_hint(kind)
         self.buttons = {}
-        choose = widgets.HBox([self._kind_box, self._index_box,
+        choose = widgets.HBox([self._kind_box, self._index_box.widget,
                                self._later_button("select", "select this element",
-                                                  lambda: self.select(self._kind_box.value, self._index_box.value))])
-        edits = widgets.HBox([self._later_button(name, f"key {key}: {name} the selection",
-                                                 lambda name=name: self.apply(name))
-                              for key, name in KEYS.items() if name != "undo"])
-        self._keys = widgets.Text(value="", placeholder="click, type f s c l u",
+                                                  lambda: self.select(self._kind_box.value, self._index_box.value))],
+                              layout=widgets.Layout(flex_flow="row wrap"))
+        key_of = {name: key for key, name in KEYS.items()}
+        edits, whole = (widgets.HBox([self._later_button(name, f"key {key_of[name]}: {name} {what}",
+                                                         lambda name=name: self.apply(name))
+                                      for name in names], layout=widgets.Layout(flex_flow="row wrap"))
+                        for names, what in ((OPERATIONS[:4], "the selection"), (WHOLE_MESH, "the whole mesh")))
+        whole.children += (self._later_button("info", "key i: the selected element's pointers", self.info),)
+        for button in whole.children[:-1]:                   # "downsample" is a longer word
+            button.layout.width = f"calc({css['button_width']} * 1.4)"
+        self._keys = widgets.Text(value="", placeholder="click, type " + " ".join(KEYS),
                                   description="keys", continuous_update=True,
-                                  layout=widgets.Layout(width=f"calc({css['button_width']} * 2.2)"))
+                                  layout=widgets.Layout(width=f"calc({css['button_width']} * 2.6)"))
         self._keys.style.description_width = "auto"
+        self._keys_seen = ""
         self._keys.observe(self._typed, names="value")
-        undo = widgets.HBox([self._later_button("undo", "key u: back to before the last edit", self.undo), self._keys])
+        undo = widgets.HBox([self._later_button("undo", "key z: back to before the last edit", self.undo), self._keys],
+                            layout=widgets.Layout(flex_flow="row wrap"))
         self._sliders = [widgets.FloatSlider(description=axis, continuous_update=False, readout_format=".3f",
                                              layout=widgets.Layout(width=f"calc({css['button_width']} * 3.5)"))
                          for axis in "xyz"]
         for slider in self._sliders:
             slider.observe(self._slid, names="value")
         self._sync_controls()
-        return [choose, self._hint, edits, undo, widgets.VBox(self._sliders)]
+        return [choose, self._hint, edits, whole, undo, widgets.VBox(self._sliders)]
 
     def _show_hint(self, kind: str) -> None:
         """Say how to select a ``kind`` here (only a widget value: safe on any thread)."""
         size = panel_css(self.look)["font"]
-        how = (f"right-click the view to pick a {kind}, or type its index" if self.mode == "live"
-               else f"type a {kind} index and press select")
+        a = "an" if kind == "edge" else "a"
+        how = (f"right-click the view to pick {a} {kind}, or type its index" if self.mode == "live"
+               else f"type {a} {kind} index and press select")
         self._hint.value = f'<span style="font-size:{size};color:#555">{html.escape(how)}</span>'
 
 
@@ -485,12 +559,22 @@ class MeshEditor(SceneWidget):
             self._say(str(error), error=True)
 
     def _typed(self, change) -> None:
-        text = change["new"]
-        if not text:
-            return
-        self._keys.value = ""
-        for key in text:
-            call_on_main_thread(self._guarded, self.key, key)
+        """The keys box's text arrived: the characters after the part it shares with the
+        text seen last are the keys typed since, each one edit.
+
+        Only the browser writes the box. (Clearing it from here raced the next key: the
+        browser sent "ll" before the "" arrived, and three l made four edits.) A fast
+        typist's keys may come several at once; deleting or a key the editor does not
+        use does nothing.
+        """
+        text, seen = change["new"], self._keys_seen
+        self._keys_seen = text
+        shared = 0
+        while shared < min(len(text), len(seen)) and text[shared] == seen[shared]:
+            shared += 1
+        for key in text[shared:].lower():
+            if key in KEYS:
+                call_on_main_thread(self._guarded, self.key, key)
 
     def _slid(self, change) -> None:
         if self._syncing or self._selection[0] != "vertex":
@@ -537,7 +621,7 @@ class MeshEditor(SceneWidget):
                  f'{mesh.n_faces} faces: <b style="color:{colour}">{html.escape(self._validity)}</b><br>'
                  f"selected: <b>{html.escape(self._selection_text())}</b>; undo: {len(self._history)}</div>"]
         if self._last_check is not None and not self._last_check:
-            parts.append(f'<div style="font-size:{size};color:#B00020">refused: {html.escape(self._last_text)}: '
+            parts.append(f'<div style="font-size:{size};color:{VERMILLION}">refused: {html.escape(self._last_text)}: '
                          f"{html.escape(self._last_check.reason)}</div>")
         elif self._last_log is not None:
             changes = self._last_log.changes
@@ -562,6 +646,35 @@ def _shown(value) -> str:
     if isinstance(value, tuple):
         return "(" + ", ".join(f"{c:.4g}" for c in value) + ")"
     return str(value)
+
+
+def _first_live(mesh, kind: str) -> int:
+    deleted = {"vertex": mesh.vertex_deleted, "face": mesh.face_deleted, "edge": mesh.edge_deleted,
+               "halfedge": mesh.halfedge_deleted}[kind]
+    return int(np.flatnonzero(~deleted)[0])
+
+
+def _pointers_text(mesh, kind: str, index: int) -> str:
+    """What the key i says: the element and the pointers stored for it."""
+    if kind == "vertex":
+        v = mesh.vertex(index)
+        h = v.halfedge
+        return (f"vertex {index}: halfedge {h.index if h is not None else None}, degree {v.degree}, "
+                f"{'on the boundary' if v.is_boundary else 'interior'}")
+    if kind == "edge":
+        e = mesh.edge(index)
+        a, b = e.vertices
+        faces = ", ".join(str(f.index) for f in e.faces()) or "none"
+        return (f"edge {index}: halfedges {2 * index} and {2 * index + 1}, vertices {a.index} - {b.index}, "
+                f"faces {faces}, length {e.length:.4g}")
+    if kind == "halfedge":
+        h = mesh.halfedge(index)
+        face = h.face.index if h.face is not None else "none (boundary)"
+        return (f"halfedge {index}: vertex {h.vertex.index}, tip {h.tip.index}, next {h.next.index}, "
+                f"prev {h.prev.index}, twin {h.twin.index}, face {face}, edge {h.edge.index}")
+    f = mesh.face(index)
+    return (f"face {index}: halfedge {f.halfedge.index}, vertices {', '.join(str(v.index) for v in f.vertices())}, "
+            f"area {f.area:.4g}")
 
 
 def _is_live(mesh, kind: str, index: int) -> bool:

@@ -34,6 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..algorithms.loop import LoopStep, loop_positions, loop_subdivide_by_operations
+from ..algorithms.normals import face_normals
 from .painted_scene import Layer, PaintedScene, legend_html
 from .palette import BLACK, BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, VERMILLION, panel_css
 from .widgets import StepperWidget
@@ -171,6 +172,23 @@ class LoopStepper(StepperWidget):
             "between_new": live[~a_old & ~b_old],
         }
 
+    def on_far_side(self, step: int | None = None) -> bool:
+        """Whether the element of ``step`` (the current one by default) is out of sight:
+        every face around the vertex a split inserted, or beside the edge a flip turned,
+        faces away from the camera (exact on a convex mesh such as the octahedron)."""
+        record = self.records[self._step if step is None else int(step)]
+        mesh = record.mesh
+        if record.phase == "split":
+            faces = [f.index for f in mesh.vertex(record.element).faces()]
+        elif record.phase == "flip":
+            faces = [f.index for f in mesh.edge(record.element).faces()]
+        else:
+            return False
+        corners = mesh.positions[mesh.face_vertices()[faces]]               # (k, 3, 3)
+        eye = np.asarray(self.scene.plotter.camera.position, dtype=float)
+        toward_eye = np.einsum("ij,ij->i", face_normals(mesh)[faces], eye - corners.mean(axis=1))
+        return bool((toward_eye <= 0).all())
+
     def describe(self) -> str:
         """The current step in words (deterministic, for nbval and for reading)."""
         before = self.before
@@ -302,7 +320,16 @@ class LoopStepper(StepperWidget):
                 f"<i>{html.escape(self._phase_text(record))}</i></div>"
                 f'<div style="font-size:{size};max-width:34em;margin-bottom:6px">'
                 f"{html.escape(self._now_text(record))}</div>"
+                f"{self._far_side_html(size, record.phase)}"
                 f'<table style="border-collapse:collapse;font-size:{size}">{header}{table}</table>')
+
+    def _far_side_html(self, size: str, phase: str) -> str:
+        """A line saying the step happened out of sight (empty when it is in sight)."""
+        if not self.on_far_side():
+            return ""
+        turn = "drag the view round to see it" if self.mode == "live" else "out of sight in this picture"
+        return (f'<div style="font-size:{size};margin-bottom:6px;color:{CURRENT}"><b>this {phase} is on the '
+                f"far side of the mesh</b>: {turn}</div>")
 
     def _refresh_panel(self) -> None:
         self._info.value = self._panel_html()

@@ -17,8 +17,11 @@ and figure builds set it).
 
 from __future__ import annotations
 
+import contextlib
 import importlib.util
+import io
 import os
+import sys
 
 from halfedge_edu import live_backend
 
@@ -102,9 +105,10 @@ class View:
             # A collapsed menu is one small button in the corner; the full toolbar would
             # cover the top ~60 px of the view, where the highlighted halfedge may be.
             trame_mode = live_backend.trame_mode()
-            self.widget = scene.plotter.show(
-                jupyter_backend="trame", return_viewer=True, jupyter_kwargs={"collapse_menu": True, "mode": trame_mode}
-            )
+            with without_wasm_notice():
+                self.widget = scene.plotter.show(
+                    jupyter_backend="trame", return_viewer=True,
+                    jupyter_kwargs={"collapse_menu": True, "mode": trame_mode})
             if trame_mode == "client":
                 # The browser fetches the scene's arrays after it loads the view, which
                 # may be long after the last step: keep them (see live_backend).
@@ -153,3 +157,50 @@ def prepare_plotter(look, window_size: tuple[int, int], plotter=None):
     plotter.remove_all_lights()
     plotter.add_light(pv.Light(light_type="headlight"))
     return plotter
+
+
+def show(plotter):
+    """Show a chapter's own ``plotter`` in its cell, as the widgets show theirs.
+
+    In a live Lab: PyVista's menu collapsed to one button in the corner (the full toolbar
+    covers the top of the plot, where titles are), and without the line trame-vtklocal
+    prints when it starts. Elsewhere (PNG output, nbval) just ``plotter.show()``.
+    """
+    if not live_available():
+        return plotter.show()
+    with without_wasm_notice():
+        return plotter.show(jupyter_kwargs={"collapse_menu": True, "mode": live_backend.trame_mode()})
+
+
+@contextlib.contextmanager
+def without_wasm_notice():
+    """Leave out the line "Using wasm_dir: <folder>" that trame-vtklocal prints each time a
+    live view starts with ``VTK_WASM_DIR_OVERRIDE`` set (as ``make lab`` sets it, so that
+    nothing is downloaded): above a chapter's first widget it reads like an error.
+    Everything else printed meanwhile goes through."""
+    stream = _WithoutWasmNotice(sys.stdout)
+    with contextlib.redirect_stdout(stream):
+        yield
+
+
+class _WithoutWasmNotice(io.TextIOBase):
+    """``stream`` without the lines that start "Using wasm_dir: " (``print`` writes the
+    text and its newline in two calls)."""
+
+    NOTICE = "Using wasm_dir: "
+
+    def __init__(self, stream):
+        self._stream = stream
+        self._dropping = False
+
+    def write(self, text: str) -> int:
+        if text.startswith(self.NOTICE):
+            self._dropping = not text.endswith("\n")
+            return len(text)
+        if self._dropping and text.startswith("\n"):
+            self._dropping = False
+            text = text[1:]
+        return self._stream.write(text) if text else 0
+
+    def flush(self) -> None:
+        self._stream.flush()

@@ -632,7 +632,7 @@ class CollapseAtlas:
             widgets.VBox([widgets.HTML(f'<b style="font-size:{css["font"]}">{html.escape(title)}</b>'),
                           stepper.view.widget, caption])
             for title, stepper, caption in zip(self.titles, self.steppers, self._captions)
-        ] + [self._legend])
+        ] + [self._legend], layout=widgets.Layout(flex_flow="row wrap"))     # narrow: the legend goes below
         refusals = widgets.HBox([
             widgets.VBox([widgets.HTML(f'<b style="font-size:{css["font"]}">{html.escape(title)}</b>'),
                           stepper.view.widget,
@@ -641,7 +641,7 @@ class CollapseAtlas:
                                        f"{html.escape(stepper.check.reason)}</div>")],
                          layout=widgets.Layout(margin="0 12px 0 0"))
             for title, stepper in zip(self.refused_titles, self.refused)
-        ])
+        ], layout=widgets.Layout(flex_flow="row wrap"))
         heading = f'<b style="font-size:calc({css["font"]} * 1.25)">{html.escape(self.title)}</b>'
         self.key_area = KeyArea([self._status], self.buttons, self.KEYS, self.look)
         self.widget = widgets.VBox([
@@ -698,13 +698,18 @@ class CollapseAtlas:
 
     def go(self, target) -> int:
         """Show every case at the end of a phase: "phase" (next), "back", "start", "end", or a number."""
-        last = len(self.phases)
+        last, move = len(self.phases), None
         if isinstance(target, str):
             moves = {"phase": self._phase + 1, "next": self._phase + 1, "step": self._phase + 1,
                      "back": self._phase - 1, "start": 0, "end": last}
             if target not in moves:
                 raise ValueError(f"unknown move {target!r}: use {', '.join(repr(m) for m in moves)} or a phase number")
-            target = min(max(moves[target], 0), last)
+            move, target = target, min(max(moves[target], 0), last)
+            if target == self._phase:
+                self._refresh(f"{move}: phase {self._phase} of {last} is the "
+                              + ("last one; ← back or Home to go through it again" if target == last
+                                 else "start; → or space goes forward"))
+                return self._phase
         target = int(target)
         if not 0 <= target <= last:
             raise IndexError(f"there is no phase {target}: phases run from 0 to {last}")
@@ -738,10 +743,12 @@ class CollapseAtlas:
             return "gather the elements"
         return self.phases[self._phase - 1]
 
-    def _refresh(self) -> None:
+    def _refresh(self, note: str = "") -> None:
+        """The phase in words, and ``note`` (why a move did not move) below it."""
         size = panel_css(self.look)["font"]
         self._status.value = (f'<div style="font-size:{size}">phase {self._phase} of {len(self.phases)}: '
-                              f"<i>{html.escape(self._phase_title())}</i></div>")
+                              f"<i>{html.escape(self._phase_title())}</i></div>"
+                              + (f'<div style="font-size:{size};color:#555">{html.escape(note)}</div>' if note else ""))
         self._legend.value = legend_html(self.legend_entries(), self.look)
         for caption, stepper in zip(self._captions, self.steppers):
             state = stepper.state

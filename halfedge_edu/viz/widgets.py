@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import base64
 import html
+import re
 from collections.abc import Callable
 
 from .keys import KeyArea
@@ -97,6 +98,45 @@ def table_html(rows, look: Preset, *, header=None, mark_row: int | None = None) 
     return "".join(lines)
 
 
+#: The width the side panel asks for beside the view: with the default 600-pixel view it
+#: fits a 1366-pixel laptop screen with JupyterLab's file browser open (946 pixels of
+#: output), so the pointer table and the view are seen together there.
+PANEL_BASIS = "300px"
+
+
+class IndexBox:
+    """A box to type an element's index in: ``box.widget`` goes into the panel,
+    ``box.value`` is the index typed (an int; setting it shows that index).
+
+    A text box, not an ``ipywidgets.IntText``: the browser reads what is typed into an
+    IntText as far as it is a whole number, so "1e3" went to index 1 without a word.
+    Here the kernel reads the whole text, and anything but a whole number is refused in
+    words when the index is asked for.
+    """
+
+    def __init__(self, value: int, label: str, look: Preset):
+        import ipywidgets as widgets
+
+        css = panel_css(look)
+        self.label = label
+        self.widget = widgets.Text(value=str(int(value)), description=label,
+                                   layout=widgets.Layout(width=f"calc({css['button_width']} * 1.6)",
+                                                         height=css["button_height"]))
+        self.widget.style.description_width = "auto"
+
+    @property
+    def value(self) -> int:
+        """The index typed. Raises ValueError (in words) for anything but a whole number."""
+        text = self.widget.value.strip()
+        if not re.fullmatch(r"[+-]?\d+", text):
+            raise ValueError(f"{text!r} is not an index: type a whole number, such as 12")
+        return int(text)
+
+    @value.setter
+    def value(self, index: int) -> None:
+        self.widget.value = str(int(index))
+
+
 class SceneWidget:
     """What every widget shares: a scene, its view, a side panel, text and PNG output.
 
@@ -131,9 +171,11 @@ class SceneWidget:
         self.key_area = KeyArea([self._status, self._info, self._legend], getattr(self, "buttons", {}),
                                 self.KEYS, self.look)
         side = widgets.VBox([heading, *controls, self.key_area.widget],
-                            layout=widgets.Layout(padding="0 0 0 16px", flex="1 1 auto"))
-        # Where the notebook is too narrow for both, the panel goes below the view instead
-        # of being cut off on the right.
+                            layout=widgets.Layout(padding="0 0 0 16px", flex=f"1 1 {PANEL_BASIS}",
+                                                  min_width=PANEL_BASIS))
+        # The panel asks for PANEL_BASIS beside the view and takes what is left; its rows
+        # wrap. Only where even that is not left does it go below the view (rather than
+        # being cut off on the right).
         self.widget = widgets.HBox([self.view.widget, side],
                                    layout=widgets.Layout(align_items="flex-start", flex_flow="row wrap"))
         self._refresh_panel()
@@ -176,23 +218,17 @@ class SceneWidget:
         self.buttons = {button.description: button for button in row.children}
         return [row]
 
-    def _number_box(self, value: int, label: str):
-        import ipywidgets as widgets
-
-        css = panel_css(self.look)
-        box = widgets.IntText(value=int(value), description=label,
-                              layout=widgets.Layout(width=f"calc({css['button_width']} * 1.6)",
-                                                    height=css["button_height"]))
-        box.style.description_width = "auto"
-        return box
+    def _number_box(self, value: int, label: str) -> "IndexBox":
+        return IndexBox(value, label, self.look)
 
     def press(self, key: str) -> str | None:
         """What pressing ``key`` does in the Lab: click the button it is bound to (see
         ``KEYS``). Returns that button's label, or None for a key the widget does not use."""
         return self.key_area.press(key)
 
-    def _say(self, text: str, *, error: bool = False) -> None:
-        color = "#B00020" if error else "#333333"
+    def _say(self, text: str, *, error: bool = False, color: str | None = None) -> None:
+        """Put ``text`` in the status line: red for an error, else ``color`` (dark grey)."""
+        color = "#B00020" if error else (color or "#333333")
         size = panel_css(self.look)["font"]
         self._status.value = f'<span style="color:{color};font-size:{size}">{html.escape(text)}</span>'
 
@@ -273,16 +309,16 @@ class StepperWidget(SceneWidget):
 
     def go(self, target) -> int:
         """Go to a step (a number or a named move; see the class). Returns the step shown."""
-        resolved = self._resolve(target)
+        resolved, move = self._resolve(target), None
         if resolved is not None:
             target = resolved
         elif isinstance(target, str):
             moves = self._named_moves()
-            name = target.strip().lower()
-            if name not in moves:
+            move = target.strip().lower()
+            if move not in moves:
                 raise ValueError(f"unknown move {target!r}: use {self._moves_help} or one of "
                                  f"{', '.join(repr(m) for m in moves)}")
-            target = moves[name]
+            target = moves[move]
         target = int(target)
         if not 0 <= target <= self.n_steps:
             raise IndexError(f"there is no step {target}: steps run from 0 to {self.n_steps}")
@@ -297,16 +333,25 @@ class StepperWidget(SceneWidget):
             self._show_step(shown)
             self._changed()
             raise
-        self._say("")
+        self._say(self._why_not_moved(move) if move is not None and target == shown else "")
         return self._step
 
+    def _why_not_moved(self, move: str) -> str:
+        """What a named move that leaves the step where it is says (at the end, at the start)."""
+        if self._step == self.n_steps and move not in ("back", "start", "phase back"):
+            return (f"{move}: step {self._step} of {self.n_steps} is the last one; "
+                    f"← back or Home to go through it again")
+        if self._step == 0:
+            return f"{move}: this is the start (step 0 of {self.n_steps}); → or space steps forward"
+        return f"{move}: already at step {self._step} of {self.n_steps}"
+
     def step(self) -> int:
-        """One step forward (stays at the end)."""
-        return self.go(min(self._step + 1, self.n_steps))
+        """One step forward (stays at the end, and says so)."""
+        return self.go("step")
 
     def back(self) -> int:
-        """One step back (stays at the start)."""
-        return self.go(max(self._step - 1, 0))
+        """One step back (stays at the start, and says so)."""
+        return self.go("back")
 
 
 class HalfedgeExplorer(SceneWidget):
@@ -391,6 +436,8 @@ class HalfedgeExplorer(SceneWidget):
             self._trail.pop()
             self._say("")
             self._changed()
+        else:
+            self._say(f"back: halfedge {self.halfedge.index} is where the walk started; nothing to go back to")
         return self.halfedge
 
     def _controls(self) -> list:
@@ -401,12 +448,12 @@ class HalfedgeExplorer(SceneWidget):
             self._button("prev", "h = h.prev", lambda: self.go("prev")),
             self._button("next", "h = h.next", lambda: self.go("next")),
             self._button("twin", "h = h.twin", lambda: self.go("twin")),
-        ])
+        ], layout=widgets.Layout(flex_flow="row wrap"))
         jump = widgets.HBox([
-            self._index_box,
+            self._index_box.widget,
             self._button("go to", "jump to this halfedge index", lambda: self.pick(self._index_box.value)),
             self._button("back", "undo the last move", self.back),
-        ])
+        ], layout=widgets.Layout(flex_flow="row wrap"))
         self.buttons = {b.description: b for row in (moves, jump) for b in row.children
                         if isinstance(b, widgets.Button)}
         return [moves, jump]
@@ -531,11 +578,11 @@ class OneRingViewer(SceneWidget):
             self._button("cw", "h = h.twin.next (clockwise)", lambda: self.go("cw")),
             self._button("ccw", "h = h.prev.twin (counter-clockwise)", lambda: self.go("ccw")),
             self._button("to tip", "move the centre to h.tip", lambda: self.go("tip")),
-        ])
+        ], layout=widgets.Layout(flex_flow="row wrap"))
         jump = widgets.HBox([
-            self._index_box,
+            self._index_box.widget,
             self._button("go to", "centre on this vertex", lambda: self.pick(self._index_box.value)),
-        ])
+        ], layout=widgets.Layout(flex_flow="row wrap"))
         self.buttons = {b.description: b for row in (turns, jump) for b in row.children
                         if isinstance(b, widgets.Button)}
         return [turns, jump]

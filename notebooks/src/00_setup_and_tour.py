@@ -32,7 +32,7 @@ for name in ["numpy", "scipy", "trimesh", "pyvista", "ipywidgets", "halfedge_edu
 import pyvista as pv
 
 import halfedge_edu as hx
-from halfedge_edu.viz import OneRingViewer, choose_mode
+from halfedge_edu.viz import OneRingViewer, choose_mode, show
 
 # %% [markdown]
 # ## The bunny on screen
@@ -48,7 +48,7 @@ plotter = pv.Plotter(window_size=(600, 450))
 plotter.add_mesh(bunny.to_pyvista(), color="#E9E6DF", smooth_shading=True)
 plotter.camera_position = "xy"
 plotter.camera.zoom(1.3)
-plotter.show()
+show(plotter)
 
 # %% [markdown]
 # Widgets (the panels with buttons further down) come in two kinds. In JupyterLab with

@@ -50,6 +50,8 @@ f 4 1 5
 """
 
 # %%
+from halfedge_edu.viz import show
+
 pyramid = hx.read_obj(io.StringIO(pyramid_obj))
 
 plotter = pv.Plotter(window_size=(600, 400))
@@ -58,7 +60,7 @@ plotter.add_mesh(pv.PolyData.from_regular_faces(pyramid.vertices, pyramid.faces)
 plotter.add_point_labels(pyramid.vertices, [f"v {n}" for n in range(1, 6)], font_size=20, always_visible=True,
                          point_size=14, point_color="#D55E00", shape_color="#333333", text_color="white")
 plotter.camera_position = [(2.2, -2.3, 1.5), (0.5, 0.5, 0.3), (0, 0, 1)]
-plotter.show()
+show(plotter)
 
 # %% [markdown]
 # The convention in one sentence: **an OBJ file lists the vertices as `v x y z` lines,
@@ -122,7 +124,7 @@ plotter.add_mesh(pv.PolyData.from_regular_faces(hexagon.vertices, hexagon.faces)
 plotter.add_point_labels(hexagon.vertices, [str(n) for n in range(1, 7)], font_size=20,
                          point_size=12, shape_color="#333333", text_color="white")
 plotter.view_xy()
-plotter.show()
+show(plotter)
 
 # %% [markdown]
 # A fan is only a good cut when the polygon is convex (every fan triangle then lies

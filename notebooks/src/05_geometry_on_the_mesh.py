@@ -20,6 +20,7 @@ import pyvista as pv
 
 import halfedge_edu as hx
 from halfedge_edu import face_normals, smooth, vertex_normals
+from halfedge_edu.viz import show
 
 spot = hx.sample("spot")
 V, F = spot.to_arrays()
@@ -35,7 +36,7 @@ for column, shading in enumerate(["flat", "smooth"]):
     picture.add_text(f"{shading} shading", font_size=11)
 picture.link_views()
 picture.camera_position = [(2.6, 0.9, -2.2), (0.0, 0.1, 0.1), (0.0, 1.0, 0.0)]
-picture.show()
+show(picture)
 
 # %% [markdown]
 # The same 5,856 triangles twice. On the left every triangle is lit as one flat piece;
@@ -151,7 +152,7 @@ picture.add_point_labels(P[[0, 1]], ["vertex 0", "vertex 1"], font_size=14, text
                          shape_color="#FFFFFF", shape_opacity=0.8, show_points=False, always_visible=True)
 picture.camera_position = [(1.6, -3.2, 2.0), (0.5, 0.5, 0.3), (0.0, 0.0, 1.0)]
 picture.camera.zoom(0.85)
-picture.show()
+show(picture)
 
 # %% [markdown]
 # Look at the two labelled corners. Vertex 0 touches three triangles, one from each of
@@ -319,7 +320,7 @@ for column, n in enumerate(steps):
     print(f"{n:3d} iterations: volume {volume(smoothed):.4f}")
 picture.link_views()
 picture.camera_position = [(2.6, 0.9, -2.2), (0.0, 0.1, 0.1), (0.0, 1.0, 0.0)]
-picture.show()
+show(picture)
 
 # %% [markdown]
 # After 5 iterations Spot has lost its facets but kept its shape. After 25 the legs
@@ -399,14 +400,16 @@ viewer = SmoothingViewer(noisy)
 viewer
 
 # %% [markdown]
-# The panel can also be driven from code, which is how this notebook checks itself:
+# The panel can also be driven from code, which is how this notebook checks itself. The
+# cell drives a panel of its own, so the one above stays as you leave it:
 
 # %%
+by_code = SmoothingViewer(noisy)
 for n in (0, 2, 10, 60):
-    viewer.iterations.value = n
-    print(viewer.describe())
-viewer.shading.value = "smooth"
-print(viewer.describe())
+    by_code.iterations.value = n
+    print(by_code.describe())
+by_code.shading.value = "smooth"
+print(by_code.describe())
 
 # %% [markdown]
 # ## Check yourself

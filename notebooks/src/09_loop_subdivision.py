@@ -29,6 +29,7 @@ import pyvista as pv
 import halfedge_edu as hx
 from halfedge_edu.algorithms import loop_subdivide
 from halfedge_edu.algorithms.loop import loop_positions, loop_subdivide_by_operations
+from halfedge_edu.viz import show
 from halfedge_edu.viz.loop_stepper import LoopStepper
 
 octahedron = hx.sample("octahedron")
@@ -41,7 +42,7 @@ for column in range(4):
     picture.add_text(f"{column} level{'s' if column != 1 else ''}: {level.n_faces} faces", font_size=9)
 picture.link_views()
 picture.camera_position = [(2.6, 2.0, 3.2), (0.0, 0.0, 0.0), (0.0, 1.0, 0.0)]
-picture.show()
+show(picture)
 
 # %% [markdown]
 # An octahedron (8 triangles), then one, two and three levels of Loop subdivision. Each
@@ -147,14 +148,16 @@ stepper = LoopStepper(octahedron)
 stepper
 
 # %% [markdown]
-# The same moves from code. The first split, then the first flip:
+# The same moves from code, on a stepper of its own (the one above stays where you
+# leave it). The first split, then the first flip:
 
 # %%
-stepper.go(1)
-print(stepper.describe())
+by_code = LoopStepper(octahedron, mode="static")
+by_code.go(1)
+print(by_code.describe())
 print()
-stepper.go("flip")
-print(stepper.describe())
+by_code.go("flip")
+print(by_code.describe())
 
 # %% [markdown]
 # Splitting edge 0 made vertex 6 and two cross edges, 13 and 14, to the corners 4 and 5
@@ -166,10 +169,10 @@ print(stepper.describe())
 # Just before the flips, the vermillion edges are exactly the ones still to flip:
 
 # %%
-stepper.go(stepper.phase_start("flip") - 1)
-print("edges to flip:", len(stepper.edge_kinds()["to_flip"]), "(one per face)")
-stepper.go("end")
-print(stepper.describe())
+by_code.go(by_code.phase_start("flip") - 1)
+print("edges to flip:", len(by_code.edge_kinds()["to_flip"]), "(one per face)")
+by_code.go("end")
+print(by_code.describe())
 
 # %% [markdown]
 # ## 4. Where the vertices go: Loop's weights
@@ -307,7 +310,7 @@ for column, levels in enumerate([0, 3]):
     picture.add_text(f"{levels} levels", font_size=10)
 picture.link_views()
 picture.camera_position = [(4.6, -3.0, 4.2), (1.5, 1.5, 0.2), (0.0, 0.0, 1.0)]
-picture.show()
+show(picture)
 
 # %% [markdown]
 # The blue dots are the boundary vertices. Do they depend on the inside? Lift the bump
@@ -368,7 +371,7 @@ def corner_row(columns, marked=(0, 7)):
         picture.add_text(title, position=(6, 226), font_size=8)
     picture.link_views()
     picture.camera_position = [(3.3, -2.3, 0.5), (0.5, 0.5, 0.5), (-1.0, -1.0, 2.0)]   # up: across the 0-7 diagonal
-    picture.show()
+    show(picture)
 
 
 corner_row([(cube, 0, "one diagonal: 0 levels"), (cube, 4, "one diagonal: 4 levels"),

@@ -32,6 +32,7 @@ from halfedge_edu.algorithms import simplify, simplify_with_report
 from halfedge_edu.algorithms.simplify import face_quadrics, optimal_points, quadric_cost
 from halfedge_edu.algorithms.simplify_queue import QuadricQueue, simplify_sequential, turns_a_face
 from halfedge_edu.viz.qem_stepper import QEMStepper
+from halfedge_edu.viz import show
 
 spot = hx.sample("spot")
 spot_camera = [(2.6, 0.9, -2.2), (0.0, 0.1, 0.1), (0.0, 1.0, 0.0)]
@@ -44,7 +45,7 @@ for column, target in enumerate([spot.n_faces, 1500, 400, 100]):
     picture.add_text(f"{coarse.n_faces} faces", font_size=9)
 picture.link_views()
 picture.camera_position = spot_camera
-picture.show()
+show(picture)
 
 # %% [markdown]
 # Spot the cow with all 5,856 of her triangles, then with 1,500, 400 and 100. Even with

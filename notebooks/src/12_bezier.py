@@ -126,18 +126,20 @@ viewer = DeCasteljauViewer(arch, t=0.35)
 viewer
 
 # %% [markdown]
-# The same from code. First only the control points, then one level at a time:
+# The same from code, on a viewer of its own (the one above stays as you leave it).
+# First only the control points, then one level at a time:
 
 # %%
-viewer.set_t(0.25)
-viewer.show_levels(0)
-print(viewer.describe())
-viewer.step()
-print(viewer.describe().splitlines()[-1])
-viewer.step()
-print(viewer.describe().splitlines()[-1])
-viewer.step()
-print(viewer.describe().splitlines()[-2:])
+by_code = DeCasteljauViewer(arch, t=0.35, mode="static")
+by_code.set_t(0.25)
+by_code.show_levels(0)
+print(by_code.describe())
+by_code.step()
+print(by_code.describe().splitlines()[-1])
+by_code.step()
+print(by_code.describe().splitlines()[-1])
+by_code.step()
+print(by_code.describe().splitlines()[-2:])
 
 # %% [markdown]
 # Dragging from code: `move_control_point(i, (x, y))` moves `P_i`, as letting go of its
@@ -147,14 +149,14 @@ print(viewer.describe().splitlines()[-2:])
 # at `t = 0.25` rise by the whole unit, or by less? Does `C(0)` move?
 
 # %%
-before = viewer.point.copy()
-viewer.move_control_point(1, (1.0, 3.0))
-print(viewer.describe().splitlines()[-1])
-print("the point rose by", round(float(viewer.point[1] - before[1]), 4))
+before = by_code.point.copy()
+by_code.move_control_point(1, (1.0, 3.0))
+print(by_code.describe().splitlines()[-1])
+print("the point rose by", round(float(by_code.point[1] - before[1]), 4))
 print("de_casteljau on the moved points agrees:",
-      np.allclose(viewer.point, de_casteljau(viewer.control_points, 0.25)[-1][0]))
-print("C(0) is still P_0:", de_casteljau(viewer.control_points, 0.0)[-1][0])
-viewer.reset()
+      np.allclose(by_code.point, de_casteljau(by_code.control_points, 0.25)[-1][0]))
+print("C(0) is still P_0:", de_casteljau(by_code.control_points, 0.0)[-1][0])
+by_code.reset()
 
 # %% [markdown]
 # By less: 0.4219 of the unit, `27/64`. Each lerp passes on only part of `P_1`'s move:
@@ -298,16 +300,18 @@ editor = BezierSurfaceEditor(grid, selected=(1, 1))
 editor
 
 # %% [markdown]
-# From code: lift the inner point `P[1][2]` to height 3, then look at what moved.
+# From code, on an editor of its own (the one above stays as you leave it): lift the
+# inner point `P[1][2]` to height 3, then look at what moved.
 
 # %%
-surface = editor.surface
+lifted = BezierSurfaceEditor(grid, selected=(1, 2))
+surface = lifted.surface
 rim = surface.vertex_is_boundary()
 rim_before = surface.positions[rim].copy()
 inside_before = surface.positions[~rim].copy()
 
-editor.move(1, 2, [1.0, 2.0, 3.0])
-print(editor.describe())
+lifted.move(1, 2, [1.0, 2.0, 3.0])
+print(lifted.describe())
 print("boundary of the surface moved:", not np.allclose(surface.positions[rim], rim_before))
 print("inside moved:", not np.allclose(surface.positions[~rim], inside_before))
 
@@ -319,11 +323,11 @@ print("inside moved:", not np.allclose(surface.positions[~rim], inside_before))
 # Now move a point *on* the rim:
 
 # %%
-editor.reset()
-editor.move(0, 1, [0.0, 1.0, 1.0])
-print(editor.describe().splitlines()[2])
+lifted.reset()
+lifted.move(0, 1, [0.0, 1.0, 1.0])
+print(lifted.describe().splitlines()[2])
 print("boundary of the surface moved:", not np.allclose(surface.positions[rim], rim_before))
-editor
+lifted
 
 # %% [markdown]
 # This is why designers can fit patches together. Two neighbouring patches that share

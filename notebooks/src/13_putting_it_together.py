@@ -417,8 +417,10 @@ Image(histograms(list(answers.values()), list(answers), L_B))
 #   in the live view, right-click the mesh;
 # - **flip**, **split**, **collapse** the selected edge (or halfedge: its origin is the
 #   vertex a collapse removes), **smooth** the selection and its neighbours (one uniform
-#   Laplacian step, boundary vertices stay), **undo**; the same with the keys f, s, c, l, u
-#   typed into the "keys" box;
+#   Laplacian step, boundary vertices stay); **upsample** (Loop), **downsample**
+#   (quadrics, to a quarter of the faces) and **remesh** the whole mesh; **info** on the
+#   selection; **undo**. The keys are CMU's, typed into the "keys" box: f, s, c, l; u, d,
+#   r; i; and z for undo;
 # - **drag** the ball on a selected vertex (live view) or use its x, y, z sliders.
 #
 # After every edit the panel shows the **pointer diff** (every pointer and position the
@@ -438,20 +440,23 @@ editor = MeshEditor(mine, select=("edge", 5))
 editor
 
 # %% [markdown]
-# A refused edit comes back falsy with the reason, and the mesh stays as it was. Vertex 0
-# is a corner of the cube with only three edges; flip one of them:
+# The editor can also be driven from code. The cells below drive an editor of their own,
+# `scripted`, so the one above stays as you leave it. A refused edit comes back falsy
+# with the reason, and the mesh stays as it was. Vertex 0 is a corner of the cube with
+# only three edges; flip one of them:
 
 # %%
-editor.select("edge", editor.mesh.vertex(0).halfedge.edge.index)
-check = editor.apply("flip")
+scripted = MeshEditor(mine, select=("edge", 5), mode="static")
+scripted.select("edge", scripted.mesh.vertex(0).halfedge.edge.index)
+check = scripted.apply("flip")
 print(bool(check), "-", check.reason)
-print(editor.can_undo, "edits to undo: nothing changed")
+print(scripted.can_undo, "edits to undo: nothing changed")
 
 # %% [markdown]
-# The editor can also be driven from code, which is how a sequence of edits is written
-# down and repeated. P7 by script: collapse the five shortest edges that may be collapsed,
-# then smooth around the last merged vertex. `editor.held()` draws once at the end
-# instead of after every edit; every edit is still validated and can be undone.
+# Code is how a sequence of edits is written down and repeated. P7 by script: collapse
+# the five shortest edges that may be collapsed, then smooth around the last merged
+# vertex. `scripted.held()` draws once at the end instead of after every edit; every
+# edit is still validated and can be undone.
 
 # %%
 def shortest_collapsible(mesh):
@@ -462,13 +467,13 @@ def shortest_collapsible(mesh):
     return next((int(e) for e in live[np.argsort(lengths, kind="stable")] if mesh.can_collapse(int(e))), None)
 
 
-with editor.held():
+with scripted.held():
     for _ in range(5):
-        editor.select("edge", shortest_collapsible(editor.mesh))
-        editor.apply("collapse")                         # selects the merged vertex
-    editor.apply("smooth")
-print("\n".join(editor.describe().splitlines()[:3]))
-print(f"{editor.mesh.n_faces} faces (from {mine.n_faces}); {editor.can_undo} edits can be undone")
+        scripted.select("edge", shortest_collapsible(scripted.mesh))
+        scripted.apply("collapse")                       # selects the merged vertex
+    scripted.apply("smooth")
+print("\n".join(scripted.describe().splitlines()[:3]))
+print(f"{scripted.mesh.n_faces} faces (from {mine.n_faces}); {scripted.can_undo} edits can be undone")
 
 # %% [markdown]
 # When you are done, save both meshes as the assignment asks (here into a scratch folder;

@@ -1,6 +1,7 @@
 """The mesh editor in a real JupyterLab: select an edge, flip it by button and by key,
 and see the live 3D view redraw and the pointer diff appear; pick a face and a vertex by
-right-clicking the view, and drag the vertex.
+right-clicking the view, and drag the vertex; six keys typed fast are six edits (l
+smooths, z undoes).
 
 The Lab is the shared ``lab`` fixture; this test writes its own small notebook into the
 Lab's folder (a cube and an editor), so it does not wait for a whole chapter to run.
@@ -36,6 +37,9 @@ pytestmark = pytest.mark.browser
 
 NOTEBOOK = "mesh_editor.ipynb"
 EDGE = 4           # an edge of the cube that can be flipped (edge 0 cannot: see can_flip(0))
+FAST_KEYS = 6      # keys typed in a row ...
+FAST_KEY_DELAY_MS = 15   # ... this far apart: faster than a kernel answers one
+INFO_LINE = f"edge {EDGE}: halfedges {2 * EDGE} and {2 * EDGE + 1}"   # what the key i says
 
 
 def write_notebook(folder: Path) -> None:
@@ -57,6 +61,12 @@ class EditorInLab(LiveViewInLab):
     def selected(self) -> str | None:
         match = re.search(r"selected: (\w+ \d+)", self.output.inner_text())
         return match.group(1) if match else None
+
+    def index_box(self):
+        return self.output.locator("input[type=text]").first
+
+    def keys_box(self):
+        return self.output.get_by_placeholder(re.compile("^click, type"))
 
     def diff_rows(self) -> int:
         return self.output.locator("table tr").count() - 1
@@ -80,6 +90,8 @@ def _drive(page, lab, shots: Path) -> None:
     open_and_run_all(page, lab, NOTEBOOK)
     editor = EditorInLab(page)
     editor.wait_for_live_view("the editor")
+    stray = page.locator(".jp-OutputArea-output").filter(has_text="Using wasm_dir")
+    assert stray.count() == 0, f"a stray line above the editor: {stray.first.inner_text()}"
     wait_for(lambda: editor.selected() == "vertex 0", 30, "the panel to show the first selection")
     png, before = editor.settled_picture(None, "the live view's first frame")
     (shots / "editor-0-start.png").write_bytes(png)
@@ -87,7 +99,7 @@ def _drive(page, lab, shots: Path) -> None:
 
     # Select an edge by the index controls.
     editor.output.locator("select").first.select_option("edge")
-    editor.output.locator("input[type=number]").first.fill(str(EDGE))
+    editor.index_box().fill(str(EDGE))
     click_in_place(editor.output.get_by_role("button", name="select", exact=True))
     wait_for(lambda: editor.selected() == f"edge {EDGE}", 30, f"the panel to show edge {EDGE} selected")
     png, selected = editor.settled_picture(before, "the live view to highlight the edge")
@@ -109,7 +121,7 @@ def _drive(page, lab, shots: Path) -> None:
     timings["flip by button"] = lap()
 
     # Flip back by key: type f into the keys box.
-    click_in_place(editor.output.locator("input[type=text]").first)
+    click_in_place(editor.keys_box())
     page.keyboard.type("f")
     cube.flip(EDGE)
     back_ends = [v.index for v in cube.edge(EDGE).vertices]
@@ -121,6 +133,20 @@ def _drive(page, lab, shots: Path) -> None:
     assert changed_share(flipped, back) >= MIN_CHANGED_SHARE
     (shots / "editor-4-panel.png").write_bytes(editor.output.screenshot(timeout=30_000))
     timings["flip by key"] = lap()
+
+    # Type fast: six l are six smoothing steps, not seven, and six z undo them. The kernel
+    # answers keys in the order they come, so once the i typed after them has said its
+    # line, all the keys before it are in.
+    undos = undo_count(editor)
+    for keys, expected in [("l" * FAST_KEYS, undos + FAST_KEYS), ("z" * FAST_KEYS, undos)]:
+        page.keyboard.type(keys + "i", delay=FAST_KEY_DELAY_MS)
+        wait_for(lambda: INFO_LINE in editor.output.inner_text(), 30,
+                 f"the key i to say the selected edge's pointers after {keys}")
+        assert undo_count(editor) == expected, f"{keys} typed fast made {undo_count(editor) - undos} edits"
+        click_in_place(editor.output.get_by_role("button", name="select", exact=True))   # clears the line
+        wait_for(lambda: INFO_LINE not in editor.output.inner_text(), 30, "the info line to go")
+        click_in_place(editor.keys_box())
+    timings["keys typed fast"] = lap()
 
     # Pick a face by right-clicking the live view: the face under the pointer turns yellow.
     editor.output.locator("select").first.select_option("face")
@@ -152,7 +178,7 @@ def _drive(page, lab, shots: Path) -> None:
     png, dragged = editor.settled_picture(handled, "the live view to redraw the dragged vertex")
     (shots / "editor-7-dragged-vertex.png").write_bytes(png)
     # The kernel lives on: undo answers, and the view still draws the mesh.
-    undos = int(re.search(r"undo: (\d+)", editor.output.inner_text()).group(1))
+    undos = undo_count(editor)
     click_in_place(editor.output.get_by_role("button", name="undo", exact=True))
     wait_for(lambda: f"undo: {undos - 1}" in editor.output.inner_text(), 30, "undo after the drag")
     png, undone = editor.settled_picture(dragged, "the live view to redraw after undo")
@@ -162,6 +188,10 @@ def _drive(page, lab, shots: Path) -> None:
     timings["pick a vertex and drag it"] = lap()
     print(f"right-click picked {editor.selected()}; seconds: {timings}")
     print(f"screenshots in {shots}")
+
+
+def undo_count(editor: EditorInLab) -> int:
+    return int(re.search(r"undo: (\d+)", editor.output.inner_text()).group(1))
 
 
 def handle_centre(picture: np.ndarray) -> tuple[int, int]:

@@ -23,7 +23,9 @@ from tests.browser.lab_page import (
     ExplorerInLab,
     StepperInLab,
     changed_share,
+    hold_still,
     hover_in_place,
+    in_view,
     open_and_run_all,
     reported_page,
     wait_for,
@@ -111,3 +113,31 @@ def _drive(page, lab, shots: Path) -> None:
     assert re.search(r"step 1 of \d+", stepper.output.inner_text())
     assert notebook_state(page) == cells, "JupyterLab took an arrow key"
     print(f"keyboard test: {time.monotonic() - clock:.0f} s; screenshots in {shots}")
+
+
+LAPTOP = {"width": 1366, "height": 768}   # a common laptop screen
+
+
+def test_on_a_laptop_screen_with_the_file_browser_open_the_pointer_table_sits_beside_the_view(
+        lab, browser_context, screenshot_dir):
+    """Issue 30: at 1366 x 768 with JupyterLab's file browser open (its default) the
+    pointer table went below the 3D view, never on screen together with it."""
+    write_notebook(lab.root)
+    with reported_page(browser_context, lab, screenshot_dir, "laptop-failure-page.png") as page:
+        clock = time.monotonic()
+        page.set_viewport_size(LAPTOP)
+        open_and_run_all(page, lab, NOTEBOOK)
+        assert page.locator(".jp-FileBrowser").first.is_visible(), "the file browser is closed"
+        explorer = ExplorerInLab(page, screenshot_dir)
+        explorer.wait_for_live_view("the explorer")
+        wait_for(lambda: explorer.current_halfedge() == START, 30, "the explorer's pointer table")
+        table = explorer.output.locator("table").first
+        explorer.frame.evaluate("frame => frame.scrollIntoView({block: 'start'})")
+        hold_still(table)
+        view, rows = explorer.frame.bounding_box(), table.bounding_box()
+        explorer.settled_picture(None, "the explorer's view to draw the mesh")
+        explorer.save("laptop-explorer.png", page.screenshot())
+        assert rows["x"] >= view["x"] + view["width"], f"the pointer table {rows} is not beside the view {view}"
+        assert in_view(page, explorer.frame) and in_view(page, table), \
+            f"the view {view} and the pointer table {rows} are not on a {LAPTOP} screen together"
+        print(f"laptop layout test: {time.monotonic() - clock:.0f} s")

@@ -104,14 +104,16 @@ WATCH_KERNEL = """() => {
     panel.sessionContext.connectionStatusChanged.connect((_, status) => window.__kernelStates.push('connection-' + status));
 }"""
 # Errors in cell outputs (not in the cells tagged "raises-exception", which show one on
-# purpose) and tracebacks written to stderr, e.g. by a widget callback.
+# purpose), tracebacks written to stderr, e.g. by a widget callback, and stray lines
+# such as trame-vtklocal's "Using wasm_dir: ..." above a chapter's first live view.
 CELL_PROBLEMS = """() => window.jupyterapp.shell.currentWidget.content.widgets
     .filter(c => c.model.type === 'code')
     .filter(c => !(c.model.getMetadata('tags') || []).includes('raises-exception'))
     .flatMap(c => c.model.outputs.toJSON())
     .filter(o => o.output_type === 'error'
-                 || (o.output_type === 'stream' && o.name === 'stderr' && /Traceback|Error/.test(String(o.text))))
-    .map(o => o.output_type === 'error' ? o.ename + ': ' + o.evalue : 'stderr: ' + String(o.text).slice(0, 300))"""
+                 || (o.output_type === 'stream' && o.name === 'stderr' && /Traceback|Error/.test(String(o.text)))
+                 || (o.output_type === 'stream' && /Using wasm_dir/.test(String(o.text))))
+    .map(o => o.output_type === 'error' ? o.ename + ': ' + o.evalue : o.name + ': ' + String(o.text).slice(0, 300))"""
 SHUT_DOWN_KERNEL = "() => window.jupyterapp.shell.currentWidget.sessionContext.shutdown()"
 # Marked rows of an output's tables that are not inside their scrolling box's view.
 ROWS_OUT_OF_VIEW = """(output) => {

@@ -47,3 +47,13 @@ def test_the_still_picture_has_titles_and_a_legend(atlas):
     picture = Image.open(io.BytesIO(atlas.screenshot()))
     assert picture.width > 2 * plain.width + 150       # the legend beside the cases
     assert picture.height > plain.height + 225 + 2 * 20  # the refusals below, with title bands
+
+
+def test_a_move_that_cannot_move_says_why(atlas):
+    atlas.go(0)
+    atlas.buttons["back"].click()
+    assert "is the start" in atlas._status.value
+    atlas.go("end")
+    atlas.buttons["phase"].click()
+    assert "is the last one" in atlas._status.value and atlas.go(0) == 0
+    assert "is the last one" not in atlas._status.value

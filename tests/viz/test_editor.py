@@ -82,16 +82,68 @@ def test_smooth_button_moves_only_the_selection_and_its_neighbours():
         widget.close()
 
 
-def test_keys_do_what_the_buttons_do(editor):
-    assert set(KEYS) == {"f", "s", "c", "l", "u"}
+def test_keys_are_cmus_with_l_for_smoothing_and_z_for_undo(editor):
+    assert KEYS == {"f": "flip", "s": "split", "c": "collapse", "l": "smooth", "u": "upsample",
+                    "d": "downsample", "r": "remesh", "i": "info", "z": "undo"}
     editor.key("f")
     assert editor.last_log.operation == "flip"
-    editor.key("u")
+    editor.key("z")
     assert editor.can_undo == 0
-    editor._keys.value = "s"                   # typing into the keys box
-    assert editor.last_log.operation == "split" and editor._keys.value == ""
     with pytest.raises(ValueError, match="unknown key 'q'"):
         editor.key("q")
+
+
+def test_each_key_typed_in_the_keys_box_is_one_edit_however_the_text_arrives(editor):
+    # What the browser sends for "lll" typed fast: the text after one key, then after
+    # two more; the kernel never writes the box, so nothing comes back to race them.
+    for text in ("l", "lll"):
+        editor._keys.value = text
+    assert editor.can_undo == 3 and editor._last_text.startswith("smooth")
+    editor._keys.value = "ll"                  # Backspace: no edit
+    editor._keys.value = "llq"                 # not a key: no edit
+    assert editor.can_undo == 3
+    editor._keys.value = "llqZ"                # Shift or Caps Lock: the same key
+    assert editor.can_undo == 2
+    editor._keys.value = "f"                   # all selected and replaced by f
+    assert editor.last_log.operation == "flip" and editor._keys.value == "f"
+
+
+def test_upsample_downsample_and_remesh_replace_the_whole_mesh_and_undo_restores_it(cube, editor):
+    assert editor.apply("upsample")
+    assert editor.mesh.n_faces == 4 * cube.n_faces and editor.valid
+    assert editor.selection == ("edge", 4)
+    assert editor.apply("downsample")
+    assert editor.mesh.n_faces <= cube.n_faces and editor.valid
+    assert editor.apply("remesh") and editor.valid
+    assert "remesh:" in editor.describe()
+    for _ in range(3):
+        editor.key("z")
+    assert same_arrays(editor.mesh, cube)
+
+
+def test_info_says_the_selected_elements_pointers_and_changes_nothing(cube, editor):
+    assert editor.key("i") is None
+    text = editor.info()
+    h = cube.halfedge(8)
+    assert text.startswith("edge 4: halfedges 8 and 9")
+    assert f"vertices {h.vertex.index} - {h.tip.index}" in text
+    assert text in editor._status.value and editor.can_undo == 0
+    editor.select("halfedge", 8)
+    assert f"next {h.next.index}" in editor.info() and f"twin 9" in editor.info()
+
+
+def test_a_whole_mesh_edit_that_raises_is_refused_and_changes_nothing(cube, editor, monkeypatch):
+    import halfedge_edu.viz.editor as editor_module
+
+    def refuse(mesh):
+        raise hx.MeshInputError("this mesh cannot be subdivided")
+
+    monkeypatch.setattr(editor_module, "loop_subdivide", refuse)
+    check = editor.apply("upsample")
+    assert not check and check.reason == "this mesh cannot be subdivided"
+    assert editor.can_undo == 0 and same_arrays(editor.mesh, cube)
+    assert "upsample refused: this mesh cannot be subdivided" in editor._status.value
+
 
 
 def test_undo_button_goes_back_through_every_edit_to_identical_arrays(cube, editor):
@@ -211,3 +263,29 @@ def random_edit(widget, rng, done: dict) -> None:
     done[str(action)] += bool(check)
     widget.mesh.validate()
     assert widget.valid
+
+
+def test_the_hint_says_an_edge_and_a_vertex(editor):
+    editor._kind_box.value = "edge"
+    assert "type an edge index" in editor._hint.value
+    editor._kind_box.value = "vertex"
+    assert "type a vertex index" in editor._hint.value
+
+
+def test_upsample_past_the_editors_size_is_refused_in_words(editor, monkeypatch):
+    import halfedge_edu.viz.editor as editor_module
+
+    monkeypatch.setattr(editor_module, "MAX_UPSAMPLED_FACES", 4 * editor.mesh.n_faces - 1)
+    check = editor.apply("upsample")
+    assert not check and f"would make {4 * editor.mesh.n_faces} faces" in check.reason
+    assert editor.can_undo == 0
+
+
+def test_a_refusal_is_shown_in_vermillion_not_in_the_red_of_an_error(editor):
+    editor.select("vertex", 0)
+    editor.apply("collapse")                   # needs an edge: refused, not an error
+    assert "#D55E00" in editor._status.value and "#D55E00" in editor._info.value
+    assert "#B00020" not in editor._status.value + editor._info.value
+    editor._index_box.value = 999
+    editor.buttons["select"].click()           # no such vertex: an error
+    assert "#B00020" in editor._status.value

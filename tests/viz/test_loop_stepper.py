@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import io
+
 import numpy as np
 import pytest
+from PIL import Image
 
 from halfedge_edu.algorithms import loop_subdivide
 from halfedge_edu.data import sample
@@ -112,3 +115,22 @@ def test_the_large_preset_for_a_projector(closing):
     widget.go("flip")
     assert widget.scene.window_size == (1024, 768)
     assert "font-size:20px" in widget._legend.value
+
+
+def _purple_pixels(png: bytes) -> int:
+    """Pixels in the current step's colour (reddish purple #CC79A7, shaded)."""
+    rgb = np.asarray(Image.open(io.BytesIO(png)).convert("RGB")).astype(int)
+    red, green, blue = rgb[..., 0], rgb[..., 1], rgb[..., 2]
+    return int(((red > 150) & (blue > 110) & (green < red - 50) & (blue > green + 20)).sum())
+
+
+def test_the_panel_says_when_a_step_happens_out_of_sight_and_only_then(stepper):
+    far, near = [], []
+    for step in range(1, stepper.n_steps):                     # the splits and flips
+        stepper.go(step)
+        said = "far side of the mesh" in stepper._panel_html()
+        assert said == stepper.on_far_side()
+        (far if said else near).append((step, _purple_pixels(stepper.screenshot())))
+    assert far and near
+    assert all(purple < 20 for _, purple in far), f"a step said to be out of sight shows its colour: {far}"
+    assert all(purple > 100 for _, purple in near), f"a step in sight does not show its colour: {near}"

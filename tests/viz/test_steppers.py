@@ -28,6 +28,23 @@ def flip_stepper(closing):
     return widget
 
 
+@pytest.mark.parametrize("button", ["step", "end"])
+def test_a_move_past_the_end_says_why_it_does_not_move(flip_stepper, button):
+    flip_stepper.go("end")
+    flip_stepper.buttons[button].click()
+    n = flip_stepper.n_steps
+    assert flip_stepper.step_index == n
+    assert f"step {n} of {n} is the last one" in flip_stepper._status.value
+
+
+@pytest.mark.parametrize("button", ["back", "start"])
+def test_a_move_before_the_start_says_why_it_does_not_move(flip_stepper, button):
+    flip_stepper.buttons[button].click()
+    assert flip_stepper.step_index == 0 and "this is the start" in flip_stepper._status.value
+    flip_stepper.buttons["step"].click()
+    assert "this is the start" not in flip_stepper._status.value
+
+
 def test_step_zero_shows_the_gathered_elements_by_name(flip_stepper):
     text = flip_stepper.describe()
     assert text.startswith("flip of edge 12: step 0 of 17 (gather the elements)\n")

@@ -45,6 +45,13 @@ def test_step_is_next_and_back_undoes(explorer):
     assert explorer.trail == [h.index]
 
 
+def test_back_at_the_start_of_the_walk_says_why_it_does_not_move(explorer):
+    explorer.buttons["back"].click()
+    assert "is where the walk started" in explorer._status.value
+    explorer.buttons["next"].click()
+    assert "walk started" not in explorer._status.value
+
+
 def test_three_nexts_come_back_around_a_triangle(explorer):
     h = explorer.halfedge
     for _ in range(3):
@@ -184,3 +191,12 @@ def test_boundary_vertex_ring_includes_the_boundary_halfedge(closing):
     assert widget.vertex.is_boundary
     assert widget.current.is_boundary                     # a boundary vertex starts on the boundary
     assert "(boundary, degree 4)" in widget.describe()
+
+
+@pytest.mark.parametrize("typed", ["1e3", "12.5", "", "h7"])
+def test_an_index_box_that_is_not_a_whole_number_is_refused_in_words_and_nothing_moves(explorer, typed):
+    h = explorer.halfedge
+    explorer._index_box.widget.value = typed
+    explorer.buttons["go to"].click()
+    assert explorer.halfedge == h
+    assert "is not an index: type a whole number" in explorer._status.value
