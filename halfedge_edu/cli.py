@@ -336,8 +336,8 @@ def _add_grade(commands) -> None:
     grade.add_argument("--out", type=Path, required=True, metavar="DIR",
                        help="the folder for the reports (created if missing)")
     grade.add_argument("--chapter", metavar="NN",
-                       help="grade every submission as this chapter (default: the file name's NN_, else the "
-                            "notebook's own stamp)")
+                       help="grade every submission as this chapter (default: the number the file name starts "
+                            "with, else the notebook's own stamp)")
     grade.add_argument("--cell-timeout", type=_seconds, default=60, metavar="S",
                        help="seconds one cell may run before it is interrupted (default 60)")
     grade.add_argument("--timeout", type=_seconds, default=600, metavar="S",
