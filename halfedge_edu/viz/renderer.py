@@ -169,6 +169,10 @@ def show(plotter):
     if not live_available():
         return plotter.show()
     with without_wasm_notice():
+        if tuple(getattr(plotter, "shape", (1, 1))) != (1, 1):
+            # Several views in one plotter: the collapsed menu's view settings throw in the
+            # browser (vtk.js: "getOpacity is not a function"), so those keep PyVista's menu.
+            return plotter.show(jupyter_kwargs={"mode": live_backend.trame_mode()})
         return plotter.show(jupyter_kwargs={"collapse_menu": True, "mode": live_backend.trame_mode()})
 
 
