@@ -444,22 +444,11 @@ def report_names(submissions: Sequence[Path]) -> list[str]:
 
 
 def _write_report(path: Path, text: str) -> None:
-    """Write ``text`` to ``path`` atomically: a temporary file beside it, fsync, rename."""
-    import tempfile
+    """Write ``text`` to ``path`` atomically (``hx.save``'s own writer: temporary file, fsync, rename)."""
+    from halfedge_edu.io.obj import atomic_output
 
-    handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(handle, "w", encoding="utf-8") as out:
-            out.write(text + "\n")
-            out.flush()
-            os.fsync(out.fileno())
-        os.replace(temporary, path)
-    except BaseException:
-        try:
-            os.unlink(temporary)
-        except OSError:
-            pass
-        raise
+    with atomic_output(path) as out:
+        out.write(text + "\n")
 
 
 def _add_repair(command: argparse.ArgumentParser) -> None:
