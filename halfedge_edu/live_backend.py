@@ -4,7 +4,7 @@ A hub sets this once for every student with the environment variable
 ``HALFEDGE_EDU_LIVE_BACKEND`` (deploy/jupyterhub/jupyterhub_config.py passes it on):
 
 - ``server`` (the default): the kernel renders every frame with VTK and sends pictures
-  (pyvista's ``trame`` backend). Costs kernel memory for the render window and server
+  (trame-pyvista's ``server`` view, nothing else: no hidden vtk.js view beside it). Costs kernel memory for the render window and server
   CPU for every step and every frame of a rotation.
 - ``client``: the kernel sends the scene's geometry once and vtk.js draws it in the
   browser (pyvista's ``client`` backend); rotating costs the server nothing.
@@ -22,9 +22,13 @@ import os
 import weakref
 
 ENV_VARIABLE = "HALFEDGE_EDU_LIVE_BACKEND"
-# The setting's values and trame-pyvista's view mode for each: "trame" is the view the
-# widgets have always used (server rendering, with a switch in its menu), "client" is vtk.js.
-TRAME_MODES = {"server": "trame", "client": "client"}
+# The setting's values and trame-pyvista's view mode for each. "server" is the server-
+# rendered view alone. Not trame-pyvista's default "trame" (the server's pictures with a
+# vtk.js view beside them, hidden until its menu switches to it): that hidden view was
+# sent the whole scene at every step too, twice the work, and while a student clicked a
+# stepper quickly its scene sync threw in the browser ("getOpacity is not a function",
+# vtk.js, seen twice in chapter 10's browser test). "client" is the vtk.js view alone.
+TRAME_MODES = {"server": "server", "client": "client"}
 
 
 def trame_mode(setting: str | None = None) -> str:

@@ -9,12 +9,12 @@ from halfedge_edu import live_backend
 
 def test_unset_or_empty_keeps_the_server_rendered_view(monkeypatch):
     monkeypatch.delenv(live_backend.ENV_VARIABLE, raising=False)
-    assert live_backend.trame_mode() == "trame"
+    assert live_backend.trame_mode() == "server"
     monkeypatch.setenv(live_backend.ENV_VARIABLE, " ")
-    assert live_backend.trame_mode() == "trame"
+    assert live_backend.trame_mode() == "server"
 
 
-@pytest.mark.parametrize(("setting", "mode"), [("server", "trame"), ("client", "client"), (" Client ", "client")])
+@pytest.mark.parametrize(("setting", "mode"), [("server", "server"), ("client", "client"), (" Client ", "client")])
 def test_the_variable_chooses_the_trame_mode(monkeypatch, setting, mode):
     monkeypatch.setenv(live_backend.ENV_VARIABLE, setting)
     assert live_backend.trame_mode() == mode
@@ -22,7 +22,7 @@ def test_the_variable_chooses_the_trame_mode(monkeypatch, setting, mode):
 
 def test_an_argument_wins_over_the_variable(monkeypatch):
     monkeypatch.setenv(live_backend.ENV_VARIABLE, "client")
-    assert live_backend.trame_mode("server") == "trame"
+    assert live_backend.trame_mode("server") == "server"
 
 
 def test_a_wrong_value_names_the_variable_and_the_value(monkeypatch):
@@ -92,6 +92,54 @@ def test_a_client_view_keeps_the_arrays_its_scene_names_and_releases_the_old_one
     assert counts["now"] > 0 and counts["now_cached"] == counts["now"], counts
     # ... while the cell arrays of the scenes before the two steps were released.
     assert counts["old"] > 0 and counts["old_cached"] == 0, counts
+
+
+SERVER_VIEW_KINDS = r"""
+import json
+import halfedge_edu as hx
+from halfedge_edu.viz import HalfedgeExplorer
+
+explorer = HalfedgeExplorer(hx.sample("open_patch"), halfedge=7)
+explorer.go("next")
+viewer = explorer.view.widget.viewer
+print(json.dumps(sorted({cls.__name__ for view in viewer.views for cls in type(view).__mro__})))
+"""
+
+
+def _run_in_kernel(code: str, tmp_path, **variables: str) -> str:
+    """What ``code`` printed in a fresh kernel with ``variables`` set (live views)."""
+    import os
+
+    from jupyter_client.manager import start_new_kernel
+
+    env = {name: value for name, value in os.environ.items()
+           if name not in ("PYVISTA_JUPYTER_BACKEND", live_backend.ENV_VARIABLE)}
+    env.update(HALFEDGE_EDU_VIZ="live", **variables)
+    manager, client = start_new_kernel(kernel_name="python3", env=env, cwd=str(tmp_path))
+    printed, errors = [], []
+
+    def collect(message):
+        if message["header"]["msg_type"] == "stream":
+            printed.append(message["content"]["text"])
+        elif message["header"]["msg_type"] == "error":
+            errors.append("\n".join(message["content"]["traceback"]))
+
+    try:
+        client.execute_interactive(code, output_hook=collect, timeout=240)
+    finally:
+        manager.shutdown_kernel(now=True)
+    assert not errors, errors[0]
+    return "".join(printed).strip().splitlines()[-1]
+
+
+def test_the_default_server_view_has_no_hidden_vtk_js_view_to_sync(tmp_path):
+    """trame-pyvista's "trame" mode puts a vtk.js view beside the server's pictures and
+    sends it the scene at every step; the default setting gives the server view alone."""
+    import json
+
+    kinds = set(json.loads(_run_in_kernel(SERVER_VIEW_KINDS, tmp_path)))
+    assert "VtkRemoteView" in kinds, kinds
+    assert not kinds & {"VtkRemoteLocalView", "VtkLocalView"}, kinds
 
 
 def test_the_installed_trame_vtk_has_every_private_name_live_backend_patches():
