@@ -1,7 +1,7 @@
 """Settings that make the test suite, notebooks included, run the same headless.
 
 Only environment and notebook settings live here; test fixtures belong in tests/.
-The values were measured in shared/notes/notebooks-headless.md. `make test` sets the
+The values and why each is needed: docs/headless.md. `make test` sets the
 same variables explicitly; these defaults make a bare `pytest` behave the same way.
 """
 

@@ -193,7 +193,7 @@ def parse_source(text: str, chapter: str = "nb", edition: str = "solution") -> l
 
 
 def headless_environment() -> dict[str, str]:
-    """The variables from shared/notes/notebooks-headless.md (same as conftest.py)."""
+    """The variables of docs/headless.md (the same as conftest.py sets)."""
     empty_wasm_dir = Path(tempfile.gettempdir()) / "halfedge_edu-vtk-wasm-empty"
     empty_wasm_dir.mkdir(exist_ok=True)
     env = {"PYVISTA_JUPYTER_BACKEND": "static", "VTK_WASM_DIR_OVERRIDE": str(empty_wasm_dir)}

@@ -1,6 +1,6 @@
 """Fixtures for the browser tests: a real JupyterLab and a headless Chromium driving it.
 
-Measured in shared/notes/notebooks-headless.md ("A real JupyterLab in headless
+As docs/headless.md says ("A real JupyterLab in headless
 Chromium"): Debian's chromium (never `playwright install`), the flags below, a fresh
 profile, the Lab app exposed to the page so a test can run its commands, and the news
 pop-up turned off in a settings folder of our own.

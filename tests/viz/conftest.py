@@ -1,6 +1,6 @@
 """Headless settings for the viz tests, set before anything imports pyvista.
 
-The values are those measured in shared/notes/notebooks-headless.md: EGL instead of X
+The values are those of docs/headless.md: EGL instead of X
 (else VTK warns on stderr), PyVista's static notebook backend, and an empty VTK.wasm
 folder so trame-vtklocal downloads nothing. Each scene is closed after its test.
 """
