@@ -394,7 +394,14 @@ def widget_outputs(page) -> list:
     return [page.locator(f'[data-widget-under-test="{k}"]') for k in range(count)]
 
 
-@pytest.mark.parametrize("notebook", sorted(CHAPTERS))
+def _in_two_groups(notebooks: list[str]) -> list:
+    """The chapters as two pytest-xdist groups of about equal time (alternately, in
+    order), so that on two workers each drives half of them (conftest.py)."""
+    return [pytest.param(notebook, marks=pytest.mark.xdist_group(f"lab-widgets-{k % 2}"))
+            for k, notebook in enumerate(notebooks)]
+
+
+@pytest.mark.parametrize("notebook", _in_two_groups(sorted(CHAPTERS)))
 def test_every_widget_survives_a_students_clicks(notebook, lab, browser_context, screenshot_dir):
     record = Record(notebook[:2])
     log_start = len(lab.log.read_text(errors="replace"))
