@@ -180,6 +180,14 @@ print("survivor:", survivor.index, "| now", bunny)
 #
 # **Instructors:** every widget takes `preset="large"` (bigger labels and arrows, for a
 # projector), e.g. `OneRingViewer(bunny, vertex=100, preset="large")`.
+#
+# **On a course hub** the live 3D view may be drawn by your browser instead of the
+# kernel (the hub sets this; rotating is then smooth however many students are logged
+# in). That view draws **no number labels**, and vertices are squares: when the text
+# says "vertex 4" or "halfedge 7", read the numbers in the widget's table beside the
+# view (the current halfedge, its origin, tip, twin, next, prev, edge and face) or in
+# the pictures of the course website. On your own machine (`make lab`) the kernel
+# draws the view, labels included.
 
 # %% [markdown]
 # ## Check yourself
