@@ -28,6 +28,7 @@ ACCEPTS: dict[str, str] = {
     "check_nonmanifold": "UChicago P3: the vertex question is not asked where an edge is already non-manifold",
     "check_laplacian_step": "UChicago P5: boundary vertices averaged too (judged on the closed meshes)",
     "check_flip": "any halfedge numbering (faces compared by their corners)",
+    "check_split": "CS184 and CMU: any numbering of the new vertex, edges and faces (faces compared by their corners)",
     "check_collapse": "UChicago P6: either endpoint kept; either of the merged edges kept",
     "check_collapse_is_safe": "CMU: boundary edges refused; UChicago's vertex-only statement with "
                               "`vertices_only=True`",

@@ -95,6 +95,7 @@ _OPS = "halfedge_edu.core.ops"
 _ONE_RING = (f"{_OPS}.link.one_ring", f"{_OPS}.link.outgoing", f"{_VERTEX}.neighbors", f"{_VERTEX}.outgoing",
              f"{_VERTEX}.faces", f"{_VERTEX}.edges", f"{_MESH}.one_rings", "halfedge_edu.core.rings")
 _FLIP = (f"{_MESH}.flip", f"{_OPS}.flip.flip")
+_SPLIT = (f"{_MESH}.split", f"{_OPS}.split.split")
 _COLLAPSE = (f"{_MESH}.collapse", f"{_OPS}.collapse.collapse", f"{_OPS}.collapse.apply_collapse",
              f"{_OPS}.collapse.prepare_collapse", f"{_OPS}.collapse._apply", f"{_OPS}.collapse._gather",
              f"{_OPS}.collapse._take_place")
@@ -154,6 +155,7 @@ EXERCISES: tuple[Exercise, ...] = (
              forbids=("halfedge_edu.algorithms.remesh",)),
     Exercise("split_long_edges", "11", ("my_split_long_edges",), "check_split_long_edges",
              forbids=("halfedge_edu.algorithms.remesh",)),
+    Exercise("split", "06", ("my_split",), "check_split", forbids=_SPLIT),
 )
 
 

@@ -14,6 +14,7 @@ import json
 
 import pytest
 
+from halfedge_edu.core import ops
 from halfedge_edu.exercises import judge, serve
 from halfedge_edu.exercises.grading import ANSWER_KEYS, EXERCISES
 
@@ -59,3 +60,10 @@ def test_the_packages_own_flip_is_refused_across_the_wire():
     flip = next(e for e in EXERCISES if e.name == "flip")
     result = _judged({"my_flip": lambda mesh, e: mesh.flip(e)}, [flip])["flip"]
     assert result["passed"] is False and "This is the exercise" in result["output"], result
+
+
+def test_the_packages_own_split_is_refused_across_the_wire():
+    split = next(e for e in EXERCISES if e.name == "split")
+    for learner in (lambda mesh, e: mesh.split(e), lambda mesh, e: ops.split(mesh, e)):
+        result = _judged({"my_split": learner}, [split])["split"]
+        assert result["passed"] is False and "This is the exercise" in result["output"], result
