@@ -42,6 +42,8 @@ ACCEPTS: dict[str, str] = {
     "check_downsample": "CMU: any tie order, its own queue and staleness bookkeeping (judged by the result)",
     "check_flip_improves": "CMU: its own bookkeeping; boundary vertices aim at degree 4",
     "check_split_long_edges": "CMU: any order of splits (judged by the result)",
+    "check_collapse_short_edges": "CMU: any order of collapses (judged by the result); an interior edge with an end "
+                                  "on the boundary collapsed or left",
     "check_bezier_patch": "CS184: u along each row of the grid (the chapter's S(v, u))",
 }
 

@@ -156,6 +156,8 @@ EXERCISES: tuple[Exercise, ...] = (
     Exercise("split_long_edges", "11", ("my_split_long_edges",), "check_split_long_edges",
              forbids=("halfedge_edu.algorithms.remesh",)),
     Exercise("split", "06", ("my_split",), "check_split", forbids=_SPLIT),
+    Exercise("collapse_short_edges", "11", ("my_collapse_short_edges",), "check_collapse_short_edges",
+             forbids=("halfedge_edu.algorithms.remesh", "halfedge_edu.algorithms.collapse_rounds")),
 )
 
 
