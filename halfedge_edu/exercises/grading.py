@@ -136,7 +136,8 @@ EXERCISES: tuple[Exercise, ...] = (
              forbids=("halfedge_edu.algorithms.simplify", "halfedge_edu.algorithms.simplify_queue",
                       "halfedge_edu.algorithms.collapse_rounds")),
     Exercise("tangential_smoothing", "11", ("my_tangential_smoothing",), "check_tangential_smoothing",
-             forbids=("halfedge_edu.algorithms.remesh", "halfedge_edu.algorithms.smoothing")),
+             forbids=("halfedge_edu.algorithms.remesh", "halfedge_edu.algorithms.smoothing",
+                      "halfedge_edu.exercises.remesh_checks.tangential_smoothing_reference")),
     Exercise("de_casteljau", "12", ("my_de_casteljau",), "check_de_casteljau",
              forbids=("halfedge_edu.algorithms.bezier",)),
     Exercise("nonmanifold", "04", ("has_nonmanifold_edges", "has_nonmanifold_vertices"), "check_nonmanifold",
@@ -157,7 +158,8 @@ EXERCISES: tuple[Exercise, ...] = (
              forbids=("halfedge_edu.algorithms.remesh",)),
     Exercise("split", "06", ("my_split",), "check_split", forbids=_SPLIT),
     Exercise("collapse_short_edges", "11", ("my_collapse_short_edges",), "check_collapse_short_edges",
-             forbids=("halfedge_edu.algorithms.remesh", "halfedge_edu.algorithms.collapse_rounds")),
+             forbids=("halfedge_edu.algorithms.remesh", "halfedge_edu.algorithms.collapse_rounds",
+                      "halfedge_edu.exercises.remesh_checks.collapse_short_edges_reference")),
 )
 
 
