@@ -20,6 +20,7 @@ from __future__ import annotations
 import argparse
 import ast
 import os
+import re
 import statistics
 import subprocess
 import sys
@@ -32,12 +33,13 @@ import nbformat
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def right_flip() -> str:
+def right_answer(name: str) -> str:
+    """Chapter 06's solution of exercise function ``name`` (``my_flip``, ``my_split``)."""
     text = (ROOT / "notebooks" / "src" / "06_flip_and_split.py").read_text()
     for node in ast.parse(text).body:
-        if isinstance(node, ast.FunctionDef) and node.name == "my_flip":
+        if isinstance(node, ast.FunctionDef) and node.name == name:
             return ast.unparse(node)
-    raise SystemExit("chapter 06 has no my_flip")
+    raise SystemExit(f"chapter 06 has no {name}")
 
 
 def submissions(folder: Path, count: int) -> list[Path]:
@@ -46,7 +48,8 @@ def submissions(folder: Path, count: int) -> list[Path]:
         book = nbformat.v4.new_notebook()
         book.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3", "language": "python"}
         book.cells = [nbformat.v4.new_markdown_cell("# Flip"), nbformat.v4.new_code_cell("import halfedge_edu as hx"),
-                      nbformat.v4.new_code_cell(right_flip()), nbformat.v4.new_code_cell("mesh = hx.sample('cube')")]
+                      nbformat.v4.new_code_cell(right_answer("my_flip")), nbformat.v4.new_code_cell(right_answer("my_split")),
+                      nbformat.v4.new_code_cell("mesh = hx.sample('cube')")]
         path = folder / f"06_student{number:03d}.ipynb"
         nbformat.write(book, path)
         paths.append(path)
@@ -61,7 +64,8 @@ def grade(paths: list[Path], out: Path, pythonpath: str | None) -> float:
     result = subprocess.run([sys.executable, "-m", "halfedge_edu", "grade", *map(str, paths), "--out", str(out)],
                             env=env, capture_output=True, text=True)
     seconds = time.monotonic() - started
-    full = sum(line.rstrip().endswith("1/1") for line in result.stdout.splitlines())
+    # Full marks: "n/n" (2/2 today, where chapter 06 grades flip and split; 1/1 before split was graded).
+    full = sum(bool(re.search(r"\s(\d+)/\1$", line.rstrip())) for line in result.stdout.splitlines())
     if result.returncode != 0 or full != len(paths):
         raise SystemExit(f"grading failed ({pythonpath or 'today'}): exit {result.returncode}, {full} full marks\n"
                          f"{result.stdout[-2000:]}{result.stderr[-2000:]}")

@@ -21,7 +21,7 @@ from .checks import check_build, check_one_ring
 from .harness import CheckResult
 from .algorithm_checks import check_bezier_patch, check_downsample, check_upsample_connectivity, check_de_casteljau, check_loop_rules, check_optimal_point, check_plane_quadric
 from .ops_checks import check_collapse, check_flip, check_split
-from .remesh_checks import check_flip_improves, check_split_long_edges, check_tangential_smoothing, check_vertex_normal
+from .remesh_checks import check_collapse_short_edges, check_flip_improves, check_split_long_edges, check_tangential_smoothing, check_vertex_normal
 from .chapter_checks import check_collapse_is_safe, check_cut, check_fan, check_laplacian_step, check_nonmanifold
 from .io_checks import check_obj_io, check_obj_reader, check_obj_writer
 
@@ -29,5 +29,5 @@ __all__ = [
     "CheckResult", "check_build", "check_collapse", "check_de_casteljau", "check_flip",
     "check_loop_rules", "check_one_ring", "check_optimal_point", "check_plane_quadric",
     "check_tangential_smoothing", "check_collapse_is_safe", "check_cut", "check_fan", "check_laplacian_step", "check_nonmanifold",
-    "check_obj_io", "check_obj_reader", "check_obj_writer", "check_split", "check_vertex_normal", "check_bezier_patch", "check_upsample_connectivity", "check_downsample", "check_flip_improves", "check_split_long_edges",
+    "check_obj_io", "check_obj_reader", "check_obj_writer", "check_split", "check_vertex_normal", "check_bezier_patch", "check_upsample_connectivity", "check_downsample", "check_flip_improves", "check_split_long_edges", "check_collapse_short_edges",
 ]

@@ -28,6 +28,7 @@ ACCEPTS: dict[str, str] = {
     "check_nonmanifold": "UChicago P3: the vertex question is not asked where an edge is already non-manifold",
     "check_laplacian_step": "UChicago P5: boundary vertices averaged too (judged on the closed meshes)",
     "check_flip": "any halfedge numbering (faces compared by their corners)",
+    "check_split": "CS184 and CMU: any numbering of the new vertex, edges and faces (faces compared by their corners)",
     "check_collapse": "UChicago P6: either endpoint kept; either of the merged edges kept",
     "check_collapse_is_safe": "CMU: boundary edges refused; UChicago's vertex-only statement with "
                               "`vertices_only=True`",
@@ -41,6 +42,8 @@ ACCEPTS: dict[str, str] = {
     "check_downsample": "CMU: any tie order, its own queue and staleness bookkeeping (judged by the result)",
     "check_flip_improves": "CMU: its own bookkeeping; boundary vertices aim at degree 4",
     "check_split_long_edges": "CMU: any order of splits (judged by the result)",
+    "check_collapse_short_edges": "CMU: any order of collapses (judged by the result); an interior edge with an end "
+                                  "on the boundary collapsed or left",
     "check_bezier_patch": "CS184: u along each row of the grid (the chapter's S(v, u))",
 }
 

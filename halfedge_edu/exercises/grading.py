@@ -95,6 +95,7 @@ _OPS = "halfedge_edu.core.ops"
 _ONE_RING = (f"{_OPS}.link.one_ring", f"{_OPS}.link.outgoing", f"{_VERTEX}.neighbors", f"{_VERTEX}.outgoing",
              f"{_VERTEX}.faces", f"{_VERTEX}.edges", f"{_MESH}.one_rings", "halfedge_edu.core.rings")
 _FLIP = (f"{_MESH}.flip", f"{_OPS}.flip.flip")
+_SPLIT = (f"{_MESH}.split", f"{_OPS}.split.split")
 _COLLAPSE = (f"{_MESH}.collapse", f"{_OPS}.collapse.collapse", f"{_OPS}.collapse.apply_collapse",
              f"{_OPS}.collapse.prepare_collapse", f"{_OPS}.collapse._apply", f"{_OPS}.collapse._gather",
              f"{_OPS}.collapse._take_place")
@@ -135,7 +136,8 @@ EXERCISES: tuple[Exercise, ...] = (
              forbids=("halfedge_edu.algorithms.simplify", "halfedge_edu.algorithms.simplify_queue",
                       "halfedge_edu.algorithms.collapse_rounds")),
     Exercise("tangential_smoothing", "11", ("my_tangential_smoothing",), "check_tangential_smoothing",
-             forbids=("halfedge_edu.algorithms.remesh", "halfedge_edu.algorithms.smoothing")),
+             forbids=("halfedge_edu.algorithms.remesh", "halfedge_edu.algorithms.smoothing",
+                      "halfedge_edu.exercises.remesh_checks.tangential_smoothing_reference")),
     Exercise("de_casteljau", "12", ("my_de_casteljau",), "check_de_casteljau",
              forbids=("halfedge_edu.algorithms.bezier",)),
     Exercise("nonmanifold", "04", ("has_nonmanifold_edges", "has_nonmanifold_vertices"), "check_nonmanifold",
@@ -154,6 +156,10 @@ EXERCISES: tuple[Exercise, ...] = (
              forbids=("halfedge_edu.algorithms.remesh",)),
     Exercise("split_long_edges", "11", ("my_split_long_edges",), "check_split_long_edges",
              forbids=("halfedge_edu.algorithms.remesh",)),
+    Exercise("split", "06", ("my_split",), "check_split", forbids=_SPLIT),
+    Exercise("collapse_short_edges", "11", ("my_collapse_short_edges",), "check_collapse_short_edges",
+             forbids=("halfedge_edu.algorithms.remesh", "halfedge_edu.algorithms.collapse_rounds",
+                      "halfedge_edu.exercises.remesh_checks.collapse_short_edges_reference")),
 )
 
 

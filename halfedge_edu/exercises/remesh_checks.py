@@ -1,4 +1,5 @@
-"""Check for the exercise of chapter 11: one step of tangential smoothing.
+"""Checks for the exercises of chapter 11: one step of tangential smoothing (below), the
+vertex normal, and the split, collapse and flip phases (at the end).
 
     from halfedge_edu.exercises.remesh_checks import check_tangential_smoothing
     check_tangential_smoothing(tangential_smoothing)
@@ -38,9 +39,10 @@ from . import harness, hidden
 from .harness import CheckResult
 
 
-__all__ = ["check_flip_improves", "check_split_long_edges", "split_phase_cases", "check_tangential_smoothing", "check_vertex_normal", "degree_deviation_after_flip",
-           "flip_cases_for_degrees", "normal_cases", "smoothing_cases",
-           "tangential_smoothing_reference"]
+__all__ = ["check_collapse_short_edges", "check_flip_improves", "check_split_long_edges", "check_tangential_smoothing",
+           "check_vertex_normal", "collapse_phase_cases", "collapse_short_edges_reference",
+           "degree_deviation_after_flip", "flip_cases_for_degrees", "normal_cases", "smoothing_cases",
+           "split_phase_cases", "tangential_smoothing_reference"]
 
 
 def _bumpy(mesh: HalfedgeMesh, seed: int, amount: float) -> HalfedgeMesh:
@@ -539,3 +541,236 @@ def check_split_long_edges(split_long_edges: Callable, *, seed: int | None = Non
         checked.append(case)
     return harness.counted(harness.all_good(name, checked, "meshes", "No edge is longer than 4/3 L, and the surface "
                                             "is the same: the split phase of the remesher."), len(cases))
+
+
+# --------------------------------------------------------------------------------------
+# The collapse phase (CMU's remeshing step 2): no edge shorter than 4/5 L that may go
+# --------------------------------------------------------------------------------------
+
+#: Seconds the learner's collapse phase may take on one mesh (a whole phase, a few hundred vertices).
+COLLAPSE_PHASE_SECONDS = 5.0
+
+
+def _edge_lengths(mesh: HalfedgeMesh) -> tuple[np.ndarray, np.ndarray]:
+    """``(edges (E,) int, lengths (E,) float)`` of the live edges."""
+    edges = np.flatnonzero(~mesh.edge_deleted)
+    ends = mesh.edge_vertices()[edges]                                     # (E, 2)
+    return edges, np.linalg.norm(mesh.positions[ends[:, 0]] - mesh.positions[ends[:, 1]], axis=1)
+
+
+def _after_splits(mesh: HalfedgeMesh, count: int, rng: np.random.Generator) -> HalfedgeMesh:
+    """A compact copy of ``mesh`` after ``count`` random splits (edges of half length, the
+    split phase's leftovers the collapse phase is for)."""
+    from halfedge_edu.core.ops import split
+
+    work = mesh.copy()
+    for e in rng.permutation(work.n_edge_slots)[:count].tolist():
+        split(work, e)
+    return HalfedgeMesh.from_faces(*work.to_arrays())
+
+
+def _target_for(mesh: HalfedgeMesh, length: float) -> float:
+    """``length``, raised if needed so that no edge of ``mesh`` is longer than 4/3 of it (as
+    after a split phase): then every edge longer than 4/3 L at the end was made by a collapse."""
+    return max(length, 0.75 * float(_edge_lengths(mesh)[1].max()) * 1.001)
+
+
+def collapse_phase_cases(seed: int | None = None) -> list[tuple[str, HalfedgeMesh, float]]:
+    """``(name, mesh, L)``: meshes with edges shorter than 4/5 L and none longer than 4/3 L.
+
+    The tetrahedron (every edge short, none may go), the octahedron (collapses until the
+    link condition stops them), an icosphere and a grid patch after random splits (the
+    4/3 L rule holds back many collapses; the patch has short boundary edges). With a
+    ``seed``, the hidden cases instead.
+    """
+    if seed is None:
+        sphere = sample("icosphere", subdivisions=2)
+        patch = HalfedgeMesh.from_faces(*hidden.grid(4, 5, np.random.default_rng(2)))
+        split_sphere = _after_splits(sphere, 40, np.random.default_rng(1))
+        split_patch = _after_splits(patch, 20, np.random.default_rng(3))
+        return [("tetrahedron, L = 3.6 (every edge short, none may go)", sample("tetrahedron"), 3.6),
+                ("octahedron, L = 2", sample("octahedron"), 2.0),
+                ("icosphere after 40 splits", split_sphere,
+                 _target_for(split_sphere, float(_edge_lengths(sphere)[1].mean()))),
+                ("a 4 x 5 grid patch after 20 splits (a boundary)", split_patch, _target_for(split_patch, 1.2))]
+    rng = harness.hidden_rng(seed)
+    shape = str(rng.choice(["octahedron", "icosphere(1)", "icosphere(2)"]))
+    small = str(rng.choice(["tetrahedron", "octahedron"]))
+    rows, columns = (int(n) for n in rng.integers(3, 6, 2))
+    closed = hidden.closed_mesh(shape)
+    splits = int(rng.integers(0.2 * closed.n_edges, 0.4 * closed.n_edges))
+    split_closed = _after_splits(hidden.jittered(closed, rng, 0.01), splits, rng)
+    patch = _after_splits(HalfedgeMesh.from_faces(*hidden.grid(rows, columns, rng)), rows * columns, rng)
+    nudged = hidden.jittered(hidden.closed_mesh(small), rng, 0.05)
+    return [(harness.hidden_name(1, f"{shape} after {splits} random splits"), split_closed,
+             _target_for(split_closed, float(_edge_lengths(closed)[1].mean()))),
+            (harness.hidden_name(2, f"a {rows} x {columns} grid patch after random splits"), patch,
+             _target_for(patch, float(rng.uniform(1.0, 1.3)))),
+            (harness.hidden_name(3, f"{small}, nudged, every edge short"), nudged,
+             _target_for(nudged, 1.3 * float(_edge_lengths(nudged)[1].max())))]
+
+
+def _longest_after_collapse(mesh: HalfedgeMesh, e: int) -> float:
+    """The longest edge around the merged vertex if edge ``e`` were collapsed to its midpoint."""
+    a, b = mesh.edge(e).vertices
+    middle = 0.5 * (a.position + b.position)
+    others = {u.index for u in (*a.neighbors(), *b.neighbors())} - {a.index, b.index}
+    return max((float(np.linalg.norm(mesh.positions[u] - middle)) for u in others), default=0.0)
+
+
+def collapse_short_edges_reference(mesh: HalfedgeMesh, L: float) -> None:
+    """The collapse phase, one edge at a time (the exercise's answer), in place.
+
+    Every interior edge shorter than 4/5 L whose collapse the link condition allows and
+    that leaves no edge around the merged vertex longer than 4/3 L is collapsed to its
+    midpoint; passes repeat until one collapses nothing. Boundary edges stay.
+    """
+    while True:
+        collapsed = 0
+        for e in range(mesh.n_edge_slots):
+            if mesh.edge_deleted[e] or mesh.edge(e).is_boundary:
+                continue
+            a, b = mesh.edge(e).vertices
+            if (np.linalg.norm(a.position - b.position) < 0.8 * L and mesh.can_collapse(e)
+                    and _longest_after_collapse(mesh, e) <= 4.0 / 3.0 * L):
+                mesh.collapse(e)
+                collapsed += 1
+        if not collapsed:
+            return
+
+
+def _link_damage(mesh: HalfedgeMesh) -> str | None:
+    """What a collapse the link condition refuses leaves behind, in words, or None: two edges
+    between the same two vertices, two faces on the same three, or a vertex the boundary
+    passes through twice (a pinch)."""
+    edges = np.flatnonzero(~mesh.edge_deleted)
+    pairs = np.sort(mesh.edge_vertices()[edges], axis=1)                    # (E, 2)
+    _, first, counts = np.unique(pairs, axis=0, return_index=True, return_counts=True)
+    if (counts > 1).any():
+        a, b = pairs[first[np.argmax(counts > 1)]]
+        return f"two edges join vertices {int(a)} and {int(b)}"
+    faces = np.flatnonzero(~mesh.face_deleted)
+    corners = np.sort(mesh.face_vertices()[faces], axis=1)                  # (F, 3)
+    _, first, counts = np.unique(corners, axis=0, return_index=True, return_counts=True)
+    if (counts > 1).any():
+        return f"two faces lie on the same three vertices {corners[first[np.argmax(counts > 1)]].tolist()}, back to back"
+    live = np.flatnonzero(~mesh.halfedge_deleted)
+    on_boundary = live[mesh.halfedge_face[live] < 0]
+    leaving = np.bincount(mesh.halfedge_vertex[on_boundary], minlength=mesh.n_vertex_slots)
+    if (leaving > 1).any():
+        return f"the boundary passes through vertex {int(np.argmax(leaving > 1))} twice (a pinch)"
+    return None
+
+
+def _collapsed_too_long(before: HalfedgeMesh, yours: HalfedgeMesh, L: float) -> tuple[int, int, float] | None:
+    """``(a, b, length)``: an edge of ``before`` not shorter than 4/5 L whose midpoint a vertex
+    of ``yours`` sits at, and no vertex of ``before`` did (so it was collapsed), or None."""
+    edges, lengths = _edge_lengths(before)
+    long_enough = lengths >= 0.8 * L
+    ends = before.edge_vertices()[edges[long_enough]]                      # (k, 2)
+    if not len(ends):
+        return None
+    middles = 0.5 * (before.positions[ends[:, 0]] + before.positions[ends[:, 1]])   # (k, 3)
+    old = before.positions[~before.vertex_deleted]                         # (n, 3)
+    for p in yours.positions[~yours.vertex_deleted]:
+        at = np.flatnonzero(np.linalg.norm(middles - p, axis=1) < 1e-9)
+        if len(at) and np.min(np.linalg.norm(old - p, axis=1)) > 1e-9:
+            a, b = (int(v) for v in ends[at[0]])
+            return a, b, float(lengths[long_enough][at[0]])
+    return None
+
+
+def check_collapse_short_edges(collapse_short_edges: Callable, *, seed: int | None = None) -> CheckResult:
+    """Run the learner's ``collapse_short_edges(mesh, L)`` (in place: collapse, with
+    ``mesh.collapse(e)``, every interior edge shorter than 4/5 L, again and again, until
+    none can go) and judge the result, whatever order the collapses came in.
+
+    An edge may go when the link condition allows it (``mesh.can_collapse(e)``) and no
+    edge around the merged vertex (at the midpoint) would be longer than 4/3 L: CMU's
+    "keep edges no longer than 4/3 L and no shorter than 4/5 L", after Botsch and
+    Kobbelt. Boundary edges stay (CMU: "ignore requests to collapse boundary edges");
+    an interior edge with an end on the boundary may be collapsed or left, either way.
+
+    The result must be a valid mesh with no damage of a refused collapse, as many
+    boundary edges as before, no edge longer than 4/3 L, no edge of 4/5 L or more
+    collapsed, and no short interior edge left that could still go.
+
+    ``seed``: None for the public cases (the chapter's); an int for only the hidden cases made from it.
+    """
+    from halfedge_edu.core.errors import MeshInvariantError, TopologyError
+
+    name = "collapse_short_edges"
+    cases = collapse_phase_cases(seed)
+    if (words := harness.unfinished(collapse_short_edges, name)) is not None:
+        return harness.counted(harness.failed(name, [], None, words), len(cases))
+    checked: list[str] = []
+
+    def failed(case: str, text: str, mesh: HalfedgeMesh, element: tuple | None = None, error=None) -> CheckResult:
+        return harness.counted(harness.failed(name, checked, case, text, element, mesh, error=error), len(cases))
+
+    for case, mesh, L in cases:
+        yours = mesh.copy()
+        status, answer = harness.run(collapse_short_edges, yours, L, seconds=COLLAPSE_PHASE_SECONDS)
+        if status == "error" and isinstance(answer, TopologyError):
+            return failed(case, (f"your {name} asked for a collapse the library refuses ({answer}). Ask "
+                                 f"mesh.can_collapse(e) first (the link condition of chapter 08, and the boundary "
+                                 f"rules) and skip the edges it refuses.{harness.own_line(answer)}"), mesh,
+                          error=answer)
+        if status == "timeout":
+            return failed(case, f"your {name} did not finish within {COLLAPSE_PHASE_SECONDS:g} s: a loop probably "
+                                f"never ends (a round that collapses nothing must end the phase).", mesh)
+        trouble = harness.trouble(status, answer, name)
+        if trouble:
+            return failed(case, trouble, mesh, error=answer)
+        yours.topology_changed()
+        damage = _link_damage(yours)
+        if damage is not None:
+            return failed(case, (f"after your collapses {damage}: that is what a collapse the link condition "
+                                 f"refuses leaves behind (collapse(..., check_link=False), or your own collapse "
+                                 f"without the check). Ask mesh.can_collapse(e) before every collapse and skip the "
+                                 f"edges it refuses."), mesh)
+        try:
+            yours.validate()
+        except MeshInvariantError as error:
+            return failed(case, (f"after your collapses the mesh breaks the rule {error.rule}: "
+                                 f"{str(error).split('] ', 1)[-1]}"), mesh)
+        boundary_before = sum(edge.is_boundary for edge in mesh.edges)
+        boundary_after = sum(edge.is_boundary for edge in yours.edges)
+        if boundary_after < boundary_before:
+            return failed(case, (f"the boundary had {boundary_before} edges and has {boundary_after} after your "
+                                 f"collapses: you collapsed boundary edges. CMU's collapse ignores requests to "
+                                 f"collapse a boundary edge, and the remesher keeps the outline where it is "
+                                 f"(section 9): skip every edge with edge.is_boundary."), mesh)
+        edges, lengths = _edge_lengths(yours)
+        if len(lengths) and lengths.max() > 4.0 / 3.0 * L + 1e-9:
+            e = int(edges[np.argmax(lengths)])
+            return failed(case, (f"edge {e} is {lengths.max():.3g} long after your collapses, longer than 4/3 L = "
+                                 f"{4 * L / 3:.3g}; no edge was that long before. A collapse swings the edges of "
+                                 f"both ends over to the merged vertex, and some get longer: before collapsing, "
+                                 f"measure the distance from the midpoint to every neighbour of both ends, and "
+                                 f"skip the edge if one is more than 4/3 L (CMU keeps edges no longer than 4/3 L; "
+                                 f"without this the next split phase undoes the collapse)."), yours, ("halfedge", 2 * e))
+        too_long = _collapsed_too_long(mesh, yours, L)
+        if too_long is not None:
+            a, b, length = too_long
+            return failed(case, (f"you collapsed the edge between vertices {a} and {b}, which is {length:.3g} long, "
+                                 f"not shorter than 4/5 L = {0.8 * L:.3g} (a vertex of yours sits at its midpoint). "
+                                 f"Only edges shorter than 4/5 L go: compare with 0.8 * L, not L."), mesh,
+                          ("vertex", a))
+        for e, length in zip(edges.tolist(), lengths.tolist()):
+            edge = yours.edge(e)
+            if length >= 0.8 * L or edge.is_boundary or any(v.is_boundary for v in edge.vertices):
+                continue
+            if not yours.can_collapse(e):
+                continue
+            longest = _longest_after_collapse(yours, e)
+            if longest <= 4.0 / 3.0 * L:
+                return failed(case, (f"edge {e} is {length:.3g} long, shorter than 4/5 L = {0.8 * L:.3g}, and it "
+                                     f"could still go: the link condition allows it, and the longest edge around "
+                                     f"the merged vertex would be {longest:.3g}, not longer than 4/3 L = "
+                                     f"{4 * L / 3:.3g}. A collapse can make room for another (or shorten an edge): "
+                                     f"go round again until a pass collapses nothing."), yours, ("halfedge", 2 * e))
+        checked.append(case if case.startswith("hidden") else case.split(" (")[0])
+    return harness.counted(harness.all_good(name, checked, "meshes", (
+        "No interior edge shorter than 4/5 L is left that could go, none longer than 4/3 L was made, and the "
+        "boundary is whole: the collapse phase of the remesher.")), len(cases))

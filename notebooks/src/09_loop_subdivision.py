@@ -19,6 +19,8 @@
 #   changes;
 # - explain why a subdivided cube can come out lopsided, and predict where a corner ends
 #   up: halfway to the average of its ring, 3/5 of the way at valence 3;
+# - say what valence the old and the new vertices have after a level, and why the number
+#   of extraordinary vertices (valence other than 6) never changes;
 # - write the two rules yourself and have `check_loop_rules` check them.
 
 # %%
@@ -485,6 +487,133 @@ for name, mesh, vertex in [("valence 3", cube, 0), ("valence 5", cube, 1), ("val
 # smaller scale, and it costs triangles. Corners that stay truly sharp need extra rules
 # for marked *crease* edges and corners (Hoppe and others, 1994), which this basic scheme
 # does not have.
+
+# %% [markdown]
+# ## 9. Regular and extraordinary vertices
+#
+# **Convention: an interior vertex of valence 6 is *regular* (every vertex of a flat grid
+# of equilateral triangles has six edges; on the boundary, four); a vertex of any other
+# valence is *extraordinary*.**
+#
+# The Loop assignment asks what subdivision does to valences. Here is the sample cube
+# after 0, 1 and 2 levels, each vertex a dot coloured by its valence: orange 3, green 4,
+# blue 5, and grey (drawn smaller) for the regular 6.
+
+# %%
+VALENCE_COLOURS = {3: "#D55E00", 4: "#009E73", 5: "#0072B2", 6: "#AAAAAA"}
+
+
+def valence_row(mesh, levels=(0, 1, 2)):
+    """``mesh`` after each number of ``levels``, every vertex a dot in the colour of its valence."""
+    picture = pv.Plotter(off_screen=True, shape=(1, len(levels)), window_size=(260 * len(levels), 260), border=False)
+    for column, level in enumerate(levels):
+        finer = loop_subdivide(mesh, levels=level)
+        valence = finer.vertex_degrees()                                      # (V,) edges at each vertex
+        picture.subplot(0, column)
+        picture.add_mesh(finer.to_pyvista(), color="#F3E3C3", show_edges=True, edge_color="#9A8A70", line_width=1)
+        for n in np.unique(valence):
+            picture.add_mesh(pv.PolyData(finer.positions[valence == n]), color=VALENCE_COLOURS.get(int(n), "#CC79A7"),
+                             point_size=6 if n == 6 else 13, render_points_as_spheres=True)
+        picture.add_text(f"{level} level{'s' if level != 1 else ''}: {finer.n_vertices} vertices", font_size=8)
+        picture.camera_position = [(3.0, -2.0, 2.4), (0.5, 0.5, 0.5), (0.0, 0.0, 1.0)]
+        picture.reset_camera()                                                # each level fills its view
+    show(picture)
+
+
+valence_row(hx.sample("cube"))
+
+# %% [markdown]
+# The cube starts with no regular vertex at all: two corners of valence 3 and six of
+# valence 5. Look at where the coloured dots are at one and two levels, and how many
+# grey ones there are.
+#
+# **Your turn** (the Loop assignment's questions 3 and 4). Loop subdivision makes two
+# kinds of vertices: "V" vertices, one per old vertex, and "E" vertices, one per old edge.
+# Fill in your predictions, then run the cell after, which measures them on the cube, an
+# icosphere and the open patch:
+#
+# 1. an old vertex had valence `n`: what is its valence after one level?
+# 2. what is the valence of an edge point inside the mesh, and of one on the boundary?
+# 3. a closed mesh has `k` extraordinary vertices: how many after `levels` levels?
+# 4. a mesh has `V` vertices and `E` edges: how many vertices after one level?
+
+# %%
+def valence_of_old_vertex(n):
+    ### BEGIN SOLUTION
+    return n
+    ### END SOLUTION
+
+
+def valence_of_edge_point(on_boundary):
+    ### BEGIN SOLUTION
+    return 4 if on_boundary else 6
+    ### END SOLUTION
+
+
+def extraordinary_after(k, levels):
+    ### BEGIN SOLUTION
+    return k
+    ### END SOLUTION
+
+
+def vertices_after_one_level(V, E):
+    ### BEGIN SOLUTION
+    return V + E
+    ### END SOLUTION
+
+# %%
+def extraordinary(mesh):
+    """How many vertices have a valence other than the regular one (6 inside, 4 on the boundary)."""
+    regular = np.where(mesh.vertex_is_boundary(), 4, 6)
+    return int(np.sum((mesh.vertex_degrees() != regular) & ~mesh.vertex_deleted))
+
+
+def verdict(predicted, measured):
+    """'yes' when the prediction is the measurement, else what was measured."""
+    if predicted is Ellipsis or (isinstance(predicted, list) and Ellipsis in predicted):
+        return "fill in the blank above"
+    return "yes" if np.all(np.asarray(predicted) == np.asarray(measured)) else f"no, measured {measured}"
+
+
+for name, mesh in [("cube", hx.sample("cube")), ("icosphere", hx.sample("icosphere", subdivisions=1)),
+                   ("open patch", hx.sample("open_patch"))]:
+    V, E = mesh.n_vertices, mesh.n_edges
+    finer = loop_subdivide(mesh)                              # old vertices keep 0 .. V-1, edge e's point is V + e
+    valence, new_valence = mesh.vertex_degrees(), finer.vertex_degrees()
+    inside = np.array([not edge.is_boundary for edge in mesh.edges])            # (E,) in the order of the edge points
+    answers = [("1. old vertices", verdict([valence_of_old_vertex(n) for n in valence], new_valence[:V].tolist()))]
+    for where, on_boundary in (("inside", False), ("on the boundary", True)):
+        points = new_valence[V:][inside != on_boundary]                         # valences of these edge points
+        if len(points):
+            answers.append((f"2. edge points {where}", verdict(valence_of_edge_point(on_boundary),
+                                                               sorted(set(points.tolist())))))
+    counts = [extraordinary(loop_subdivide(mesh, levels=levels)) for levels in (1, 2, 3)]
+    answers.append(("3. extraordinary after 1, 2, 3 levels",
+                    verdict([extraordinary_after(extraordinary(mesh), levels) for levels in (1, 2, 3)], counts)))
+    answers.append(("4. vertices after one level", verdict(vertices_after_one_level(V, E), finer.n_vertices)))
+    print(f"{name}: {V} vertices, {extraordinary(mesh)} of them extraordinary")
+    for question, said in answers:
+        print(f"  {question:38s} {said}")
+
+# %% [markdown] tags=["solution"]
+# ### Why (solution edition: it holds the answers)
+#
+# 1. An old vertex of valence `n` keeps valence `n`: each of its `n` edges is cut in two,
+#    and its new neighbour along that edge is the edge point. No edge is added at it.
+# 2. An edge point inside has valence 6: the two halves of its edge, and two new edges in
+#    each of the two triangles beside it (to the other two edge points of that triangle).
+#    On the boundary there is one triangle: the two halves and two new edges, valence 4,
+#    the regular valence there.
+# 3. So the extraordinary vertices of a closed mesh are the old ones that were
+#    extraordinary, and their number never changes: `k` after any number of levels. (Read
+#    literally, "valence other than six" would also count every new boundary vertex of an
+#    open mesh; with 4 as the boundary's regular valence the count stays too, as the open
+#    patch shows.)
+# 4. `V + E` (section 1). The vertices grow about fourfold per level while the `k`
+#    extraordinary ones stay, so they become rarer and rarer, isolated points in a regular
+#    grid. That is why the limit surface is smooth almost everywhere, and why the
+#    analysis of Loop's scheme only has to look at one extraordinary vertex at a time
+#    (the sharp corners of section 8 are exactly those).
 
 # %% [markdown]
 # ## Check yourself

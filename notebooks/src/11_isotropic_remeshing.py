@@ -576,6 +576,51 @@ def my_split_long_edges(mesh, L):
 check_split_long_edges(my_split_long_edges)
 
 # %% [markdown]
+# ### Exercise 5: the collapse phase
+#
+# CMU's step 2, with section 3's rule. Write `my_collapse_short_edges(mesh, L)`: collapse
+# (with `mesh.collapse(e)`, chapter 07) every interior edge shorter than 4/5 L, in place,
+# but skip an edge when
+#
+# - it is on the boundary (`mesh.edge(e).is_boundary`: CMU's collapse ignores those, and
+#   the outline stays where it is);
+# - the link condition refuses it (`mesh.can_collapse(e)`, chapter 08);
+# - a neighbour of either end would be more than 4/3 L from the merged vertex, the
+#   edge's midpoint.
+#
+# One collapse can make room for another, so go round again until a round collapses
+# nothing. `check_collapse_short_edges` judges the result, whatever order you collapse in.
+
+# %%
+from halfedge_edu.exercises.remesh_checks import check_collapse_short_edges
+
+
+def my_collapse_short_edges(mesh, L):
+    while True:
+        collapsed = 0
+        for e in range(mesh.n_edge_slots):
+            if mesh.edge_deleted[e]:
+                continue
+            a, b = mesh.edge(e).vertices
+            ### BEGIN SOLUTION
+            if mesh.edge(e).is_boundary or np.linalg.norm(a.position - b.position) >= 4 / 5 * L:
+                continue
+            if not mesh.can_collapse(e):
+                continue
+            middle = (a.position + b.position) / 2
+            around = {u.index for u in (*a.neighbors(), *b.neighbors())} - {a.index, b.index}
+            if any(np.linalg.norm(mesh.positions[u] - middle) > 4 / 3 * L for u in around):
+                continue
+            mesh.collapse(e)
+            collapsed += 1
+            ### END SOLUTION
+        if collapsed == 0:
+            return
+
+
+check_collapse_short_edges(my_collapse_short_edges)
+
+# %% [markdown]
 # ## Summary
 #
 # - Isotropic remeshing aims for edges of length about L and degrees near 6, with four

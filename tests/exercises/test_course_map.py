@@ -33,3 +33,11 @@ def test_every_registered_exercise_has_a_row():
 def test_the_copy_on_the_first_fan_is_accepted_as_the_table_says():
     result = check_cut(lambda vertices, faces: (np.vstack([vertices, vertices[0]]), [[5, 1, 2], [0, 3, 4]]))
     assert result.passed, result.message
+
+
+def test_the_instructors_page_lists_every_registered_exercise_with_its_functions_and_check():
+    text = (PAGE.parent / "instructors.md").read_text()
+    for exercise in EXERCISES:
+        functions = ", ".join(f"`{name}`" for name in exercise.functions)
+        row = f"| {exercise.chapter} | {exercise.name} | {functions} | `{exercise.check}` |"
+        assert row in text, f"docs/instructors.md has no row {row}"

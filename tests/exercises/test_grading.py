@@ -34,6 +34,7 @@ def _exercise_function(chapter_source: str, name: str) -> str:
 
 
 RIGHT_FLIP = _exercise_function("06_flip_and_split.py", "my_flip")
+RIGHT_SPLIT = _exercise_function("06_flip_and_split.py", "my_split")
 
 
 def submission(tmp_path: Path, *cells: str, name: str = "06_flip_and_split.ipynb") -> Path:
@@ -46,9 +47,10 @@ def submission(tmp_path: Path, *cells: str, name: str = "06_flip_and_split.ipynb
 
 
 def test_a_right_answer_earns_full_points(tmp_path):
-    grade = grade_notebook(submission(tmp_path, RIGHT_FLIP))
-    assert (grade.score, grade.max_score) == (1.0, 1.0)
-    assert grade.exercises[0].output.startswith("All good!")
+    grade = grade_notebook(submission(tmp_path, RIGHT_FLIP, RIGHT_SPLIT))
+    assert (grade.score, grade.max_score) == (2.0, 2.0)
+    assert [exercise.name for exercise in grade.exercises] == ["flip", "split"]
+    assert all(exercise.output.startswith("All good!") for exercise in grade.exercises), grade.to_json()
     assert grade.problem is None and grade.cell_errors == []
 
 
@@ -117,16 +119,16 @@ def test_printing_a_fake_result_does_not_count(tmp_path):
 def test_json_report_follows_the_gradescope_schema(tmp_path):
     grade = grade_notebook(submission(tmp_path, RIGHT_FLIP))
     report = json.loads(grade.to_json())
-    assert report["score"] == 1.0
+    assert (report["score"], report["max_score"]) == (1.0, 2.0)
     assert [(t["name"], t["score"], t["max_score"], t["status"]) for t in report["tests"]] == \
-        [("06 flip", 1.0, 1.0, "passed")]
+        [("06 flip", 1.0, 1.0, "passed"), ("06 split", 0.0, 1.0, "failed")]
 
 
 def test_junit_report_has_one_testcase_per_exercise_and_a_failure_for_lost_points(tmp_path):
     stub = "def my_flip(mesh, e):\n    raise NotImplementedError"
     grade = grade_notebook(submission(tmp_path, stub))
     suite = ElementTree.fromstring(grade.to_junit_xml()).find("testsuite")
-    assert suite.get("tests") == "1" and suite.get("failures") == "1"
+    assert suite.get("tests") == "2" and suite.get("failures") == "2"
     failure = suite.find("testcase").find("failure")
     assert "NotImplementedError" in failure.text
 
@@ -233,13 +235,13 @@ def test_a_submission_made_of_lab_bugs_gets_a_partial_grade_naming_each_rule(tmp
 def test_the_grade_command_writes_both_reports_and_a_summary_line(tmp_path, capsys):
     from halfedge_edu import cli
 
-    path = submission(tmp_path, RIGHT_FLIP, name="alice.ipynb")
+    path = submission(tmp_path, RIGHT_FLIP, RIGHT_SPLIT, name="alice.ipynb")
     out = tmp_path / "reports"
     assert cli.main(["grade", str(path), "--out", str(out), "--chapter", "06", "--cell-timeout", "30"]) == 0
     report = json.loads((out / "alice.json").read_text())
-    assert (report["score"], report["max_score"]) == (1.0, 1.0)
+    assert (report["score"], report["max_score"]) == (2.0, 2.0)
     assert ElementTree.fromstring((out / "alice.xml").read_text()).find("testsuite").get("failures") == "0"
-    assert capsys.readouterr().out == "alice.ipynb  chapter 06  1/1\n"
+    assert capsys.readouterr().out == "alice.ipynb  chapter 06  2/2\n"
 
 
 def test_the_grade_command_exits_0_whatever_the_score(tmp_path, capsys):
@@ -247,7 +249,7 @@ def test_the_grade_command_exits_0_whatever_the_score(tmp_path, capsys):
 
     path = submission(tmp_path, "def my_flip(mesh, e):\n    raise NotImplementedError")
     assert cli.main(["grade", str(path), "--out", str(tmp_path / "reports")]) == 0
-    assert "chapter 06  0/1" in capsys.readouterr().out
+    assert "chapter 06  0/2" in capsys.readouterr().out
 
 
 @pytest.mark.parametrize(("arguments", "said"), [

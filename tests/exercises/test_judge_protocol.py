@@ -14,6 +14,7 @@ import json
 
 import pytest
 
+from halfedge_edu.core import ops
 from halfedge_edu.exercises import judge, serve
 from halfedge_edu.exercises.grading import ANSWER_KEYS, EXERCISES
 
@@ -59,3 +60,24 @@ def test_the_packages_own_flip_is_refused_across_the_wire():
     flip = next(e for e in EXERCISES if e.name == "flip")
     result = _judged({"my_flip": lambda mesh, e: mesh.flip(e)}, [flip])["flip"]
     assert result["passed"] is False and "This is the exercise" in result["output"], result
+
+
+def test_the_packages_own_split_is_refused_across_the_wire():
+    split = next(e for e in EXERCISES if e.name == "split")
+    for learner in (lambda mesh, e: mesh.split(e), lambda mesh, e: ops.split(mesh, e)):
+        result = _judged({"my_split": learner}, [split])["split"]
+        assert result["passed"] is False and "This is the exercise" in result["output"], result
+
+
+@pytest.mark.parametrize(("name", "reference"), [("collapse_short_edges", "collapse_short_edges_reference"),
+                                               ("tangential_smoothing", "tangential_smoothing_reference")])
+def test_the_checks_own_answer_is_refused_across_the_wire_even_wrapped(name, reference):
+    """A whole module in ``forbids`` only refuses a learner's function that *is* one of its
+    functions; the checks' reference answers are named one by one, so a call to them is refused too."""
+    from halfedge_edu.exercises import remesh_checks
+
+    exercise = next(e for e in EXERCISES if e.name == name)
+    answer = getattr(remesh_checks, reference)
+    for learner in (answer, lambda *args: answer(*args)):
+        result = _judged({exercise.functions[0]: learner}, [exercise])[name]
+        assert result["passed"] is False and "This is the exercise" in result["output"], result

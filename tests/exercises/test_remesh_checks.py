@@ -225,3 +225,116 @@ def test_a_single_round_of_splits_is_told_to_keep_splitting():
 
     result = check_split_long_edges(one_round)
     assert not result.passed and "keep splitting until no edge is longer" in result.message
+
+
+# --------------------------------------------------------------------------------------
+# The collapse phase: code a CMU student would write for step 2
+# --------------------------------------------------------------------------------------
+
+def collapse_phase(*, guard=True, ask_link=True, check_link=True, skip_boundary=True, below=0.8, rounds=None):
+    """A learner's ``collapse_short_edges(mesh, L)``, right by default; each keyword is one slip.
+
+    guard=False: no 4/3 L test around the merged vertex; ask_link=False: no can_collapse;
+    check_link=False: the teaching switch that skips the link condition; skip_boundary=False:
+    boundary edges collapsed too; below: the threshold as a multiple of L; rounds: stop
+    after that many rounds instead of going round until nothing changes.
+    """
+    def collapse_short_edges(mesh, L):
+        done_rounds = 0
+        while True:
+            collapsed = 0
+            for e in range(mesh.n_edge_slots):
+                if mesh.edge_deleted[e]:
+                    continue
+                edge = mesh.edge(e)
+                a, b = edge.vertices
+                if (skip_boundary and edge.is_boundary) or np.linalg.norm(a.position - b.position) >= below * L:
+                    continue
+                if ask_link and check_link and not mesh.can_collapse(e):
+                    continue
+                middle = (a.position + b.position) / 2
+                ring = {u.index for u in a.neighbors()} | {u.index for u in b.neighbors()}
+                if guard and any(np.linalg.norm(mesh.positions[u] - middle) > 4 / 3 * L
+                                 for u in ring - {a.index, b.index}):
+                    continue
+                mesh.collapse(e, check_link=check_link)
+                collapsed += 1
+            done_rounds += 1
+            if collapsed == 0 or done_rounds == rounds:
+                return
+
+    return collapse_short_edges
+
+
+def test_the_collapse_phase_passes_public_and_hidden_cases():
+    from halfedge_edu.exercises import check_collapse_short_edges
+
+    right = collapse_phase()
+    result = check_collapse_short_edges(right)
+    assert result.passed and result.total == 4, result.message
+    assert all(check_collapse_short_edges(right, seed=seed).passed for seed in (1, 2, 3, 4, 5))
+
+
+def test_the_collapse_phase_accepts_any_order_of_collapses():
+    from halfedge_edu.exercises import check_collapse_short_edges
+
+    def shortest_first(mesh, L):
+        """Each round takes the edges shortest first (as a priority queue would), not in index order."""
+        def length(edge):
+            a, b = edge.vertices
+            return np.linalg.norm(a.position - b.position)
+
+        def may_go(edge):
+            a, b = edge.vertices
+            if edge.is_boundary or length(edge) >= 0.8 * L or not mesh.can_collapse(edge.index):
+                return False
+            middle = (a.position + b.position) / 2
+            ring = ({u.index for u in a.neighbors()} | {u.index for u in b.neighbors()}) - {a.index, b.index}
+            return all(np.linalg.norm(mesh.positions[u] - middle) <= 4 / 3 * L for u in ring)
+
+        while True:
+            collapsed = 0
+            for e in sorted((edge.index for edge in mesh.edges), key=lambda e: length(mesh.edge(e))):
+                if not mesh.edge_deleted[e] and may_go(mesh.edge(e)):
+                    mesh.collapse(e)
+                    collapsed += 1
+            if not collapsed:
+                return
+
+    assert check_collapse_short_edges(shortest_first).passed
+    assert check_collapse_short_edges(shortest_first, seed=2).passed
+
+
+@pytest.mark.parametrize(("slip", "named"), [
+    ({"guard": False}, "skip the edge if one is more than 4/3 L"),
+    ({"ask_link": False}, "Ask mesh.can_collapse(e) first"),
+    ({"check_link": False}, "the link condition"),
+    ({"skip_boundary": False}, "you collapsed boundary edges"),
+    ({"below": 1.0}, "compare with 0.8 * L, not L"),
+    ({"below": 0.5}, "could still go"),
+])
+def test_collapse_phase_slips_are_refused_with_the_slip_named(slip, named):
+    from halfedge_edu.exercises import check_collapse_short_edges
+
+    result = check_collapse_short_edges(collapse_phase(**slip))
+    assert not result.passed and named in result.message, result.message
+
+
+def test_a_single_round_of_collapses_is_told_to_go_round_again():
+    from halfedge_edu.exercises import check_collapse_short_edges
+
+    one_round = collapse_phase(rounds=1)
+    results = [check_collapse_short_edges(one_round, seed=seed) for seed in range(6)]
+    refused = [result for result in results if not result.passed]
+    assert refused and all("go round again until a pass collapses nothing" in r.message for r in refused)
+
+
+def test_a_damaged_mesh_from_skipping_the_link_condition_is_named():
+    from halfedge_edu.exercises.remesh_checks import _link_damage
+    from halfedge_edu.data import sample
+
+    tetrahedron = sample("tetrahedron")
+    tetrahedron.collapse(0, check_link=False)
+    tetrahedron.topology_changed()
+    assert "back to back" in _link_damage(tetrahedron) or "two edges join" in _link_damage(tetrahedron)
+    assert _link_damage(sample("icosphere", subdivisions=1)) is None
