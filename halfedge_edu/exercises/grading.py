@@ -76,9 +76,11 @@ class Exercise:
         check: the name of the ``halfedge_edu.exercises`` helper that judges them.
         points: what a passing check earns.
         forbids: the package's own answers to this exercise, which the learner's function may
-            not call while it is graded: dotted paths of functions, methods or whole modules,
-            or ``"notebook:NAME"`` for a function the chapter itself defines. Every exercise
-            also forbids the checks' own reference code (:data:`ANSWER_KEYS`).
+            not call while it is graded: dotted paths of functions, methods or whole modules
+            (every function and method the module defines), or ``"notebook:NAME"`` for a
+            function the chapter itself defines; ``"!dotted.path"`` exempts one function of
+            a forbidden module that the exercise hands the learner. Every exercise also
+            forbids the checks' own reference code (:data:`ANSWER_KEYS`).
     """
 
     name: str
@@ -151,7 +153,9 @@ EXERCISES: tuple[Exercise, ...] = (
              forbids=("halfedge_edu.algorithms.loop",)),
     Exercise("downsample", "10", ("my_downsample",), "check_downsample",
              forbids=("halfedge_edu.algorithms.simplify", "halfedge_edu.algorithms.simplify_queue",
-                      "halfedge_edu.algorithms.collapse_rounds")),
+                      "halfedge_edu.algorithms.collapse_rounds",
+                      # the exercise hands the learner the quadrics; the loop is theirs
+                      "!halfedge_edu.algorithms.simplify.face_quadrics")),
     Exercise("flip_improves", "11", ("my_flip_improves",), "check_flip_improves",
              forbids=("halfedge_edu.algorithms.remesh",)),
     Exercise("split_long_edges", "11", ("my_split_long_edges",), "check_split_long_edges",

@@ -20,7 +20,9 @@ object, so every alias and bound method of it is covered.
 
 from __future__ import annotations
 
+import functools
 import importlib
+import inspect
 import socket
 import sysconfig
 import traceback
@@ -46,8 +48,12 @@ _LIBRARY_FOLDERS = tuple(
 ) + (str(Path(__file__).resolve().parents[1]),)
 
 
+@functools.lru_cache(maxsize=4096)
 def is_library_file(filename: str) -> bool:
-    """Whether code in ``filename`` is library code (the package, the standard library, site-packages)."""
+    """Whether code in ``filename`` is library code (the package, the standard library, site-packages).
+
+    Cached: every call of a guarded function asks it about its caller's file.
+    """
     if not filename or filename.startswith("<frozen"):
         return True
     try:
@@ -65,18 +71,34 @@ class _Guards:
         self.active: set[str] = set()                        # keys refused during the current call
         self.in_call = False
         self.used: list[str] = []                            # what the learner's code called
+        self.keys: dict[int, str] = {}                       # id(guarded function) -> its key
+        self.guarded: list[types.FunctionType] = []
 
-    def install(self, key: str, function: types.FunctionType) -> None:
-        """Give ``function`` the guard's code; keep a callable copy with its original code."""
-        if key in self.originals or not isinstance(function, types.FunctionType):
-            return
-        if function.__code__.co_freevars:  # a closure cannot take another code object
-            return
+    def install(self, key: str, function: types.FunctionType) -> str | None:
+        """Give ``function`` the guard's code; keep a callable copy with its original code.
+
+        Returns the key the guard answers to: ``key``, or the key ``function`` was guarded
+        under before (one function can be named by two entries: a method and its module);
+        None for what cannot be guarded (a closure cannot take another code object).
+        """
+        if not isinstance(function, types.FunctionType):
+            return None
+        if id(function) in self.keys:
+            return self.keys[id(function)]
+        if key in self.originals or function.__code__.co_freevars:
+            return None
         copy = types.FunctionType(function.__code__, function.__globals__, function.__name__,
                                   function.__defaults__, function.__closure__)
         copy.__kwdefaults__ = function.__kwdefaults__
         self.originals[key] = copy
+        self.keys[id(function)] = key
+        self.guarded.append(function)                        # keeps id(function) unique
+        try:  # introspection (``inspect.signature``, ``help``) still sees the real parameters
+            function.__signature__ = inspect.signature(copy)
+        except (TypeError, ValueError):
+            pass
         function.__code__ = _guard_code(key)
+        return key
 
     def call(self, key: str, caller: types.FrameType | None, args: tuple, kwargs: dict):
         original = self.originals[key]
@@ -129,6 +151,59 @@ def resolve(key: str, namespace: dict):
     return None
 
 
+#: Prefix of a ``forbids`` entry that names a function the learner may call although its
+#: module is forbidden (``"!halfedge_edu.algorithms.simplify.face_quadrics"``).
+ALLOWED = "!"
+
+
+def functions_forbidden(keys: list[str], namespace: dict) -> dict[str, types.FunctionType]:
+    """Every function the ``forbids`` entries ``keys`` name, by key: a function or method
+    as itself; a whole module as each function it defines and each method of each class
+    it defines (so that a learner's wrapper, ``lambda m: loop_subdivide(m)``, is refused as
+    the alias ``my_upsample = loop_subdivide`` is); less the entries marked allowed."""
+    allowed = {key[len(ALLOWED):] for key in keys if key.startswith(ALLOWED)}
+    found: dict[str, types.FunctionType] = {}
+    for key in keys:
+        if key.startswith(ALLOWED):
+            continue
+        target = resolve(key, namespace)
+        if isinstance(target, types.ModuleType):
+            found.update(_functions_of_module(target))
+        elif isinstance(target, types.FunctionType):
+            found[key] = target
+    return {key: function for key, function in found.items() if key not in allowed}
+
+
+def install_guards(forbids: dict[str, list[str]], namespace: dict) -> dict[str, list[str]]:
+    """Guard every function each exercise's ``forbids`` entries name; per exercise, the
+    keys its graded calls refuse (what :func:`_answer` takes)."""
+    expanded: dict[str, list[str]] = {}
+    for exercise, keys in forbids.items():
+        functions = functions_forbidden(keys, namespace)
+        installed = (_GUARDS.install(key, function) for key, function in functions.items())
+        expanded[exercise] = [key for key in installed if key is not None]
+    return expanded
+
+
+def _functions_of_module(module: types.ModuleType) -> dict[str, types.FunctionType]:
+    """``module``'s own functions and its classes' methods (getters of properties, static
+    and class methods included), keyed by ``module.qualname``."""
+    name = module.__name__
+    found: dict[str, types.FunctionType] = {}
+    for attribute, value in vars(module).items():
+        if isinstance(value, types.FunctionType) and value.__module__ == name:
+            found[f"{name}.{attribute}"] = value
+        elif isinstance(value, type) and value.__module__ == name:
+            for member_name, member in vars(value).items():
+                if isinstance(member, property):
+                    member = member.fget
+                elif isinstance(member, (staticmethod, classmethod)):
+                    member = member.__func__
+                if isinstance(member, types.FunctionType):
+                    found[f"{name}.{value.__qualname__}.{member_name}"] = member
+    return found
+
+
 def _package_origin(function) -> str | None:
     """The package function ``function`` is (or wraps), else None."""
     target = getattr(function, "func", function)  # functools.partial
@@ -169,11 +244,7 @@ def serve(namespace: dict, address: str, forbids: dict[str, list[str]]) -> None:
         address: the judge's Unix socket.
         forbids: per exercise, the ``forbids`` entries to refuse while its function runs.
     """
-    for keys in forbids.values():
-        for key in keys:
-            function = resolve(key, namespace)
-            if isinstance(function, types.FunctionType):
-                _GUARDS.install(key, function)
+    forbids = install_guards(forbids, namespace)
     connection = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
     connection.connect(address)
     try:

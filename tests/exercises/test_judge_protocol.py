@@ -39,12 +39,7 @@ class InProcessLink(judge.Link):
 
 
 def _judged(namespace: dict, exercises: list) -> dict:
-    forbids = {e.name: [*e.forbids, *ANSWER_KEYS] for e in exercises}
-    for keys in forbids.values():
-        for key in keys:
-            function = serve.resolve(key, namespace)
-            if callable(function):
-                serve._GUARDS.install(key, function)
+    forbids = serve.install_guards({e.name: [*e.forbids, *ANSWER_KEYS] for e in exercises}, namespace)
     return judge.judge(InProcessLink(namespace, forbids), exercises, seed=20261128)
 
 
@@ -67,6 +62,41 @@ def test_the_packages_own_split_is_refused_across_the_wire():
     for learner in (lambda mesh, e: mesh.split(e), lambda mesh, e: ops.split(mesh, e)):
         result = _judged({"my_split": learner}, [split])["split"]
         assert result["passed"] is False and "This is the exercise" in result["output"], result
+
+
+def _forbidden_modules() -> list[tuple[str, str, str]]:
+    """(exercise, forbidden module, one function it defines) for every module an exercise
+    forbids, the checks' own modules (ANSWER_KEYS) included."""
+    import importlib
+    import types
+
+    cases = []
+    for exercise in EXERCISES:
+        for key in (*exercise.forbids, *ANSWER_KEYS):
+            try:
+                module = importlib.import_module(key)
+            except ImportError:
+                continue                                   # a function or method, not a module
+            exempt = {entry[1:] for entry in exercise.forbids if entry.startswith("!")}
+            functions = sorted(name for name, value in vars(module).items()
+                               if isinstance(value, types.FunctionType) and value.__module__ == key
+                               and not value.__code__.co_freevars and f"{key}.{name}" not in exempt)
+            cases.append((exercise.name, key, functions[0]))
+    return cases
+
+
+@pytest.mark.parametrize(("name", "module", "function"), _forbidden_modules(),
+                         ids=lambda value: value.rsplit(".", 1)[-1])
+def test_a_learners_wrapper_around_any_function_of_a_forbidden_module_is_refused(name, module, function):
+    """``my_upsample = lambda m: loop_subdivide(m)`` is the package's answer as much as
+    ``my_upsample = loop_subdivide``: a whole module in ``forbids`` guards each function it defines."""
+    import importlib
+
+    exercise = next(e for e in EXERCISES if e.name == name)
+    answer = getattr(importlib.import_module(module), function)
+    wrapper = lambda *args, **kwargs: answer(*args, **kwargs)  # noqa: E731 - as a learner writes it
+    result = _judged({learner_name: wrapper for learner_name in exercise.functions}, [exercise])[name]
+    assert result["passed"] is False and "This is the exercise" in result["output"], (module, function, result)
 
 
 @pytest.mark.parametrize(("name", "reference"), [("collapse_short_edges", "collapse_short_edges_reference"),
