@@ -9,8 +9,17 @@ No label covers another. Each label is measured on screen (its anchor projected 
 the camera, its box estimated from its font size and length, :func:`text_size`) and put
 at the first place near its anchor where the box overlaps no label placed before it,
 no vertex dot and no legend (:func:`place`): named labels first, then highlighted ones,
-then the rest, vertices before faces before halfedges. A label with no room anywhere
-near is listed in the picture's lower left corner ("no room for: h5, f2") instead.
+then the rest, vertices before faces before halfedges, and highlighted ones of a kind in
+the order of their roles (the current halfedge before its twin, next and prev). A named
+or highlighted label with no room anywhere near is listed in the picture's lower left
+corner ("no room for: h5, f2") instead.
+
+Labels do not crowd either. Any other label is optional: it is shown only near its
+element (the two nearest rings of places) and :data:`SPACING` pixels clear of every label
+placed before it, else left out without a word. On a dense mesh that thins the labels
+around the highlight to those a reader can match to their elements, instead of a wall of
+badges pushed away from what they name; the named and highlighted ones are never left
+out for the others' sake, as they are placed first.
 :func:`label_boxes` measures the boxes of what a plotter draws, and :func:`overlapping_labels`
 says which overlap (for tests).
 """
@@ -26,10 +35,12 @@ from .actors import Actors
 from .geometry import SceneGeometry, facing
 from .highlights import Highlight
 from .neighbourhood import Rings
-from .palette import Preset
+from .palette import ROLES, Preset
 from .screen import from_screen, to_screen
 
 KINDS = ("vertex", "halfedge", "face")
+#: Each role's place in ``ROLES`` (the legend's order, most important first).
+ROLE_ORDER = {name: order for order, name in enumerate(ROLES)}
 PREFIX = {"vertex": "v", "halfedge": "h", "face": "f"}
 #: Of labels of one rank, which kinds get the first choice of place.
 PLACING_ORDER = ("vertex", "face", "halfedge")
@@ -57,17 +68,32 @@ DIRECTIONS = ((1, 1), (-1, 1), (1, -1), (-1, -1), (1, 0), (-1, 0), (0, 1), (0, -
 #: Where a label that may sit on its anchor (a face's) goes next, in steps: above and
 #: below first, then beside, then the corners.
 AROUND = ((0, 1), (0, -1), (1, 0), (-1, 0), (1, 1), (-1, 1), (1, -1), (-1, -1))
+#: Pixels an optional label (neither named nor highlighted) keeps from every label placed
+#: before it; others keep one pixel.
+SPACING = 6.0
+#: Of :func:`candidate_offsets`, the places near the anchor, the only ones an optional
+#: label may take: a vertex label's 16 just off its dot and a little farther (reach 1 and
+#: 1.8), a face or halfedge label's place on its anchor and the 16 one and two steps
+#: around it. (One ring only left out most of the diagonal halfedges' labels of a small
+#: grid, where the face label takes the middle; three let labels stray from their elements.)
+NEAR_BESIDE_DOT = 2 * len(DIRECTIONS)
+NEAR_ON_ANCHOR = 1 + 2 * len(AROUND)
+#: The rank of a label that is neither named nor highlighted (see :class:`Wanted`).
+OPTIONAL = 2
 
 
 class Wanted(NamedTuple):
     """A label to place: its kind, text, (3,) world anchor, rank (0 named, 1 highlighted,
-    2 other: lower ranks are placed first) and element index."""
+    2 other, :data:`OPTIONAL`: lower ranks are placed first), element index, and role
+    (of a highlighted label, its first role's place in ``ROLES``: of the highlighted
+    halfedges, the current one is placed first)."""
 
     kind: str
     text: str
     anchor: np.ndarray
     rank: int
     index: int
+    role: int = 0
 
 
 def text_size(text: str, font_size: float, padding: float) -> tuple[float, float]:
@@ -80,7 +106,7 @@ def text_size(text: str, font_size: float, padding: float) -> tuple[float, float
 
 
 def place(anchors: np.ndarray, sizes: np.ndarray, keep_clear, dots: np.ndarray, obstacles: np.ndarray,
-          window_size) -> np.ndarray:
+          window_size, optional=None) -> np.ndarray:
     """Centres (k, 2) in pixels for k label boxes, in order, each where it overlaps none
     placed before, no dot and no obstacle, and lies inside the picture; NaN where none is free.
 
@@ -91,6 +117,10 @@ def place(anchors: np.ndarray, sizes: np.ndarray, keep_clear, dots: np.ndarray, 
             beside its dot), 0 for a label that may sit on its anchor (a face's centre).
         dots: (d, 3) vertex dots ``(x, y, radius)`` no box may cover.
         obstacles: (o, 4) boxes ``(x0, y0, x1, y1)`` no label may overlap (a legend).
+        optional: (k,) bool, None for none: a label that takes only a place near its
+            anchor (:data:`NEAR_BESIDE_DOT`, :data:`NEAR_ON_ANCHOR`) and keeps
+            :data:`SPACING` pixels from every label placed before it, so that it never
+            crowds them; NaN where it cannot.
 
     Each label takes the first of its :func:`candidate_offsets` that is free. Whether a
     place is inside the picture, off the obstacles and off the dots does not depend on the
@@ -103,7 +133,12 @@ def place(anchors: np.ndarray, sizes: np.ndarray, keep_clear, dots: np.ndarray, 
     centres = np.full((len(anchors), 2), np.nan)
     if len(anchors) == 0:
         return centres
-    offsets, usable = candidate_offsets(sizes, np.asarray(keep_clear, dtype=float))    # (k, c, 2), (k, c)
+    keep_clear = np.asarray(keep_clear, dtype=float)                                   # (k,)
+    optional = np.zeros(len(anchors), dtype=bool) if optional is None else np.asarray(optional, dtype=bool)
+    offsets, usable = candidate_offsets(sizes, keep_clear)                             # (k, c, 2), (k, c)
+    near = np.where(keep_clear > 0, NEAR_BESIDE_DOT, NEAR_ON_ANCHOR)                   # (k,)
+    usable = usable & ~(optional[:, None] & (np.arange(usable.shape[1]) >= near[:, None]))
+    gap = np.where(optional, SPACING, 1.0)                                             # (k,)
     candidates = anchors[:, None, :] + offsets                                         # (k, c, 2)
     half = sizes[:, None, :] / 2                                                       # (k, 1, 2)
     boxes = np.concatenate([candidates - half, candidates + half], axis=2)            # (k, c, 4)
@@ -115,7 +150,7 @@ def place(anchors: np.ndarray, sizes: np.ndarray, keep_clear, dots: np.ndarray, 
     placed = np.zeros((len(anchors), 4))                   # the first n_placed rows are in use
     n_placed = 0
     for i in range(len(anchors)):
-        fits = free[i] & ~overlaps(boxes[i], placed[:n_placed], 1.0).any(axis=1)    # (c,)
+        fits = free[i] & ~overlaps(boxes[i], placed[:n_placed], gap[i]).any(axis=1)  # (c,)
         if fits.any():
             first = int(np.argmax(fits))
             centres[i] = candidates[i, first]
@@ -297,11 +332,14 @@ class Labels:
             return self._labelled(mesh, geometry, highlight, kind, choice.get(kind), near, arrow_halfedges)
 
         def add(kind: str, indices: np.ndarray, anchors: np.ndarray) -> None:
-            members = np.concatenate([m for _, m in highlight.members(kind)] + [np.zeros(0, np.int64)])
+            role_of: dict[int, int] = {}
+            for name, members in reversed(highlight.members(kind)):      # the first role wins
+                role_of.update((int(i), ROLE_ORDER[name]) for i in members)
             for index, anchor in zip(indices, anchors):
                 index = int(index)
-                rank = 0 if (kind, index) in highlight.names else 1 if index in members else 2
-                wanted.append(Wanted(kind, self._text(highlight, kind, index), anchor, rank, index))
+                rank = 0 if (kind, index) in highlight.names else 1 if index in role_of else OPTIONAL
+                role = role_of.get(index, 0) if rank == 1 else 0
+                wanted.append(Wanted(kind, self._text(highlight, kind, index), anchor, rank, index, role))
 
         vertices = chosen("vertex")
         if len(vertices):
@@ -353,25 +391,28 @@ class Labels:
             "halfedge": dict(text_color="#333333", shape_color="#FFFFFF", shape="rounded_rect", shape_opacity=0.7,
                              font_size=max(8, look.label_size - 1), bold=False, **corner),
         }
-        wanted = sorted(wanted, key=lambda w: (w.rank, PLACING_ORDER.index(w.kind), w.index))
+        wanted = sorted(wanted, key=lambda w: (w.rank, PLACING_ORDER.index(w.kind), w.role, w.index))
         anchors = to_screen(plotter, self.window_size, np.array([w.anchor for w in wanted]).reshape(-1, 3))
         sizes = np.array([text_size(w.text, styles[w.kind]["font_size"], PADDING[w.kind])
                           for w in wanted]).reshape(-1, 2)
         # A vertex label keeps off the biggest dot its vertex may have.
         keep_clear = [0.5 * look.highlight_vertex_size + 1 if w.kind == "vertex" else 0.0 for w in wanted]
+        optional = [w.rank == OPTIONAL for w in wanted]
         legends = legend_boxes(plotter, self.window_size)
         listed: list[str] = []
         for _ in range(4):
             # Labels without room are listed along the bottom; that strip is kept clear,
             # which may leave other labels without room: repeat until the list settles.
             obstacles = np.vstack([legends, self._list_box(listed)])
-            centres = place(anchors[:, :2], sizes, keep_clear, dots, obstacles, self.window_size)
-            now = [w.text for w, centre in zip(wanted, centres) if np.isnan(centre[0])]
+            centres = place(anchors[:, :2], sizes, keep_clear, dots, obstacles, self.window_size, optional)
+            now = [w.text for w, centre in zip(wanted, centres) if np.isnan(centre[0]) and w.rank < OPTIONAL]
             if now == listed:
                 break
             listed = now
         self.listed = listed
-        self.texts = {kind: [w.text for w in wanted if w.kind == kind] for kind in KINDS}
+        # What a reader can see: the labels drawn and those listed (not the optional left out).
+        seen = [w for w, centre in zip(wanted, centres) if not np.isnan(centre[0]) or w.text in listed]
+        self.texts = {kind: [w.text for w in seen if w.kind == kind] for kind in KINDS}
         self._show_list(listed)
         for kind in KINDS:
             name = f"{kind}_labels"

@@ -288,10 +288,21 @@ class LoopStepper(StepperWidget):
             layers.append(Layer("inserted now", CURRENT, "vertices", [record.element], 18.0))
         return layers
 
+    def step_vertices(self, step: int | None = None) -> list[int]:
+        """The vertices step ``step`` (the one shown, by default) is about, whose numbers
+        are always written: the one a split inserts, the ends of the edge a flip turns."""
+        record = self.records[self._step if step is None else step]
+        if record.phase == "split":
+            return [int(record.element)]
+        if record.phase == "flip":
+            return [int(v) for v in record.mesh.edge_vertices()[record.element]]
+        return []
+
     def _show(self) -> None:
         # At step 0 the surface is see-through: on a convex shape the new points lie inside.
         opacity = 0.45 if self.phase == "positions" else 1.0
-        self.scene.paint(self.records[self._step].mesh, layers=self._layers(), surface_opacity=opacity)
+        self.scene.paint(self.records[self._step].mesh, layers=self._layers(), surface_opacity=opacity,
+                         keep_labels=self.step_vertices())
 
     # -- panel ---------------------------------------------------------------------------
 

@@ -32,7 +32,8 @@ from ..algorithms.normals import face_normals
 from .camera import VIEW_DIRECTION
 from .pictures import plotter_png
 from .renderer import prepare_plotter
-from .screen import beside, unit
+from .labels import BADGE_POINT, PADDING, place, text_size
+from .screen import from_screen, to_screen, unit
 
 #: Vertex labels are drawn when the mesh has at most this many vertices.
 LABEL_VERTICES = 60
@@ -97,7 +98,10 @@ class PaintedScene(PlotterScene):
         view_direction: (3,) from the mesh toward the camera; by default along the
             normal of a flat mesh, else an oblique view.
         vertex_labels: write vertex numbers beside the vertices ("auto": on meshes with
-            at most ``LABEL_VERTICES`` vertices, only those facing the camera).
+            at most ``LABEL_VERTICES`` vertices, only those facing the camera). They do
+            not crowd: a number that would come closer than ``labels.SPACING`` pixels to
+            another, or stray from its dot, is left out, except those of
+            :meth:`paint`'s ``keep_labels``.
         fit_points: (k, 3) more points the first view must take in (say, control points).
         view_up: (3,) the direction that points up in the picture (y by default).
     """
@@ -118,7 +122,8 @@ class PaintedScene(PlotterScene):
 
     def paint(self, mesh=None, *, layers=(), edge_values=None, value_label: str = "",
               value_range=None, cmap: str = "viridis", base_edges: bool = True,
-              surface_opacity: float = 1.0, smooth: bool = False, surface_color: str | None = None) -> None:
+              surface_opacity: float = 1.0, smooth: bool = False, surface_color: str | None = None,
+              keep_labels=()) -> None:
         """Draw ``mesh`` (the scene's mesh if None) with ``layers`` on top.
 
         Args:
@@ -132,6 +137,8 @@ class PaintedScene(PlotterScene):
             surface_opacity: below 1, the surface is see-through (to show points inside).
             smooth: shade the surface smoothly (for sampled surfaces) instead of facet by facet.
             surface_color: ``"#RRGGBB"`` of the surface (the preset's by default).
+            keep_labels: vertices whose numbers are written first and always (a step's
+                own vertices); the others' only where they do not crowd.
         """
         import pyvista as pv
 
@@ -207,12 +214,13 @@ class PaintedScene(PlotterScene):
             if layer.label:
                 self._legend.append((layer.label, layer.color, symbol))
 
-        labels = self._labels(mesh, positions)
+        labels = self._labels(mesh, positions, np.asarray(keep_labels, dtype=np.int64).reshape(-1))
         if labels is not None:
             points, words = labels
             self.plotter.add_point_labels(points, words, name="vertex_labels", show_points=False,
                                           always_visible=True, font_size=look.label_size, text_color="#000000",
-                                          shape=None, bold=True, margin=0, reset_camera=False, render=False)
+                                          shape=None, bold=True, margin=0, reset_camera=False, render=False,
+                                          justification_horizontal="left", justification_vertical="bottom")
             drawn.add("vertex_labels")
 
         for name in self._names - drawn:
@@ -256,8 +264,10 @@ class PaintedScene(PlotterScene):
         self.plotter.renderer.ResetCameraClippingRange()
         self._eye = centre + distance * direction
 
-    def _labels(self, mesh, positions):
-        """Vertex numbers beside the vertices that face the camera, or None."""
+    def _labels(self, mesh, positions, keep: np.ndarray):
+        """``(points, texts)``: vertex numbers beside the vertices that face the camera, put
+        with :func:`.labels.place` (``keep`` first and always, the others where they do not
+        crowd), or None."""
         live = np.flatnonzero(~mesh.vertex_deleted)
         wanted = self.vertex_labels
         if wanted is False or wanted is None or (wanted == "auto" and len(live) > LABEL_VERTICES):
@@ -271,7 +281,25 @@ class PaintedScene(PlotterScene):
         shown = live[seen[live]]
         if len(shown) == 0:
             return None
-        return beside(self.plotter, self.window_size, positions[shown], 0.6 * self.preset.highlight_vertex_size), [str(int(v)) for v in shown]
+        kept = np.isin(shown, keep)
+        shown = np.concatenate([shown[kept], shown[~kept]])                 # the kept ones are placed first
+        optional = np.arange(len(shown)) >= kept.sum()                      # (k,)
+        texts = [str(int(v)) for v in shown]
+        look = self.preset
+        anchors = to_screen(self.plotter, self.window_size, positions[shown])          # (k, 3)
+        sizes = np.array([text_size(text, look.label_size, PADDING["vertex"]) for text in texts])   # (k, 2)
+        dots = np.column_stack([anchors[:, :2], np.full(len(shown), 0.5 * (look.vertex_size + 3))])
+        keep_clear = np.full(len(shown), 0.5 * look.highlight_vertex_size + 1)
+        centres = place(anchors[:, :2], sizes, keep_clear, dots, np.zeros((0, 4)), self.window_size, optional)
+        # A kept number without room anywhere near is still written, up and right of its dot.
+        homeless = np.isnan(centres[:, 0]) & ~optional
+        centres[homeless] = anchors[homeless, :2] + keep_clear[homeless, None] + sizes[homeless] / 2
+        written = ~np.isnan(centres[:, 0])
+        if not written.any():
+            return None
+        corners = centres[written] - sizes[written] / 2 + BADGE_POINT      # the text is drawn from its point
+        points = from_screen(self.plotter, self.window_size, np.column_stack([corners, anchors[written, 2]]))
+        return points, [text for text, w in zip(texts, written) if w]
 
 
 

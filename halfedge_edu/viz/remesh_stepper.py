@@ -131,7 +131,8 @@ def draw_histograms(figure, qualities, labels, *, max_length: float = 2.0) -> No
     """Draw three histograms (edge length / L, degree, smallest angle) into ``figure``.
 
     The first entry is drawn filled in grey, the others as coloured outlines; the
-    heights are percentages, so meshes of different sizes compare fairly.
+    heights are percentages, so meshes of different sizes compare fairly. The legend
+    (``labels``) is the last histogram's, above its axes.
     """
     axes = figure.subplots(1, 3)
     length_bins = np.linspace(0.0, max_length, 41)
@@ -161,7 +162,10 @@ def draw_histograms(figure, qualities, labels, *, max_length: float = 2.0) -> No
     axes[0].set_title("4/5 L  |  L  |  4/3 L", fontsize=9, color="#555555")
     axes[1].axvline(6, color="#555555", linewidth=1.0)
     axes[2].axvline(60, color="#555555", linewidth=1.0)
-    axes[2].legend(loc="upper left", fontsize=8, frameon=False)
+    # The legend goes above the last histogram, outside it, so it covers no bar whatever
+    # the data (tight_layout makes room for it); from its right end, so that a long
+    # label reaches left over the gap between the histograms, not out of the picture.
+    axes[2].legend(loc="lower right", bbox_to_anchor=(1.0, 1.02), borderaxespad=0.0, fontsize=8, frameon=False)
     figure.tight_layout()
 
 
@@ -170,14 +174,20 @@ def histogram_png(meshes, labels, target_length: float, *, size=(8.4, 2.5), dpi:
 
     Drawn with matplotlib's Agg canvas directly (no pyplot), so nothing else is shown.
     """
+    buffer = io.BytesIO()
+    histogram_figure(meshes, labels, target_length, size=size, dpi=dpi).savefig(
+        buffer, format="png", metadata={"Software": None})
+    return buffer.getvalue()
+
+
+def histogram_figure(meshes, labels, target_length: float, *, size=(8.4, 2.5), dpi: int = 80):
+    """The matplotlib ``Figure`` (no pyplot) that :func:`histogram_png` draws."""
     from matplotlib.figure import Figure
 
     qualities = [m if isinstance(m, PhaseQuality) else phase_quality(m, target_length) for m in meshes]
     figure = Figure(figsize=size, dpi=dpi)
     draw_histograms(figure, qualities, labels)
-    buffer = io.BytesIO()
-    figure.savefig(buffer, format="png", metadata={"Software": None})
-    return buffer.getvalue()
+    return figure
 
 
 # ----------------------------------------------------------------------------------------

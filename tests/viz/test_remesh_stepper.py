@@ -5,9 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+import halfedge_edu as hx
 from halfedge_edu.algorithms.remesh import PHASES, remesh
 from halfedge_edu.data import sample
-from halfedge_edu.viz.remesh_stepper import RemeshStepper, histogram_png, phase_quality
+from halfedge_edu.viz.remesh_stepper import PhaseQuality, RemeshStepper, histogram_figure, histogram_png, phase_quality
 
 L = 0.25
 
@@ -130,6 +131,50 @@ def test_quality_counts_edges_against_the_target(sphere):
 def test_histogram_png_draws_any_number_of_meshes(sphere):
     png = histogram_png([sphere, sample("icosphere", subdivisions=1)], ["a", "b"], 0.3)
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def legend_covers(figure) -> list[str]:
+    """What the histograms' legend covers, drawn with Agg: each bar it overlaps, any axes
+    it reaches into, and "outside the figure" when it is cut off."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    renderer = FigureCanvasAgg(figure).get_renderer()
+    figure.draw(renderer)
+    legend = figure.axes[-1].get_legend()
+    box = legend.get_window_extent(renderer)
+    covered = [f"axes {k}" for k, axis in enumerate(figure.axes) if box.overlaps(axis.get_window_extent(renderer))]
+    covered += [f"bar of axes {k} at x = {patch.get_x():g}"
+                for k, axis in enumerate(figure.axes) for patch in axis.patches
+                if hasattr(patch, "get_x") and box.overlaps(patch.get_window_extent(renderer))]
+    if not figure.bbox.contains(box.x0, box.y0) or not figure.bbox.contains(box.x1, box.y1):
+        covered.append("outside the figure")
+    return covered
+
+
+def test_the_histograms_legend_covers_no_bar_in_chapter_11s_picture():
+    rough = hx.simplify(sample("spot"), 1500)
+    even = hx.remesh(rough, target_length=0.08, iterations=3)
+    figure = histogram_figure([rough, even], ["after simplification", "remeshed (L = 0.08, 3 iterations)"], 0.08)
+    assert legend_covers(figure) == []
+
+
+def test_the_histograms_legend_covers_no_bar_when_every_bar_is_tall_at_the_left():
+    """Skewed data: everything in the first bins, where an "upper left" legend would sit."""
+    n = 200
+    skewed = PhaseQuality(n_vertices=n, n_edges=n, n_faces=n, lengths=np.full(n, 0.01), degrees=np.full(n, 3),
+                          on_boundary=np.zeros(n, bool), min_angles=np.full(n, 1.0), degree_deviation=3.0,
+                          min_angle_mean=1.0)
+    spread = phase_quality(sample("icosphere", subdivisions=2), 0.25)
+    labels = ["input", "a long label: iteration 2, project", "iteration 2, smooth"]
+    for size in ((8.4, 2.5), (6.0, 2.5)):
+        assert legend_covers(histogram_figure([skewed, spread, skewed], labels, 0.25, size=size)) == []
+
+
+def test_the_steppers_histograms_legend_covers_no_bar(stepper):
+    stepper.go((2, "smooth"))
+    labels = ["input", "iteration 2, smooth"]
+    figure = histogram_figure([stepper.snapshots[0].quality, stepper.quality], labels, L)
+    assert legend_covers(figure) == []
 
 
 def test_iteration_from_the_input_ends_iteration_one(stepper):
