@@ -58,11 +58,12 @@ define install
 	fi
 endef
 
-.PHONY: help lab test test-lowest dist figures bench book lock clean distclean
+.PHONY: help lab check test test-lowest dist figures bench book lock clean distclean
 .DEFAULT_GOAL := help
 
 help:
 	@echo "make lab        open the notebooks in JupyterLab (sets up $(VENV) on first use)"
+	@echo "make check      lint and the quick tests (no notebooks, browser, grading runs or wheel): minutes"
 	@echo "make test       run every test and every notebook, headless"
 	@echo "make test-lowest  the library tests and one chapter with the lowest versions pyproject.toml allows"
 	@echo "make dist       build the sdist and the wheel into dist/ and check their metadata"
@@ -109,6 +110,17 @@ PYTEST_WORKERS ?= -n 2
 test: $(DEV_STAMP)
 	@mkdir -p "$(WASM_EMPTY)"
 	HALFEDGE_EDU_LOCK="$$(cat $(DEV_STAMP))" $(HEADLESS_ENV) $(PY) -m pytest $(PYTEST_WORKERS) $(PYTEST_ARGS)
+
+# The contributor's quick target: ruff's floor ([tool.ruff] in pyproject.toml) and every
+# test that needs no executed notebook, browser, hub, sandboxed grading run or built
+# wheel. `make test` (and CI) is still the whole check.
+CHECK_SKIPS := --ignore=tests/browser --ignore=tests/exercises/test_grading.py \
+	--ignore=tests/exercises/test_grading_hostile.py --ignore=tests/test_deploy.py \
+	--ignore=tests/test_course.py --ignore=tests/test_live_backend.py
+check: $(DEV_STAMP)
+	@mkdir -p "$(WASM_EMPTY)"
+	$(VENV)/bin/ruff check .
+	HALFEDGE_EDU_LOCK="$$(cat $(DEV_STAMP))" $(HEADLESS_ENV) $(PY) -m pytest $(PYTEST_WORKERS) -q tests $(CHECK_SKIPS) $(PYTEST_ARGS)
 
 # The lowest versions pyproject.toml allows for the library and the notebooks extra
 # (constraints/lowest.py), in a venv of their own made afresh, with the test tools at

@@ -168,7 +168,7 @@ def profile_rounds(name: str, mesh, target: int) -> None:
         print(f"{index + 1:>5}{faces:>8}{collapses:>10}{faces_touched / faces:>9.0%}{times}")
     sums = {column: sum(s for (_, c), s in seconds.items() if c == column) for column in columns}
     whole = sums["tables"] + sums["apply"]
-    print(f"  sums: " + ", ".join(f"{c} {1000 * sums[c]:.0f} ms" for c in columns)
+    print("  sums: " + ", ".join(f"{c} {1000 * sums[c]:.0f} ms" for c in columns)
           + f", the rest (first quadrics, candidate order) {1000 * (total - sum(sums.values())):.0f} ms")
     print(f"  whole-mesh rebuilds (tables + apply): {100 * whole / total:.0f}% of the time; "
           f"faces touched per round: {sum(t for _, _, t in touched) / sum(f for f, _, _ in touched):.0%} on average")

@@ -84,7 +84,7 @@ def one_ring_steps(bunny, n: int) -> list[float]:
 def stepper_steps(kind, bunny, edge: int, rounds: int) -> list[float]:
     """Scene updates of a stepper walked to the end and back, ``rounds`` times."""
     widget = kind(bunny, edge, mode="static")
-    scene, times = widget.scene, []
+    times = []
 
     def show(k):
         widget._step = k

@@ -27,7 +27,7 @@ the handles (``mesh.halfedge(0).next.twin.vertex``).
 
 from __future__ import annotations
 
-from typing import Iterator, NamedTuple
+from typing import NamedTuple
 
 import numpy as np
 

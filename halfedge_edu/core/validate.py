@@ -209,7 +209,7 @@ def _every_rule_holds(mesh: "HalfedgeMesh") -> bool:
     False means some rule is broken; :func:`validate` then runs the rules one by one to
     say which. A mesh with deleted or isolated elements never comes here.
     """
-    n_v, n_h, n_f = mesh.n_vertex_slots, mesh.n_halfedge_slots, mesh.n_face_slots
+    n_h, n_f = mesh.n_halfedge_slots, mesh.n_face_slots
     # The loop below reads pairs of int32 as 64-bit words (_edge_words), which needs
     # contiguous memory: arrays given as strided views are copied once, here
     # (np.ascontiguousarray hands back an array that is contiguous already as it is).

@@ -288,9 +288,9 @@ def _check_loop_rules(functions: list[tuple[str, Callable]], label: str,
         checked.append(case if case.startswith("hidden") else case.split(" (")[0])
     praise = "Together they are one level of Loop's positions; the connectivity is the 4-to-1 split you stepped through."
     if beta_rule and beta_rule[0] != "Warren's":
-        praise += (f" Your vertex points use Loop's original beta, (5/8 - (3/8 + 1/4 cos(2 pi / n))^2) / n, which "
-                   f"the Loop assignment lets you choose (document it in your README); the chapter and the library "
-                   f"use Warren's simpler 3/16 for n = 3 and 3/(8n) otherwise. The two agree at degrees 3 and 6.")
+        praise += (" Your vertex points use Loop's original beta, (5/8 - (3/8 + 1/4 cos(2 pi / n))^2) / n, which "
+                   "the Loop assignment lets you choose (document it in your README); the chapter and the library "
+                   "use Warren's simpler 3/16 for n = 3 and 3/(8n) otherwise. The two agree at degrees 3 and 6.")
     if boundary_note:
         if all(any(mesh.vertex(v.index).is_boundary for v in mesh.vertices) for _, mesh in cases):
             return harness.failed(label, [], None, "every mesh here has a boundary and your rules do not handle "

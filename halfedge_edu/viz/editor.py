@@ -67,7 +67,6 @@ here goes through :func:`.main_thread.call_on_main_thread` first.
 from __future__ import annotations
 
 import html
-import threading
 import warnings
 from collections.abc import Callable
 from contextlib import contextmanager

@@ -80,8 +80,7 @@ def test_a_feature_angle_outside_0_to_180_degrees_is_refused_by_name(bad):
 
 def test_features_follow_a_split_a_merge_and_a_compaction():
     # A line 0 - 1 - 2 along the boundary of two triangles; vertex 3 is off the line.
-    vertices = np.array([[0.0, 0, 0], [1, 0, 0], [2, 0, 0], [1, 1, 0]])
-    faces = np.array([[0, 1, 3], [1, 2, 3]])
+    faces = np.array([[0, 1, 3], [1, 2, 3]])  # vertices (0,0,0) (1,0,0) (2,0,0) (1,1,0)
     table = edge_table(faces, 4)
     features = Features(np.array([[0, 1], [1, 2]]), np.array([True, False, True, False]), np.array([7, 7]))
     midpoint_of = np.full(len(table.edges), -1)

@@ -13,7 +13,7 @@ import trimesh
 from halfedge_edu.core.errors import MeshInputError, MeshWarning
 from halfedge_edu.core.mesh import HalfedgeMesh
 from halfedge_edu.data import sample
-from halfedge_edu.io import load, read_obj, save, write_obj
+from halfedge_edu.io import load, save, write_obj
 
 MESHES = Path(__file__).resolve().parents[2] / "halfedge_edu" / "data"
 MALFORMED = Path(__file__).resolve().parents[1] / "data" / "malformed"

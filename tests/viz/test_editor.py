@@ -129,7 +129,7 @@ def test_info_says_the_selected_elements_pointers_and_changes_nothing(cube, edit
     assert f"vertices {h.vertex.index} - {h.tip.index}" in text
     assert text in editor._status.value and editor.can_undo == 0
     editor.select("halfedge", 8)
-    assert f"next {h.next.index}" in editor.info() and f"twin 9" in editor.info()
+    assert f"next {h.next.index}" in editor.info() and "twin 9" in editor.info()
 
 
 def test_a_whole_mesh_edit_that_raises_is_refused_and_changes_nothing(cube, editor, monkeypatch):
