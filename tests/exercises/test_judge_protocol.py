@@ -21,6 +21,14 @@ from halfedge_edu.exercises.grading import ANSWER_KEYS, EXERCISES
 from .chapter_solutions import chapter_namespace
 
 
+@pytest.fixture(autouse=True)
+def _guards_removed_afterwards():
+    """The guards this module installs in the test process go when each test ends, so
+    that later tests on this worker run the package's functions unguarded."""
+    yield
+    serve.uninstall_guards()
+
+
 class InProcessLink(judge.Link):
     """The judge's link, with the notebook's serving loop answering in this process."""
 
