@@ -305,8 +305,27 @@ def test_the_collapse_phase_accepts_any_order_of_collapses():
     assert check_collapse_short_edges(shortest_first, seed=2).passed
 
 
+def test_cmus_recipe_as_written_without_the_4_3_test_is_accepted_and_named():
+    """CMU's text says only "collapse all edges that are shorter than 4L/5": that answer is
+    right by its course, and the check says which convention it recognised."""
+    from halfedge_edu.exercises import check_collapse_short_edges
+
+    cmu = collapse_phase(guard=False)
+    result = check_collapse_short_edges(cmu)
+    assert result.passed and "CMU's recipe as written" in result.message, result.message
+    assert all(check_collapse_short_edges(cmu, seed=seed).passed for seed in (1, 2, 3))
+    assert "Botsch and Kobbelt's rule" in check_collapse_short_edges(collapse_phase()).message
+
+
+def test_cmus_recipe_as_written_that_stops_early_is_told_to_go_round_again():
+    from halfedge_edu.exercises import check_collapse_short_edges
+
+    results = [check_collapse_short_edges(collapse_phase(guard=False, rounds=1), seed=seed) for seed in range(6)]
+    refused = [result for result in results if not result.passed]
+    assert refused and all("go round again" in r.message for r in refused), [r.message for r in results]
+
+
 @pytest.mark.parametrize(("slip", "named"), [
-    ({"guard": False}, "skip the edge if one is more than 4/3 L"),
     ({"ask_link": False}, "Ask mesh.can_collapse(e) first"),
     ({"check_link": False}, "the link condition"),
     ({"skip_boundary": False}, "you collapsed boundary edges"),
