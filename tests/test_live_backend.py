@@ -67,27 +67,8 @@ print(json.dumps({"first": len(first), "now": len(now), "now_cached": len(cached
 
 def test_a_client_view_keeps_the_arrays_its_scene_names_and_releases_the_old_ones(tmp_path):
     import json
-    import os
 
-    from jupyter_client.manager import start_new_kernel
-
-    env = {name: value for name, value in os.environ.items() if name != "PYVISTA_JUPYTER_BACKEND"}
-    env.update(HALFEDGE_EDU_LIVE_BACKEND="client", HALFEDGE_EDU_VIZ="live")
-    manager, client = start_new_kernel(kernel_name="python3", env=env, cwd=str(tmp_path))
-    printed, errors = [], []
-
-    def collect(message):
-        if message["header"]["msg_type"] == "stream":
-            printed.append(message["content"]["text"])
-        elif message["header"]["msg_type"] == "error":
-            errors.append("\n".join(message["content"]["traceback"]))
-
-    try:
-        client.execute_interactive(KEEPS_SHOWN_ARRAYS, output_hook=collect, timeout=240)
-    finally:
-        manager.shutdown_kernel(now=True)
-    assert not errors, errors[0]
-    counts = json.loads("".join(printed).strip().splitlines()[-1])
+    counts = json.loads(_run_in_kernel(KEEPS_SHOWN_ARRAYS, tmp_path, HALFEDGE_EDU_LIVE_BACKEND="client"))
     # Everything the view's current scene names can still be fetched by a browser ...
     assert counts["now"] > 0 and counts["now_cached"] == counts["now"], counts
     # ... while the cell arrays of the scenes before the two steps were released.
