@@ -135,8 +135,8 @@ def test_start_script_sets_the_makefiles_variables_and_the_proxy_prefix():
     makefile_variables = set(re.findall(r"\b(VTK_\w+|PYVISTA_\w+)=", MAKEFILE))
     # Every headless/lab variable of the Makefile except the CI-only static backend.
     assert exported == makefile_variables - {"PYVISTA_JUPYTER_BACKEND"} | {"PYVISTA_TRAME_SERVER_PROXY_PREFIX"}
-    readme = (ROOT / "README.md").read_text()
-    assert all(f"`{name}`" in readme for name in exported | set(MEMORY_SETTINGS)), "README documents every variable"
+    deploying = (ROOT / "docs" / "deploying.md").read_text()
+    assert all(f"`{name}`" in deploying for name in exported | set(MEMORY_SETTINGS)), "docs/deploying.md documents every variable"
 
 
 def test_local_hub_config_starts_students_through_the_shared_script(tmp_path):
