@@ -173,7 +173,7 @@ def test_the_published_wheel_installs_in_a_clean_venv_copies_the_course_and_runs
     run([python, "-m", "halfedge_edu", "course", tmp_path / "y"], timeout=120, cwd=tmp_path, env=clean_env)
     assert sorted(p.name for p in (tmp_path / "y").iterdir()) == CHAPTERS
 
-    # Chapter 00 headless in that environment (the settings of README, "Headless and in CI").
+    # Chapter 00 headless in that environment (the settings of docs/contributing.md, "Headless settings").
     headless = dict(clean_env, PYVISTA_JUPYTER_BACKEND="static", VTK_DEFAULT_OPENGL_WINDOW="vtkEGLRenderWindow",
                     VTK_WASM_DIR_OVERRIDE=str(tmp_path / "wasm"), JUPYTER_PLATFORM_DIRS="1")
     (tmp_path / "wasm").mkdir()
