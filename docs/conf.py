@@ -44,7 +44,8 @@ source_suffix = {".md": "myst-nb", ".ipynb": "myst-nb"}
 # scratch files, and never the other edition.
 exclude_patterns = ["_build", "solutions/src", "solutions/student", "**/.ipynb_checkpoints"]
 include_patterns = ["index.md", "cli.md", "api.md", "instructors.md", "coming_from_your_course.md",
-                    "deploying.md", f"{CHAPTERS}/[0-9][0-9]*_*.ipynb"]
+                    "deploying.md", "headless.md", "performance.md", "contributing.md",
+                    f"{CHAPTERS}/[0-9][0-9]*_*.ipynb"]
 
 # Never run a notebook here: the stored outputs come from tools/build_notebooks.py.
 nb_execution_mode = "off"
