@@ -103,7 +103,7 @@ lab: $(NOTEBOOKS_STAMP)
 	$(LAB_ENV) $(VENV)/bin/jupyter lab $(LAB_FLAGS) notebooks/
 
 # Two pytest-xdist workers, one file each at a time (conftest.py switches `-n` to
-# --dist loadgroup, each file its own group, so a notebook's cells stay in order in one kernel). The browser tests
+# --dist loadfile, so a notebook's cells stay in order in one kernel). The browser tests
 # mostly wait on a Lab, so this halves the suite on 2 cores: 9 min 45 s against
 # 17 min 55 s in one process (measured 2026-11-25, 2248 tests). PYTEST_ARGS='-n 0' for one.
 PYTEST_WORKERS ?= -n 2

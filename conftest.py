@@ -48,28 +48,16 @@ def pytest_configure(config: pytest.Config) -> None:
 
     # A notebook's cells share one kernel and must run in order on one worker.
     # pytest-xdist's default "load" scheduling spreads them over workers and breaks
-    # them. "loadgroup" with every file its own group (pytest_collection_modifyitems
-    # below) keeps each notebook and test module on one worker, as "loadfile" would,
-    # and lets a long module split its tests into groups of their own (the browser
-    # test of every chapter's widgets: two groups, one per worker).
-    # Work goes out in collection order, not xdist's "most tests first": that order
-    # left the browser modules (few tests, a third of the suite's time) to the end, on
-    # one worker while the other sat idle (22 min against 20 on a 2-core CI machine).
+    # them; "loadfile" keeps each file (notebook or test module) on one worker.
+    # (Not "loadgroup": with pytest 9.2 and xdist 3.8 its groups never reach the test
+    # ids, so it schedules test by test, and a notebook's cells went to both workers.)
+    # Files go out in collection order, not xdist's "most tests first": that order left
+    # the browser modules (few tests, a third of the suite's time) to the end, on one
+    # worker while the other sat idle (22 min against 20 on a 2-core CI machine).
     if config.getoption("nbval", default=False) and config.getoption("dist", default="no") in (
         "load",
         "worksteal",
         "loadfile",
     ):
-        config.option.dist = "loadgroup"
+        config.option.dist = "loadfile"
         config.option.loadscopereorder = False
-
-
-@pytest.hookimpl(tryfirst=True)
-def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
-    """On an xdist worker scheduling by group: every test without an ``xdist_group`` mark
-    goes in its file's group (before xdist reads the marks)."""
-    if not getattr(config.option, "loadgroup", False):
-        return
-    for item in items:
-        if item.get_closest_marker("xdist_group") is None:
-            item.add_marker(pytest.mark.xdist_group(item.nodeid.split("::")[0]))
