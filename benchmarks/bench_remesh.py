@@ -192,7 +192,7 @@ def main(argv: list[str] | None = None) -> None:
           "area-uniform samples of each surface;")
     print("*/pml: halfedge_edu's distance over PyMeshLab's (goal <= 1.0 for mean and max);")
     print(f"halfedge_edu keeps creases above {FEATURE_ANGLE:g} degrees (PyMeshLab's featuredeg); gpytoolbox keeps none;")
-    print("band: share of edges between 4/5 L and 4/3 L (distance and band trade against each other: see the README);")
+    print("band: share of edges between 4/5 L and 4/3 L (distance and band trade against each other: see docs/performance.md);")
     print("|deg-6|: mean over vertices (|deg-4| on the boundary); min ang: mean smallest face angle, degrees")
 
 

@@ -5,7 +5,7 @@
 # Usage: singleuser-start.sh jupyterhub-singleuser [ARGS...]
 #
 # These are `make lab`'s live settings for a Linux server without a screen (see the
-# Makefile and README, "Headless and in CI"), plus what a hub needs:
+# Makefile and docs/headless.md), plus what a hub needs:
 # - VTK_DEFAULT_OPENGL_WINDOW: render with EGL, there is no X server.
 # - VTK_WASM_DIR_OVERRIDE: an empty folder, so trame-vtklocal never tries to download VTK.wasm.
 # - PYVISTA_TRAME_SERVER_PROXY_PREFIX: the live 3D views reach the kernel's trame server

@@ -4,7 +4,7 @@ Copies the **student edition** of the chapters (``00_setup_and_tour.ipynb`` ...
 ``13_putting_it_together.ipynb``: each exercise's answer replaced by a stub, the answer
 cells left out; see tools/build_notebooks.py) into DEST with their stored outputs
 removed and the package version stamped in, so that installing the package with its
-notebooks extra (README, "Install"), then ``halfedge-edu course my-course`` and
+notebooks extra (README, "Without make"), then ``halfedge-edu course my-course`` and
 ``jupyter lab my-course`` is enough to start. The meshes the chapters load are package
 data (``hx.sample("spot")``, ``hx.sample("bunny")``), already installed with the
 library; the chapters need no other file.

@@ -116,7 +116,7 @@ c.Spawner.http_timeout = 120
 # The live 3D view for everyone: deploy/singleuser-start.sh makes it "client" (vtk.js
 # draws in the browser); HALFEDGE_EDU_LIVE_BACKEND=server in the hub's environment gives
 # everyone the kernel-rendered view instead (labels drawn; more memory and CPU). See
-# README, "Deploying for a class".
+# docs/deploying.md.
 if "HALFEDGE_EDU_LIVE_BACKEND" in os.environ:
     c.Spawner.environment = {"HALFEDGE_EDU_LIVE_BACKEND": os.environ["HALFEDGE_EDU_LIVE_BACKEND"]}
 
