@@ -14,7 +14,7 @@ import pytest
 
 from tests.browser.lab_server import Lab, LabStartError, chromium_path, launch_chromium, start_lab, stop_lab
 
-SKIP_REASON = "Chromium not installed: apt-get install chromium (see README)"
+SKIP_REASON = "Chromium not installed: apt-get install chromium (see docs/headless.md)"
 
 
 @pytest.fixture(scope="session")
