@@ -9,6 +9,11 @@ A hub sets this once for every student with the environment variable
 - ``client``: the kernel sends the scene's geometry once and vtk.js draws it in the
   browser (pyvista's ``client`` backend); rotating costs the server nothing.
 
+Two repairs of trame-vtk's private machinery live here too, each behind
+:func:`missing_private_api`: :func:`keep_scene_arrays` (a client view keeps its mesh)
+and :func:`answer_clicks_promptly` (a server view sends a step's picture when it is
+encoded, not half a second later).
+
 :func:`trame_mode` turns the setting into the ``mode`` that trame-pyvista's view takes
 (``plotter.show(jupyter_backend="trame", jupyter_kwargs={"mode": trame_mode()})``). The
 mode goes in ``jupyter_kwargs`` on purpose: ``jupyter_backend="client"`` alone still gives
@@ -75,6 +80,11 @@ TRAME_VTK_PRIVATE_API = (
     ("trame_vtk.modules.vtk.serializers.synchronization_context", "SynchronizationContext.check_for_arrays_to_release"),
     ("trame_vtk.modules.vtk.serializers.synchronization_context", "SynchronizationContext.__init__ sets data_array_cache"),
     ("trame_vtk.widgets.vtk.common", "VtkLocalView.__init__ sets __scene_id"),
+    ("trame_vtk.modules.vtk.protocols", "vtkWebPublishImageDelivery.push_render"),
+    ("trame_vtk.modules.vtk.protocols", "vtkWebPublishImageDelivery.render_stale_image"),
+    ("trame_vtk.modules.vtk.protocols", "vtkWebPublishImageDelivery.__init__ sets delta_stale_time_before_render"),
+    ("trame_vtk.modules.vtk.protocols", "vtkWebPublishImageDelivery.__init__ sets stale_handler_count"),
+    ("trame_vtk.modules.vtk.protocols", "vtkWebPublishImageDelivery.__init__ sets last_stale_time"),
 )
 
 
@@ -112,16 +122,7 @@ def keep_scene_arrays(viewer) -> None:
     (:func:`missing_private_api`) it warns once and does nothing: the view still works,
     with trame-vtk's own release rule.
     """
-    global _API_CHECKED
-    if _API_CHECKED is None:
-        _API_CHECKED = missing_private_api()
-        if _API_CHECKED:
-            import warnings
-
-            warnings.warn(f"halfedge_edu.live_backend: this trame-vtk lacks {', '.join(_API_CHECKED)}; "
-                          "client-side views may lose their mesh after 20 s (install trame-vtk<2.12)",
-                          RuntimeWarning, stacklevel=2)
-    if _API_CHECKED:
+    if not _private_api_present():
         return
     _CLIENT_VIEWERS.add(viewer)
     _guard_array_cache(viewer.server)
@@ -129,6 +130,23 @@ def keep_scene_arrays(viewer) -> None:
 
 # What missing_private_api() found, once per kernel (None: not checked yet).
 _API_CHECKED: list[str] | None = None
+
+
+def _private_api_present() -> bool:
+    """Whether the installed trame-vtk has every private name this module patches
+    (checked once per kernel; when one moved, one warning says which, and what a
+    student loses: the patches are skipped, the views still work)."""
+    global _API_CHECKED
+    if _API_CHECKED is None:
+        _API_CHECKED = missing_private_api()
+        if _API_CHECKED:
+            import warnings
+
+            warnings.warn(f"halfedge_edu.live_backend: this trame-vtk lacks {', '.join(_API_CHECKED)}; "
+                          "client-side views may lose their mesh after 20 s and server-side views "
+                          "answer a click half a second late (install trame-vtk<2.12)",
+                          RuntimeWarning, stacklevel=3)
+    return not _API_CHECKED
 
 
 # The hashes each view's scene names, by the scene's state key: (that scene, its hashes).
@@ -197,3 +215,75 @@ def _guard_array_cache(server) -> None:
 
     context.check_for_arrays_to_release = release_unshown_arrays
     context.halfedge_edu_guarded = True
+
+
+# --------------------------------------------------------------------------- server views
+#
+# Why a server-side view answered a click half a second late (measured with trame-vtk
+# 2.11.17, benchmarks/bench_clicks.py): after a step, trame-vtk renders the view and hands
+# the frame to a JPEG encoder thread, then sends what the encoder has *finished*, which
+# right after a render is still the previous picture ("stale"). It looks again only
+# after ``delta_stale_time_before_render`` = 0.5 s, so every click showed its picture
+# 0.5 s after the step was done. A shorter delay alone is not enough: trame's retry
+# (``render_stale_image``) gives up at its second look unless twice the delay has passed
+# since the last stale frame, which a short delay never allows, and the new picture
+# would then never be sent.
+#
+# The fix: look again every STALE_PICTURE_POLL seconds until the encoder has the new
+# picture, at most STALE_PICTURE_LOOKS times (a view that always reports "stale", such
+# as a linked one, stops there: about a second of extra looks, not forever).
+
+#: Seconds between two looks for a picture the encoder has not finished.
+STALE_PICTURE_POLL = 0.01
+#: How many looks at most for one picture.
+STALE_PICTURE_LOOKS = 100
+
+
+def answer_clicks_promptly(server) -> None:
+    """Make ``server``'s server-side views send a new picture as soon as it is encoded
+    (about 10 ms after the render) instead of 0.5 s later (once per trame server; before
+    the server is ready, when it is). With a trame-vtk whose private API moved
+    (:func:`missing_private_api`) it warns once and does nothing."""
+    if not _private_api_present():
+        return
+    delivery = _image_delivery(server)
+    if delivery is None:
+        server.controller.on_server_ready.add(lambda **_: answer_clicks_promptly(server))
+        return
+    poll_for_encoded_pictures(delivery)
+
+
+def poll_for_encoded_pictures(delivery) -> None:
+    """Replace trame-vtk's stale-picture retry on one ``vtkWebPublishImageDelivery``
+    (idempotent)."""
+    if getattr(delivery, "halfedge_edu_polling", False):
+        return
+    import types
+
+    delivery.delta_stale_time_before_render = STALE_PICTURE_POLL
+    delivery.render_stale_image = types.MethodType(_look_again_for_the_picture, delivery)
+    delivery.halfedge_edu_polling = True
+
+
+def _look_again_for_the_picture(delivery, view_id: str, stale_count: int = 0) -> None:
+    """trame-vtk's ``render_stale_image`` without its give-up-at-the-second-look rule:
+    ``push_render`` sends the picture if it is encoded now, else it schedules this again
+    (``STALE_PICTURE_POLL`` later), up to ``STALE_PICTURE_LOOKS`` looks."""
+    if delivery.stale_handler_count.get(view_id, 0) <= 0:
+        return
+    delivery.stale_handler_count[view_id] -= 1
+    if delivery.last_stale_time.get(view_id, 0) != 0 and stale_count < STALE_PICTURE_LOOKS:
+        delivery.push_render(view_id, False, stale_count + 1)
+
+
+def _image_delivery(server):
+    """trame-vtk's picture publisher on ``server``, or None before the server is ready."""
+    from trame_vtk.modules.vtk.protocols import vtkWebPublishImageDelivery
+
+    protocol = server.protocol
+    if protocol is None:
+        return None
+    for link in protocol.getLinkProtocols():
+        if isinstance(link, vtkWebPublishImageDelivery):
+            return link
+    return None

@@ -156,3 +156,84 @@ def test_pyproject_bounds_trame_vtk_below_the_next_minor():
                if Requirement(line).name == "trame-vtk"]
     specifier = Requirement(line).specifier
     assert "2.11.17" in specifier and "2.12.0" not in specifier and "2.7.0" not in specifier
+
+
+# -- a server view's picture, as soon as it is encoded ---------------------------------
+
+class EncodingPublisher:
+    """A trame-vtk picture publisher whose JPEG encoder needs ``looks`` more looks
+    before the new picture is done; it records what it published."""
+
+    def __init__(self, looks: int):
+        from trame_vtk.modules.vtk.protocols import vtkWebPublishImageDelivery
+
+        class Publisher(vtkWebPublishImageDelivery):
+            def still_render(inner, options):
+                inner.renders += 1
+                done = inner.renders > looks
+                # Like vtkWebApplication: the image only when newer than ``mtime``.
+                image = b"new" if done and options["mtime"] < 2 else (b"old" if options["mtime"] < 1 else None)
+                return {"image": image, "stale": not done, "mtime": 2 if done else 1}
+
+        self.publisher = Publisher(decode=False)
+        self.publisher.renders, self.sent = 0, []
+        # What a wslink server hands a protocol: how to publish, how to attach bytes.
+        self.publisher.init(lambda topic, reply: self.sent.append(reply["image"]), lambda payload: payload, None)
+        self.publisher.tracking_views["7"] = {"enabled": True, "mtime": 0, "quality": 100,
+                                              "originalSize": [40, 30], "ratio": 1}
+        self.publisher.stale_handler_count["7"] = 0
+
+    def click(self, seconds: float) -> list[bytes]:
+        """One step's push_render, then ``seconds`` of trame's event loop; what was sent."""
+        import asyncio
+
+        async def run():
+            self.publisher.push_render("7")
+            await asyncio.sleep(seconds)
+
+        asyncio.run(run())
+        return self.sent
+
+
+def test_a_server_view_sends_the_new_picture_once_it_is_encoded():
+    publishing = EncodingPublisher(looks=6)
+    live_backend.poll_for_encoded_pictures(publishing.publisher)
+    # The old picture at once (all there is), the new one after six looks ~10 ms apart.
+    assert publishing.click(0.5) == [b"old", b"new"]
+    assert publishing.publisher.delta_stale_time_before_render == live_backend.STALE_PICTURE_POLL
+
+
+def test_trame_vtk_alone_loses_that_picture_with_a_short_delay():
+    """Why the retry itself is replaced, not only the 0.5 s delay: trame-vtk's retry
+    gives up at its second look, so a picture that needs more looks is never sent."""
+    publishing = EncodingPublisher(looks=3)
+    publishing.publisher.delta_stale_time_before_render = live_backend.STALE_PICTURE_POLL
+    assert publishing.click(0.5) == [b"old"]
+
+
+def test_a_view_that_is_always_stale_is_looked_at_a_bounded_number_of_times():
+    publishing = EncodingPublisher(looks=10**9)
+    live_backend.poll_for_encoded_pictures(publishing.publisher)
+    publishing.click(live_backend.STALE_PICTURE_POLL * live_backend.STALE_PICTURE_LOOKS * 3)
+    assert publishing.publisher.renders == live_backend.STALE_PICTURE_LOOKS + 1
+
+
+SERVER_VIEW_POLLS = r"""
+import json
+import halfedge_edu as hx
+from halfedge_edu import live_backend
+from halfedge_edu.viz import HalfedgeExplorer
+
+explorer = HalfedgeExplorer(hx.sample("open_patch"), halfedge=7)
+explorer.go("next")
+delivery = live_backend._image_delivery(explorer.view.widget.viewer.server)
+print(json.dumps({"delay": delivery.delta_stale_time_before_render,
+                  "patched": delivery.render_stale_image.__func__ is live_backend._look_again_for_the_picture}))
+"""
+
+
+def test_a_live_server_view_in_a_kernel_polls_for_its_pictures(tmp_path):
+    import json
+
+    found = json.loads(_run_in_kernel(SERVER_VIEW_POLLS, tmp_path))
+    assert found == {"delay": live_backend.STALE_PICTURE_POLL, "patched": True}, found

@@ -3,7 +3,8 @@
 One widget code path, two renderers:
 
 - ``"live"``: the scene's plotter is shown through PyVista's trame backend inside
-  JupyterLab; a step updates the actors and pushes a frame (``plotter.render()``).
+  JupyterLab; a step updates the actors and pushes a frame (the server view renders
+  and sends one picture; a client view gets the new scene through ``plotter.render()``).
 - ``"static"``: the plotter renders off screen and each step puts a fresh PNG into an
   ``ipywidgets.Image``. This is what course CI, ``nbconvert``, GitHub's preview and a
   static HTML export can show.
@@ -96,6 +97,8 @@ class View:
         self.mode = mode
         self._shown = False
         self._stale = True
+        #: trame-pyvista's view mode of a live view ("server" or "client"), None when static.
+        self.trame_mode: str | None = None
         width, height = scene.window_size
         if mode == "static":
             self.widget = widgets.Image(format="png", width=width, height=height,
@@ -104,7 +107,7 @@ class View:
         else:
             # A collapsed menu is one small button in the corner; the full toolbar would
             # cover the top ~60 px of the view, where the highlighted halfedge may be.
-            trame_mode = live_backend.trame_mode()
+            trame_mode = self.trame_mode = live_backend.trame_mode()
             with without_wasm_notice():
                 self.widget = scene.plotter.show(
                     jupyter_backend="trame", return_viewer=True,
@@ -113,6 +116,9 @@ class View:
                 # The browser fetches the scene's arrays after it loads the view, which
                 # may be long after the last step: keep them (see live_backend).
                 live_backend.keep_scene_arrays(self.widget.viewer)
+            else:
+                # Send each step's picture as soon as it is encoded, not 0.5 s later.
+                live_backend.answer_clicks_promptly(self.widget.viewer.server)
         self.update()
 
     def shown(self) -> None:
@@ -137,12 +143,17 @@ class View:
             self._stale = True
             if self._shown:
                 self._render_picture()
-        else:
+        elif self.trame_mode == "client":
             # trame-pyvista's views follow the plotter's renders (a render callback sends
-            # the new frame, or the new scene to vtk.js), so one render is the whole
-            # update. Calling the viewer's update() as well did all of it twice (measured
-            # with trame-pyvista 0.2.3: four scene serialisations a step instead of two).
+            # the new scene to vtk.js), so one render is the whole update. Calling the
+            # viewer's update() as well did all of it twice (measured with trame-pyvista
+            # 0.2.3: four scene serialisations a step instead of two).
             self.scene.render()
+        else:
+            # The server view renders the window itself when it makes the picture it
+            # sends (trame-vtk's still render); plotter.render() would render it once
+            # more before that, for nothing (about 20 ms a step on the bunny).
+            self.widget.viewer.update()
 
 
 def prepare_plotter(look, window_size: tuple[int, int], plotter=None):
