@@ -15,6 +15,9 @@ from halfedge_edu.core.arrays import edge_table
 from tests import strategies as shapes
 
 remesh_module = importlib.import_module("halfedge_edu.algorithms.remesh")
+flip_module = importlib.import_module("halfedge_edu.algorithms.remesh.flip")
+project_module = importlib.import_module("halfedge_edu.algorithms.remesh.project")
+split_module = importlib.import_module("halfedge_edu.algorithms.remesh.split")
 remesh = remesh_module.remesh
 remesh_step_by_step = remesh_module.remesh_step_by_step
 remesh_history = remesh_module.remesh_history
@@ -245,7 +248,7 @@ def test_flips_and_smoothing_keep_the_connectivity_or_the_positions(spot_history
 ])
 def test_split_templates_cut_a_triangle_with_k_long_edges_into_k_plus_one(corners, long_edges):
     vertices = np.array(corners)
-    new_vertices, new_faces, _, n_split = remesh_module._split_pass(vertices, np.array([[0, 1, 2]]), 2.0)
+    new_vertices, new_faces, _, n_split = split_module._split_pass(vertices, np.array([[0, 1, 2]]), 2.0)
     assert n_split == long_edges
     assert len(new_faces) == long_edges + 1
     hx.HalfedgeMesh.from_faces(new_vertices, new_faces).validate()   # manifold and oriented, or it raises
@@ -259,7 +262,7 @@ def test_one_split_pass_cuts_every_long_edge_once_at_its_midpoint():
     vertices = np.array([[0.0, 0, 0], [3, 0, 0], [0, 1, 0], [3, 1, 0]])
     faces = np.array([[0, 1, 2], [1, 3, 2]])
     # Edges 0-1 and 2-3 (length 3) and the diagonal 1-2 (about 3.16) are long; 0-2, 1-3 are not.
-    new_vertices, new_faces, _, n_split = remesh_module._split_pass(vertices, faces, 2.0)
+    new_vertices, new_faces, _, n_split = split_module._split_pass(vertices, faces, 2.0)
     assert n_split == 3
     assert len(new_faces) == 3 + 3                      # each face has two long edges: 3 pieces
     hx.HalfedgeMesh.from_faces(new_vertices, new_faces).validate()
@@ -272,7 +275,7 @@ def test_collapse_phase_removes_short_edges_without_making_long_ones():
     mesh = hx.sample("icosphere", subdivisions=3)
     vertices, faces = mesh.to_arrays()
     length = 2.0 * mean_edge_length(mesh)              # every edge is short for this L
-    new_vertices, new_faces, _ = remesh_module._collapse_short_edges(vertices, faces, length)
+    new_vertices, new_faces, _ = remesh_module.collapse_short_edges(vertices, faces, length)
     result = hx.HalfedgeMesh.from_faces(new_vertices, new_faces)
     result.validate()
     assert result.genus == 0
@@ -288,7 +291,7 @@ def test_flip_pass_lowers_the_total_degree_deviation_and_keeps_counts():
         degree = np.bincount(edge_table(f, len(vertices)).edges.reshape(-1), minlength=len(vertices))
         return np.abs(degree - 6).sum()
 
-    flipped, n_flipped, _ = remesh_module._flip_pass(vertices, faces, np.random.default_rng(0),
+    flipped, n_flipped, _ = flip_module._flip_pass(vertices, faces, np.random.default_rng(0),
                                                      np.cos(np.radians(20.0)))
     assert n_flipped > 0
     assert deviation(flipped) < deviation(faces)
@@ -335,7 +338,7 @@ def test_snapping_puts_a_near_point_on_the_input_vertex_and_only_one_point_per_v
     # A flat square of 2 x 2 quads: vertex 4, the centre, is the only one off the boundary.
     vertices, faces = shapes.grid(2, 2)
     vertices = vertices.astype(float)
-    surface = remesh_module._Surface(vertices, faces)
+    surface = remesh_module.InputSurface(vertices, faces)
     points = np.array([[1.05, 1.0, 0.0], [1.0, 1.02, 0.0], [0.5, 0.5, 0.0], [0.05, 0.0, 0.0]])
     snapped = surface.project(points, snap_radius=0.1)
     # The nearer of the first two goes onto the centre; the other stays, and so do the
@@ -426,13 +429,13 @@ def test_projection_onto_a_crease_flattens_no_face(arrays, where, slope, scale):
     mesh = hx.HalfedgeMesh.from_faces(creased(arrays[0], where, slope), arrays[1])
     result = remesh(mesh, scale * mean_edge_length(mesh), iterations=3)
     result.validate()
-    assert smallest_relative_area(result) > remesh_module.MIN_RELATIVE_AREA
+    assert smallest_relative_area(result) > project_module.MIN_RELATIVE_AREA
 
 
 @given(case=shapes.cases(), where=st.floats(-0.5, 0.5), slope=st.floats(0.5, 3.0),
        scale=st.sampled_from([0.5, 1.0, 2.0]))
 def test_remesh_never_makes_a_zero_area_face_on_creased_meshes(case, where, slope, scale):
     mesh = hx.HalfedgeMesh.from_faces(creased(case.vertices, where, slope), case.faces)
-    assert smallest_relative_area(mesh) > remesh_module.MIN_RELATIVE_AREA
+    assert smallest_relative_area(mesh) > project_module.MIN_RELATIVE_AREA
     result = remesh(mesh, scale * mean_edge_length(mesh), iterations=3)
-    assert smallest_relative_area(result) > remesh_module.MIN_RELATIVE_AREA
+    assert smallest_relative_area(result) > project_module.MIN_RELATIVE_AREA

@@ -19,6 +19,7 @@ from tests import strategies as shapes
 from tests.algorithms.test_remesh import creased, distance_to_segments, mean_edge_length, smallest_relative_area
 
 remesh_module = importlib.import_module("halfedge_edu.algorithms.remesh")
+project_module = importlib.import_module("halfedge_edu.algorithms.remesh.project")
 remesh = remesh_module.remesh
 
 
@@ -251,7 +252,7 @@ def test_a_line_vertex_is_projected_onto_its_own_line_even_with_another_nearer()
     vertices = np.array([[0.0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0], [1, 1, 0], [2, 1, 0]])
     faces = np.array([[0, 1, 4], [0, 4, 3], [1, 2, 5], [1, 5, 4]])
     lines = Features(np.array([[0, 1], [1, 2], [3, 4], [4, 5]]), np.zeros(6, bool), np.array([0, 0, 1, 1]))
-    surface = remesh_module._Surface(vertices, faces, lines)
+    surface = remesh_module.InputSurface(vertices, faces, lines)
     points = np.array([[0.5, 0.6, 0.0], [1.5, 0.6, 0.0]])
     assert np.allclose(surface.project_to_lines(points, np.array([0, 1])), [[0.5, 0.0, 0.0], [1.5, 1.0, 0.0]])
 
@@ -264,7 +265,7 @@ def test_flips_never_flip_a_feature_edge(case, where, slope, angle):
     # Angles below the flip phase's own limit (MAX_FLIP_DIHEDRAL): only the feature rule stops these.
     vertices = creased(case.vertices, where, slope)
     features = feature_arrays(vertices, case.faces, angle)
-    flipped, _ = remesh_module._flip_to_regular_degrees(vertices, case.faces, np.random.default_rng(0), features)
+    flipped, _ = remesh_module.flip_to_regular_degrees(vertices, case.faces, np.random.default_rng(0), features)
     keys = edge_table(flipped, len(vertices)).keys
     wanted = features.edges[:, 0] * len(vertices) + features.edges[:, 1]
     assert np.isin(wanted, keys).all()
@@ -306,7 +307,7 @@ def test_lines_stay_on_the_input_lines_and_corners_stay_exactly(case, where, slo
     result = remesh(mesh, scale * mean_edge_length(mesh), iterations=3, feature_angle=angle)
     result.validate()
     assert (result.genus, result.n_boundary_loops) == (case.genus, case.n_boundary_loops)
-    assert smallest_relative_area(result) > remesh_module.MIN_RELATIVE_AREA
+    assert smallest_relative_area(result) > project_module.MIN_RELATIVE_AREA
 
 
 # ---- the command line --------------------------------------------------------------------

@@ -23,6 +23,7 @@ import numpy as np
 import pytest
 
 import halfedge_edu as hx
+from halfedge_edu.algorithms import collapse_rounds
 from halfedge_edu.algorithms.features import feature_arrays
 from halfedge_edu.core.arrays import edge_table
 from tests import strategies as shapes
@@ -30,6 +31,8 @@ from tests.algorithms.test_remesh import mean_edge_length
 from tests.algorithms.test_remesh_features import folded_sheet
 
 remesh_module = importlib.import_module("halfedge_edu.algorithms.remesh")
+collapse_module = importlib.import_module("halfedge_edu.algorithms.remesh.collapse")
+flip_module = importlib.import_module("halfedge_edu.algorithms.remesh.flip")
 
 
 def split_then_collapse(mesh: hx.HalfedgeMesh, scale: float, feature_angle: float | None):
@@ -37,8 +40,8 @@ def split_then_collapse(mesh: hx.HalfedgeMesh, scale: float, feature_angle: floa
     vertices, faces = mesh.to_arrays()
     length = scale * mean_edge_length(mesh)
     features = feature_arrays(vertices, faces, feature_angle) if feature_angle is not None else None
-    vertices, faces, features = remesh_module._split_long_edges(vertices, faces, length, features)
-    return remesh_module._collapse_short_edges(vertices, faces, length, features)
+    vertices, faces, features = remesh_module.split_long_edges(vertices, faces, length, features)
+    return remesh_module.collapse_short_edges(vertices, faces, length, features)
 
 
 def bumpy_sheet(n: int = 24) -> hx.HalfedgeMesh:
@@ -62,19 +65,19 @@ def test_collapse_rounds_on_a_region_choose_what_rounds_on_the_whole_mesh_choose
     made = {"sheet": lambda: folded_sheet(slope=0.6), "bumpy": bumpy_sheet}
     mesh = made[name]() if name in made else hx.sample(name)
     regions = []
-    faces_near = remesh_module._faces_near
+    faces_near = collapse_module._faces_near
 
     def recording(faces, marked):
         region = faces_near(faces, marked)
         regions.append((len(region), len(faces)))
         return region
 
-    monkeypatch.setattr(remesh_module, "_faces_near", recording)
+    monkeypatch.setattr(collapse_module, "_faces_near", recording)
     by_region = split_then_collapse(mesh, scale, feature_angle)
     # At least two rounds ran on a region, and some region left faces out: the case tests something.
     assert len(regions) >= 2 and any(size < total for size, total in regions)
 
-    monkeypatch.setattr(remesh_module, "_faces_near", lambda faces, marked: np.arange(len(faces)))
+    monkeypatch.setattr(collapse_module, "_faces_near", lambda faces, marked: np.arange(len(faces)))
     whole = split_then_collapse(mesh, scale, feature_angle)
     assert np.array_equal(by_region[1], whole[1])
     assert np.array_equal(by_region[0], whole[0])
@@ -101,7 +104,7 @@ def test_edge_mask_of_part_of_the_edges_leaves_out_the_feature_edges_elsewhere()
 def test_projection_finds_the_nearest_point_of_the_input_for_almost_every_point():
     spot = hx.sample("spot")
     vertices, faces = spot.to_arrays()
-    surface = remesh_module._Surface(vertices, faces)
+    surface = remesh_module.InputSurface(vertices, faces)
     rng = np.random.default_rng(3)
     length = mean_edge_length(spot)
     points = vertices[rng.choice(len(vertices), 300, replace=False)] + rng.normal(scale=0.1 * length, size=(300, 3))
@@ -117,7 +120,7 @@ def test_projection_finds_the_nearest_point_of_the_input_for_almost_every_point(
     assert np.mean(ours <= best + 1e-9 * length) >= 0.99
     assert np.all(ours <= best + 0.5 * length)
     # Each point found lies on the input surface: on one of its triangles.
-    on_input = remesh_module._Surface(vertices, faces).project(found)
+    on_input = remesh_module.InputSurface(vertices, faces).project(found)
     assert np.allclose(on_input, found, atol=1e-9 * length)
 
 
@@ -125,13 +128,13 @@ def test_projection_finds_the_nearest_point_of_the_input_for_almost_every_point(
 def test_edge_uses_kept_up_to_date_through_flip_passes_equal_a_fresh_table(name):
     mesh = bumpy_sheet() if name == "bumpy" else hx.sample(name)
     vertices, faces = mesh.to_arrays()
-    vertices, faces, _ = remesh_module._split_long_edges(vertices, faces, 0.7 * mean_edge_length(mesh), None)
+    vertices, faces, _ = remesh_module.split_long_edges(vertices, faces, 0.7 * mean_edge_length(mesh), None)
     n = len(vertices)
-    uses = remesh_module._EdgeUses.of(faces, n)
+    uses = flip_module._EdgeUses.of(faces, n)
     rng = np.random.default_rng(0)
     flipped = 0
     for _ in range(3):
-        faces, n_flipped, uses = remesh_module._flip_pass(vertices, faces, rng, np.cos(np.radians(20.0)), uses=uses)
+        faces, n_flipped, uses = flip_module._flip_pass(vertices, faces, rng, np.cos(np.radians(20.0)), uses=uses)
         flipped += n_flipped
         fresh = edge_table(faces, n)
         # The table made from the uses is the fresh one (up to which use of an edge is first).
@@ -165,30 +168,30 @@ def graded_strip(columns: int = 40, rows: int = 30) -> tuple[np.ndarray, np.ndar
 
 def first_round_collapses(vertices: np.ndarray, faces: np.ndarray, target_length: float) -> int:
     """How many edges the first collapse round (on the whole mesh) collapses."""
-    refused = remesh_module._Refused(len(vertices))
-    max_normal_cos = np.cos(np.radians(remesh_module.MAX_COLLAPSE_NORMAL_ANGLE))
-    _, _, n_collapsed, _ = remesh_module._collapse_round(vertices.copy(), faces, None, target_length, max_normal_cos,
+    refused = collapse_module._Refused(len(vertices))
+    max_normal_cos = np.cos(np.radians(collapse_module.MAX_COLLAPSE_NORMAL_ANGLE))
+    _, _, n_collapsed, _ = collapse_module._collapse_round(vertices.copy(), faces, None, target_length, max_normal_cos,
                                                           refused, None)
     return n_collapsed
 
 
 def test_collapse_order_puts_shorter_classes_first_and_shuffles_inside_a_class():
     target_length = 1.0
-    width = remesh_module.COLLAPSE_BELOW * target_length / remesh_module.COLLAPSE_LENGTH_CLASSES
+    width = remesh_module.COLLAPSE_BELOW * target_length / collapse_module.COLLAPSE_LENGTH_CLASSES
     # Two classes, each with lengths rising with the key (strict order would keep the keys in order).
     length = np.concatenate([np.linspace(0.1, 0.9, 50), np.linspace(3.1, 3.9, 50)]) * width
     keys = np.arange(100, dtype=np.int64) * 1001
-    order = remesh_module._collapse_order(length, keys, target_length)
+    order = collapse_module._collapse_order(length, keys, target_length)
     assert np.array_equal(np.sort(order), np.arange(100))
     assert set(order[:50].tolist()) == set(range(50))                  # the shorter class first
     assert not np.array_equal(order[:50], np.arange(50))               # ... not shortest first inside it
     # The order follows the keys, not where an edge stands in the arrays: a round on
     # part of the mesh ranks its edges as a round on all of it does.
     shuffle = np.random.default_rng(1).permutation(100)
-    reordered = remesh_module._collapse_order(length[shuffle], keys[shuffle], target_length)
+    reordered = collapse_module._collapse_order(length[shuffle], keys[shuffle], target_length)
     assert np.array_equal(keys[shuffle][reordered], keys[order])
     # A length just under 4/5 L stays in the last class.
-    last = remesh_module._collapse_order(np.array([0.0, np.nextafter(0.8, 0.0)]), np.array([7, 3]), target_length)
+    last = collapse_module._collapse_order(np.array([0.0, np.nextafter(0.8, 0.0)]), np.array([7, 3]), target_length)
     assert np.array_equal(last, [0, 1])
 
 
@@ -199,16 +202,16 @@ def test_collapse_order_puts_the_smaller_key_first_where_two_shuffled_numbers_ag
     colliding = 4191503622821399894
     keys = np.array([colliding, 0], dtype=np.int64)
     length = np.array([0.5, 0.5])
-    priority = remesh_module.spread_ties_keys(np.zeros(2, dtype=np.int64), keys)
+    priority = collapse_rounds.spread_ties_keys(np.zeros(2, dtype=np.int64), keys)
     assert priority[0] == priority[1]
-    assert np.array_equal(remesh_module._collapse_order(length, keys, 1.0), [1, 0])
-    assert np.array_equal(remesh_module._collapse_order(length, keys[::-1].copy(), 1.0), [0, 1])
+    assert np.array_equal(collapse_module._collapse_order(length, keys, 1.0), [1, 0])
+    assert np.array_equal(collapse_module._collapse_order(length, keys[::-1].copy(), 1.0), [0, 1])
 
 
 def test_a_round_takes_many_more_edges_than_shortest_first_where_lengths_rise_gradually(monkeypatch):
     vertices, faces = graded_strip()
     ranked = first_round_collapses(vertices, faces, 1.0)
-    monkeypatch.setattr(remesh_module, "_collapse_order",
+    monkeypatch.setattr(collapse_module, "_collapse_order",
                         lambda length, keys, target_length: np.argsort(length, kind="stable"))
     shortest_first = first_round_collapses(vertices, faces, 1.0)
     # Shortest first takes little more than the narrowest column (18 edges); by class, 136.
@@ -218,16 +221,16 @@ def test_a_round_takes_many_more_edges_than_shortest_first_where_lengths_rise_gr
 def collapse_round_counts(monkeypatch, vertices: np.ndarray, faces: np.ndarray, target_length: float) -> list[int]:
     """The collapses of every round of one split and one collapse phase."""
     counts = []
-    collapse_round = remesh_module._collapse_round
+    collapse_round = collapse_module._collapse_round
 
     def counting(*args, **kwargs):
         result = collapse_round(*args, **kwargs)
         counts.append(result[2])
         return result
 
-    monkeypatch.setattr(remesh_module, "_collapse_round", counting)
-    vertices, faces, _ = remesh_module._split_long_edges(vertices, faces, target_length, None)
-    remesh_module._collapse_short_edges(vertices, faces, target_length, None)
+    monkeypatch.setattr(collapse_module, "_collapse_round", counting)
+    vertices, faces, _ = remesh_module.split_long_edges(vertices, faces, target_length, None)
+    remesh_module.collapse_short_edges(vertices, faces, target_length, None)
     return counts
 
 
@@ -236,10 +239,10 @@ def test_collapse_rounds_stop_when_only_chains_of_single_collapses_are_left(monk
     # chains go on collapsing one edge per round each (a collapsed vertex of degree 4
     # leaves its neighbour with degree 4), around the tube.
     vertices, faces = shapes.torus(86, 35, radii=(1.0, 0.4))
-    target_length = float(remesh_module._edge_lengths(vertices, edge_table(faces, len(vertices)).edges).mean())
+    target_length = float(remesh_module.edge_lengths(vertices, edge_table(faces, len(vertices)).edges).mean())
     counts = collapse_round_counts(monkeypatch, vertices, faces, target_length)
     assert len(counts) <= 12, counts                                  # 30 (the cap) without the share rule
-    assert counts[-1] <= remesh_module.MIN_COLLAPSE_SHARE * max(counts)
+    assert counts[-1] <= collapse_module.MIN_COLLAPSE_SHARE * max(counts)
 
 
 def collapse_places_one_edge_at_a_time(vertices, edges, a, b, first, allowed, limit) -> np.ndarray:
@@ -262,21 +265,21 @@ def collapse_places_one_edge_at_a_time(vertices, edges, a, b, first, allowed, li
 
 @pytest.mark.parametrize("block", [1, 3, 8192])
 def test_collapse_places_measured_a_block_at_a_time_equal_one_edge_at_a_time(monkeypatch, block):
-    monkeypatch.setattr(remesh_module, "PLACE_CHECK_BLOCK", block)
+    monkeypatch.setattr(collapse_module, "PLACE_CHECK_BLOCK", block)
     mesh = bumpy_sheet(12)
     vertices, faces = mesh.to_arrays()
     length = 1.3 * mean_edge_length(mesh)
-    vertices, faces, _ = remesh_module._split_long_edges(vertices, faces, length, None)
-    tables = remesh_module.round_tables(faces, len(vertices))
-    edge_length = remesh_module._edge_lengths(vertices, tables.edges)
+    vertices, faces, _ = remesh_module.split_long_edges(vertices, faces, length, None)
+    tables = collapse_rounds.round_tables(faces, len(vertices))
+    edge_length = remesh_module.edge_lengths(vertices, tables.edges)
     short = np.flatnonzero(edge_length < remesh_module.COLLAPSE_BELOW * length)
     a, b = tables.edges[short, 0], tables.edges[short, 1]
     rng = np.random.default_rng(2)
     first = np.where(rng.random(len(short)) < 0.5, a, b)
     allowed = rng.random((len(short), 3)) < 0.7                          # every mix of allowed places
     limit = remesh_module.SPLIT_ABOVE * length
-    reach = remesh_module._longest_edge_at(len(vertices), tables.edges, edge_length)
-    choice = remesh_module._collapse_places(vertices, tables.neighbours, reach, a, b, first, edge_length[short],
+    reach = collapse_module._longest_edge_at(len(vertices), tables.edges, edge_length)
+    choice = collapse_module._collapse_places(vertices, tables.neighbours, reach, a, b, first, edge_length[short],
                                             allowed, limit)
     expected = collapse_places_one_edge_at_a_time(vertices, tables.edges, a, b, first, allowed, limit)
     assert np.array_equal(choice, expected)
