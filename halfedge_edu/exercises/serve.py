@@ -169,7 +169,8 @@ ALLOWED = "!"
 def functions_forbidden(keys: list[str], namespace: dict) -> dict[str, types.FunctionType]:
     """Every function the ``forbids`` entries ``keys`` name, by key: a function or method
     as itself; a whole module as each function it defines and each method of each class
-    it defines (so that a learner's wrapper, ``lambda m: loop_subdivide(m)``, is refused as
+    it defines, a package as all of its modules' (``algorithms.remesh`` is its five
+    phase files) (so that a learner's wrapper, ``lambda m: loop_subdivide(m)``, is refused as
     the alias ``my_upsample = loop_subdivide`` is); less the entries marked allowed."""
     allowed = {key[len(ALLOWED):] for key in keys if key.startswith(ALLOWED)}
     found: dict[str, types.FunctionType] = {}
@@ -178,7 +179,8 @@ def functions_forbidden(keys: list[str], namespace: dict) -> dict[str, types.Fun
             continue
         target = resolve(key, namespace)
         if isinstance(target, types.ModuleType):
-            found.update(_functions_of_module(target))
+            for module in _modules_of(target):
+                found.update(_functions_of_module(module))
         elif isinstance(target, types.FunctionType):
             found[key] = target
     return {key: function for key, function in found.items() if key not in allowed}
@@ -193,6 +195,18 @@ def install_guards(forbids: dict[str, list[str]], namespace: dict) -> dict[str, 
         installed = (_GUARDS.install(key, function) for key, function in functions.items())
         expanded[exercise] = [key for key in installed if key is not None]
     return expanded
+
+
+def _modules_of(module: types.ModuleType) -> list[types.ModuleType]:
+    """``module``, and when it is a package every module below it (imported here: a
+    package's ``__init__`` defines little itself, its functions live in its files)."""
+    import importlib
+    import pkgutil
+
+    found = [module]
+    for info in pkgutil.walk_packages(getattr(module, "__path__", ()), prefix=f"{module.__name__}."):
+        found.append(importlib.import_module(info.name))
+    return found
 
 
 def _functions_of_module(module: types.ModuleType) -> dict[str, types.FunctionType]:
