@@ -2,7 +2,8 @@
 
     from halfedge_edu.viz import HalfedgeScene, HalfedgeExplorer, OneRingViewer
     from halfedge_edu.viz import FlipStepper, SplitStepper, CollapseStepper, CollapseAtlas
-    from halfedge_edu.viz import LoopStepper, QEMStepper, RemeshStepper
+    from halfedge_edu.viz import LoopStepper, QEMStepper, RemeshStepper, Stepper
+    from halfedge_edu.viz import SmoothingViewer, LinkViewer, link_png, named_picture
     from halfedge_edu.viz import DeCasteljauViewer, BezierSurfaceEditor
     from halfedge_edu.viz import side_by_side, grid, scene_picture, surface_png, plotter_png
     from halfedge_edu.viz import on_main_thread
@@ -14,6 +15,8 @@
   follows every step elsewhere (:func:`choose_mode`, ``HALFEDGE_EDU_VIZ=static|live``).
   Each can be driven from code (``w.go("twin")``, ``w.step()``) and says its state in
   plain text (``w.describe()``).
+- Steppers: every one is the :class:`Stepper` widget over an algorithm's steps (its
+  :class:`~.steps.Steps`: the records the algorithm wrote down) with a painter for them.
 - Still pictures: :func:`side_by_side` and :func:`grid` paste PNGs in titled rows,
   :func:`scene_picture` makes one picture of a scene, :func:`surface_png` a plain picture
   of a mesh, :func:`plotter_png` encodes what any plotter shows.
@@ -42,8 +45,14 @@ The modules, one concern each (as pyvista splits its plotting package), from the
   observer of these widgets goes through it, and so should a chapter's own widget.
 - ``keys``: :class:`~.keys.KeyArea`, the part of a widget's panel that answers keys (n, p,
   t, the arrows, space, Home, End) in a live Lab, each by clicking its button.
-- ``widgets``, ``steppers``, ``loop_stepper``, ``qem_stepper``, ``remesh_stepper``,
-  ``bezier_widgets``: the notebook widgets.
+- ``steps``: the one stepper model: the :class:`~.steps.Steps` protocol (an algorithm's
+  run as numbered steps), the :class:`~.steps.Painter` protocol, and :class:`Stepper`,
+  the widget that shows any steps by asking their painter.
+- ``steppers`` (flip, split, collapse, and :func:`named_picture` of an operation's log),
+  ``atlas`` (:class:`CollapseAtlas`), ``loop_stepper``, ``qem_stepper``,
+  ``remesh_stepper``: each algorithm's steps, painter and named stepper.
+- ``widgets``, ``bezier_widgets``, ``smoothing_viewer`` (chapter 05), ``link_viewer``
+  (chapter 08's link pictures and :class:`LinkViewer`): the other notebook widgets.
 
 The rule between modules (``tests/viz/test_layout.py`` checks it): a module uses only the
 public names of another, so no ``from .x import _name`` and no ``obj._attr`` on an object
@@ -60,8 +69,10 @@ from halfedge_edu._extras import require
 
 require("notebooks", "halfedge_edu.viz")
 
+from .atlas import CollapseAtlas
 from .bezier_widgets import BezierSurfaceEditor, DeCasteljauViewer
 from .editor import MeshEditor
+from .link_viewer import LINK_VIEWS, LinkViewer, draw_link, link_png
 from .loop_stepper import LoopStepper
 from .main_thread import on_main_thread
 from .palette import PRESETS, ROLES
@@ -70,12 +81,15 @@ from .qem_stepper import QEMStepper
 from .remesh_stepper import RemeshStepper
 from .renderer import choose_mode, show
 from .scene import HalfedgeScene, scene_picture
-from .steppers import CollapseAtlas, CollapseStepper, FlipStepper, SplitStepper
+from .smoothing_viewer import SmoothingViewer
+from .steppers import CollapseStepper, FlipStepper, SplitStepper, created_roles, gathered_roles, named_picture
+from .steps import Stepper
 from .widgets import HalfedgeExplorer, OneRingViewer
 
 __all__ = [
     "PRESETS", "ROLES", "choose_mode", "show", "HalfedgeScene", "HalfedgeExplorer", "OneRingViewer",
     "FlipStepper", "SplitStepper", "CollapseStepper", "CollapseAtlas", "LoopStepper",
     "QEMStepper", "RemeshStepper", "DeCasteljauViewer", "BezierSurfaceEditor", "side_by_side", "grid",
-    "plotter_png", "surface_png", "scene_picture", "MeshEditor", "on_main_thread",
+    "plotter_png", "surface_png", "scene_picture", "MeshEditor", "on_main_thread", "Stepper", "SmoothingViewer",
+    "LinkViewer", "LINK_VIEWS", "draw_link", "link_png", "named_picture", "gathered_roles", "created_roles",
 ]

@@ -32,7 +32,7 @@ class Role:
     """What a highlighted element is, how it is coloured and what the legend calls it."""
 
     name: str
-    kind: str  # "vertex", "halfedge" or "face"
+    kind: str  # "vertex", "halfedge" or "face" ("edge": lines drawn over the mesh)
     color: str
     legend: str
 
@@ -79,6 +79,13 @@ _ROLE_LIST = [
     # An edge an operation refuses, with the elements the reason names.
     Role("refused", "halfedge", VERMILLION, "refused edge"),
     Role("refused_vertex", "vertex", VERMILLION, "named in the reason"),
+    # The link condition of an edge a - b (chapter 08, viz.link_viewer): drawn as lines
+    # and dots over the mesh, not as halfedge arrows.
+    Role("link_edge", "edge", "#222222", "the edge a - b"),
+    Role("link_a", "edge", ORANGE, "link(a)"),
+    Role("link_b", "edge", SKY_BLUE, "link(b)"),
+    Role("link_shared", "vertex", BLUISH_GREEN, "shared, and in link(ab)"),
+    Role("link_extra", "edge", VERMILLION, "shared, not in link(ab)"),
 ]
 
 #: Every role by name, in legend order; where an element has two roles, the earlier wins.

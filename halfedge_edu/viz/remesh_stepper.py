@@ -7,9 +7,10 @@
     w.go("flip")           # the next flip phase; also "start", "end", "iteration", 4, (2, "smooth")
     print(w.describe())    # what the phase did, and the quality numbers now
 
-The stepper runs :func:`~halfedge_edu.algorithms.remesh.remesh_step_by_step` once and
-keeps every snapshot ``(iteration, phase, mesh)``, so each picture is the real
-algorithm's state and going back costs nothing. The picture marks the edges longer
+:class:`RemeshSteps` runs :func:`~halfedge_edu.algorithms.remesh.remesh_step_by_step` once
+and keeps every :class:`~halfedge_edu.algorithms.remesh.RemeshStep` ``(iteration, phase,
+mesh)`` with its quality numbers, so each picture is the real algorithm's state and going
+back costs nothing. :class:`RemeshPainter`'s picture marks the edges longer
 than 4/3 L (the next split's work), the edges shorter than 4/5 L (the next collapse's)
 and the vertices whose degree is 2 or more away from the ideal (6 inside, 4 on a
 boundary: the flips' work). Below it, three histograms compare the input (grey) with
@@ -30,7 +31,7 @@ from ..algorithms.remesh import COLLAPSE_BELOW, SPLIT_ABOVE, quality_report, rem
 from .painted_scene import Layer, PaintedScene, legend_html
 from .palette import BLUE, BLUISH_GREEN, ORANGE, REDDISH_PURPLE, VERMILLION, panel_css
 from .pictures import grid_png
-from .widgets import StepperWidget
+from .steps import Stepper
 
 TOO_LONG, TOO_SHORT, OFF_DEGREE = VERMILLION, BLUE, REDDISH_PURPLE
 #: Colours of the histograms' outlines after the first (grey, filled) entry.
@@ -191,18 +192,193 @@ def histogram_figure(meshes, labels, target_length: float, *, size=(8.4, 2.5), d
 
 
 # ----------------------------------------------------------------------------------------
-# The stepper
+# The stepper: its steps, its painter, the widget
 # ----------------------------------------------------------------------------------------
 
 @dataclass(eq=False)
-class _Snapshot:
+class Snapshot:
+    """One phase's mesh and its quality numbers."""
+
     iteration: int
     phase: str
     mesh: object
     quality: PhaseQuality
 
 
-class RemeshStepper(StepperWidget):
+class RemeshSteps:
+    """The :class:`~.steps.Steps` of isotropic remeshing: step 0 the input, then one step
+    per phase of every iteration. ``snapshots`` holds a :class:`Snapshot` per step."""
+
+    def __init__(self, mesh, target_length: float | None = None, iterations: int = 2, *, project: bool = True):
+        before = mesh.copy()
+        if before.has_garbage:
+            before.garbage_collect()
+        if target_length is None:
+            ends = before.edge_vertices()
+            target_length = float(np.linalg.norm(before.positions[ends[:, 0]] - before.positions[ends[:, 1]],
+                                                 axis=1).mean())
+        self.target_length = float(target_length)
+        self.iterations = int(iterations)
+        self.snapshots = [Snapshot(s.iteration, s.phase, s.mesh, phase_quality(s.mesh, self.target_length))
+                          for s in remesh_step_by_step(before, self.target_length, self.iterations, project=project)]
+        self.before = before
+
+    @property
+    def n_steps(self) -> int:
+        return len(self.snapshots) - 1
+
+    def mesh(self, k: int):
+        return self.snapshots[k].mesh
+
+    @property
+    def result(self):
+        return self.snapshots[-1].mesh.copy()
+
+    def index_of(self, iteration: int, phase: str) -> int:
+        """The step number of ``phase`` in ``iteration``."""
+        for k, snapshot in enumerate(self.snapshots):
+            if snapshot.iteration == iteration and snapshot.phase == phase:
+                return k
+        phases = sorted({s.phase for s in self.snapshots[1:]}, key=list(PHASE_TEXT).index)
+        raise ValueError(f"there is no phase {phase!r} in iteration {iteration}: iterations run from 1 to "
+                         f"{self.iterations}, phases are {', '.join(phases)}")
+
+    def moves(self, k: int) -> dict[str, int]:
+        """"iteration": the same phase one iteration on. From the input (the end of
+        iteration 0, so to speak) that is the end of iteration 1; in the last iteration
+        it stays where it is."""
+        if k == 0:
+            return {"iteration": max(j for j, s in enumerate(self.snapshots) if s.iteration == 1)}
+        now = self.snapshots[k]
+        same_phase_next = [j for j, s in enumerate(self.snapshots)
+                           if s.phase == now.phase and s.iteration == now.iteration + 1]
+        return {"iteration": same_phase_next[0] if same_phase_next else k}
+
+    def resolve(self, target, k: int) -> int | None:
+        """``(iteration, phase)``, or a phase name: its next occurrence (else its first)."""
+        if isinstance(target, tuple):
+            return self.index_of(*target)
+        if isinstance(target, str):
+            later = [j for j, s in enumerate(self.snapshots) if s.phase == target.strip().lower()]
+            if later:
+                return next((j for j in later if j > k), later[0])
+        return None
+
+
+class RemeshPainter:
+    """How a phase of remeshing looks (a :class:`~.steps.Painter`): the edges to split and
+    to collapse, the vertices off degree, and the words and table of the panel."""
+
+    title = "Isotropic remeshing: phase by phase"
+    keys = {"PageDown": "iteration"}
+    buttons = (("start", "the input", "start"),
+               ("back", "one phase back", "back"),
+               ("step", "the next phase", "step"),
+               ("iteration", "the same phase, one iteration on", "iteration"),
+               ("end", "the remeshed mesh", "end"))
+    moves_help = "a step number, (iteration, phase), a phase name"
+
+    def __init__(self, steps: RemeshSteps, *, view_direction=None, zoom: float = 1.0, histogram_size=(8.4, 2.5)):
+        self.steps = steps
+        self.view_direction = view_direction
+        self.zoom = float(zoom)
+        self.histogram_size = tuple(histogram_size)
+
+    def make_scene(self, mesh, look, **options) -> PaintedScene:
+        scene = PaintedScene(mesh, preset=look, plotter=options["plotter"], window_size=options["window_size"],
+                             view_direction=self.view_direction, vertex_labels=False)
+        if self.zoom != 1.0:
+            scene.plotter.camera.zoom(self.zoom)
+        return scene
+
+    def layers(self, k: int) -> list[Layer]:
+        snapshot = self.steps.snapshots[k]
+        mesh, quality = snapshot.mesh, snapshot.quality
+        live_edges = np.flatnonzero(~mesh.edge_deleted)
+        live_vertices = np.flatnonzero(~mesh.vertex_deleted)
+        ideal = np.where(quality.on_boundary, 4, 6)
+        return [
+            Layer("longer than 4/3 L: to split", TOO_LONG, "edges", live_edges[quality.lengths > SPLIT_ABOVE], 3.0),
+            Layer("shorter than 4/5 L: to collapse", TOO_SHORT, "edges",
+                  live_edges[quality.lengths < COLLAPSE_BELOW], 3.0),
+            Layer("degree 2 or more from the ideal", OFF_DEGREE, "vertices",
+                  live_vertices[np.abs(quality.degrees - ideal) >= 2], 8.0),
+        ]
+
+    def paint(self, scene, k: int) -> None:
+        scene.paint(self.steps.snapshots[k].mesh, layers=self.layers(k))
+
+    def legend_html(self, scene, look) -> str:
+        return legend_html(scene.legend_entries(), look)
+
+    def histogram_png(self, k: int) -> bytes:
+        """The histograms of the input and of step ``k``, as PNG bytes."""
+        snapshots = self.steps.snapshots
+        labels = ["input"]
+        if k:
+            labels.append(f"iteration {snapshots[k].iteration}, {snapshots[k].phase}")
+        qualities = [snapshots[0].quality] + ([snapshots[k].quality] if k else [])
+        return histogram_png(qualities, labels, self.steps.target_length, size=self.histogram_size)
+
+    def describe(self, k: int) -> str:
+        steps = self.steps
+        snapshot = steps.snapshots[k]
+        where = "input" if snapshot.phase == "input" else f"iteration {snapshot.iteration}, {snapshot.phase}"
+        lines = [f"Isotropic remeshing of {steps.before.n_faces} faces, L = {steps.target_length:.4g}, "
+                 f"{steps.iterations} iterations: step {k} of {steps.n_steps}, {where}",
+                 f"phase: {PHASE_TEXT[snapshot.phase]}"]
+        if k:
+            lines.append(f"did: {self.change_text(k)}")
+        lines.append(f"now: {snapshot.quality.summary()}")
+        return "\n".join(lines)
+
+    def change_text(self, k: int) -> str:
+        """What the phase of step ``k`` changed, measured against the step before it."""
+        old, new = self.steps.snapshots[k - 1], self.steps.snapshots[k]
+        phase, L = new.phase, self.steps.target_length
+        dv, df = new.mesh.n_vertices - old.mesh.n_vertices, new.mesh.n_faces - old.mesh.n_faces
+        if phase == "split":
+            again = "; halves still too long were split again" if dv > old.quality.n_long else ""
+            return (f"{dv} splits ({old.quality.n_long} edges were longer than 4/3 L = {SPLIT_ABOVE * L:.4g}"
+                    f"{again}): +{dv} vertices, +{df} faces")
+        if phase == "collapse":
+            return (f"{-dv} edges collapsed ({old.quality.n_short} were shorter than 4/5 L = "
+                    f"{COLLAPSE_BELOW * L:.4g}); {dv} vertices, {df} faces; longest edge now "
+                    f"{new.quality.lengths.max():.3f} L")
+        if phase == "flip":
+            flipped = len(_edge_keys(new.mesh) - _edge_keys(old.mesh))
+            return (f"{flipped} edges flipped; mean |degree - ideal| {old.quality.degree_deviation:.3f} -> "
+                    f"{new.quality.degree_deviation:.3f}; vertices 2 or more off: {old.quality.n_off_degree} -> "
+                    f"{new.quality.n_off_degree}")
+        moved = np.linalg.norm(new.mesh.positions - old.mesh.positions, axis=1) / L
+        if phase == "smooth":
+            n_boundary = int(old.quality.on_boundary.sum())
+            kept = f"; the {n_boundary} boundary vertices stayed put" if n_boundary else ""
+            return f"vertices moved by {moved.mean():.3f} L on average, at most {moved.max():.3f} L{kept}"
+        return f"vertices moved back by {moved.mean():.4f} L on average, at most {moved.max():.4f} L"
+
+    def panel_html(self, stepper) -> str:
+        k = stepper.step_index
+        size = panel_css(stepper.look)["font"]
+        cell = "padding:2px 6px;border-bottom:1px solid #ddd;text-align:right;white-space:nowrap"
+        header = "".join(f'<th style="{cell}">{h}</th>'
+                         for h in ("", "phase", "V", "F", "short", "long", "|deg - ideal|", "min angle"))
+        rows = []
+        for j, snapshot in enumerate(self.steps.snapshots):
+            q = snapshot.quality
+            style = "font-weight:bold;background:#FFF3D6;" if j == k else ("color:#AAAAAA;" if j > k else "")
+            name = "input" if snapshot.phase == "input" else f"{snapshot.iteration} {snapshot.phase}"
+            cells = (j, name, q.n_vertices, q.n_faces, q.n_short, q.n_long, f"{q.degree_deviation:.3f}",
+                     f"{q.min_angle_mean:.1f}")
+            rows.append("<tr>" + "".join(f'<td style="{cell};{style}">{html.escape(str(c))}</td>' for c in cells)
+                        + "</tr>")
+        table = (f'<table style="border-collapse:collapse;font-size:calc({size} * 0.9);font-family:monospace">'
+                 f'{header}{"".join(rows)}</table>')
+        text = "<br>".join(html.escape(line) for line in self.describe(k).splitlines()[1:-1])
+        return (f'<div style="font-size:{size};max-width:38em;margin:4px 0">{text}</div>{table}')
+
+
+class RemeshStepper(Stepper):
     """Isotropic remeshing, one phase at a time, with histograms of the quality.
 
     Args:
@@ -225,86 +401,51 @@ class RemeshStepper(StepperWidget):
     ← one back, PgDn the same phase one iteration on, Home the input, End the result.
     """
 
-    title = "Isotropic remeshing: phase by phase"
-    KEYS = {**StepperWidget.KEYS, "PageDown": "iteration"}
-
     def __init__(self, mesh, target_length: float | None = None, iterations: int = 2, *, project: bool = True,
                  mode: str | None = None, preset="default", window_size=None, view_direction=None,
                  histogram_size=(8.4, 2.5), zoom: float = 1.0):
         import ipywidgets as widgets
 
-        before = mesh.copy()
-        if before.has_garbage:
-            before.garbage_collect()
-        if target_length is None:
-            ends = before.edge_vertices()
-            target_length = float(np.linalg.norm(before.positions[ends[:, 0]] - before.positions[ends[:, 1]],
-                                                 axis=1).mean())
-        self.target_length = float(target_length)
-        self.iterations = int(iterations)
-        self.snapshots = [_Snapshot(s.iteration, s.phase, s.mesh, phase_quality(s.mesh, self.target_length))
-                          for s in remesh_step_by_step(before, self.target_length, self.iterations, project=project)]
-        self.before = before
-        self._step = 0
-        self._view_direction = view_direction
-        self._zoom = float(zoom)
-        self._histogram_size = tuple(histogram_size)
+        steps = RemeshSteps(mesh, target_length, iterations, project=project)
         self._histograms = widgets.Image(format="png")
-        super().__init__(before.copy(), mode=mode, preset=preset, labels=None, rings=0, window_size=window_size)
+        super().__init__(steps, RemeshPainter(steps, view_direction=view_direction, zoom=zoom,
+                                              histogram_size=histogram_size),
+                         mode=mode, preset=preset, window_size=window_size)
         self.widget = widgets.VBox([self.widget, self._histograms])
 
-    # -- public --------------------------------------------------------------------------
+    @property
+    def before(self):
+        return self.source.before
 
     @property
-    def n_steps(self) -> int:
-        """Snapshots after the input: one per phase of every iteration."""
-        return len(self.snapshots) - 1
+    def target_length(self) -> float:
+        return self.source.target_length
+
+    @property
+    def iterations(self) -> int:
+        return self.source.iterations
+
+    @property
+    def snapshots(self) -> list[Snapshot]:
+        """Every step: ``(iteration, phase, mesh, quality)``."""
+        return self.source.snapshots
 
     @property
     def iteration(self) -> int:
-        return self.snapshots[self._step].iteration
+        return self.source.snapshots[self._step].iteration
 
     @property
     def phase(self) -> str:
-        return self.snapshots[self._step].phase
+        return self.source.snapshots[self._step].phase
 
     @property
     def quality(self) -> PhaseQuality:
         """The numbers of the mesh shown now."""
-        return self.snapshots[self._step].quality
-
-    @property
-    def state(self):
-        """A copy of the mesh shown now."""
-        return self.snapshots[self._step].mesh.copy()
-
-    @property
-    def result(self):
-        """A copy of the remeshed mesh (the last snapshot): what ``remesh`` returns."""
-        return self.snapshots[-1].mesh.copy()
+        return self.source.snapshots[self._step].quality
 
     def index_of(self, iteration: int, phase: str) -> int:
         """The step number of ``phase`` in ``iteration``."""
-        for k, snapshot in enumerate(self.snapshots):
-            if snapshot.iteration == iteration and snapshot.phase == phase:
-                return k
-        phases = sorted({s.phase for s in self.snapshots[1:]}, key=list(PHASE_TEXT).index)
-        raise ValueError(f"there is no phase {phase!r} in iteration {iteration}: iterations run from 1 to "
-                         f"{self.iterations}, phases are {', '.join(phases)}")
-
-    _moves_help = "a step number, (iteration, phase), a phase name"
-
-    def _named_moves(self) -> dict[str, int]:
-        """Also "iteration": the same phase one iteration on. From the input (the end of
-        iteration 0, so to speak) that is the end of iteration 1; in the last iteration
-        it stays where it is (:meth:`go` says why)."""
-        if self._step == 0:
-            iteration_on = max(k for k, s in enumerate(self.snapshots) if s.iteration == 1)
-        else:
-            same_phase_next = [k for k, s in enumerate(self.snapshots)
-                               if s.phase == self.phase and s.iteration == self.iteration + 1]
-            iteration_on = same_phase_next[0] if same_phase_next else self._step
-        return {**super()._named_moves(), "iteration": iteration_on}
+        return self.source.index_of(iteration, phase)
 
     def go(self, target) -> int:
         """Go to a step: a number, ``(iteration, phase)``, a phase name, or a named move
@@ -314,16 +455,6 @@ class RemeshStepper(StepperWidget):
         if last_iteration and isinstance(target, str) and target.strip().lower() == "iteration":
             self._say(f"iteration {self.iterations} is the last one: there is no iteration after it")
         return shown
-
-    def _resolve(self, target) -> int | None:
-        """``(iteration, phase)``, or a phase name: its next occurrence (else its first)."""
-        if isinstance(target, tuple):
-            return self.index_of(*target)
-        if isinstance(target, str):
-            later = [k for k, s in enumerate(self.snapshots) if s.phase == target.strip().lower()]
-            if later:
-                return next((k for k in later if k > self._step), later[0])
-        return None
 
     def describe(self, step: int | None = None) -> str:
         """A phase in words and numbers (deterministic, for nbval and for reading): the
@@ -335,116 +466,18 @@ class RemeshStepper(StepperWidget):
         step = self._step if step is None else int(step)
         if not 0 <= step <= self.n_steps:
             raise IndexError(f"there is no step {step}: steps run from 0 to {self.n_steps}")
-        snapshot = self.snapshots[step]
-        where = "input" if snapshot.phase == "input" else f"iteration {snapshot.iteration}, {snapshot.phase}"
-        lines = [f"Isotropic remeshing of {self.before.n_faces} faces, L = {self.target_length:.4g}, "
-                 f"{self.iterations} iterations: step {step} of {self.n_steps}, {where}",
-                 f"phase: {PHASE_TEXT[snapshot.phase]}"]
-        if step:
-            lines.append(f"did: {self._change_text(step)}")
-        lines.append(f"now: {snapshot.quality.summary()}")
-        return "\n".join(lines)
-
-    # -- text ----------------------------------------------------------------------------
-
-    def _change_text(self, step: int) -> str:
-        """What the phase of ``step`` changed, measured against the snapshot before it."""
-        old, new = self.snapshots[step - 1], self.snapshots[step]
-        phase, L = new.phase, self.target_length
-        dv, df = new.mesh.n_vertices - old.mesh.n_vertices, new.mesh.n_faces - old.mesh.n_faces
-        if phase == "split":
-            again = "; halves still too long were split again" if dv > old.quality.n_long else ""
-            return (f"{dv} splits ({old.quality.n_long} edges were longer than 4/3 L = {SPLIT_ABOVE * L:.4g}"
-                    f"{again}): +{dv} vertices, +{df} faces")
-        if phase == "collapse":
-            return (f"{-dv} edges collapsed ({old.quality.n_short} were shorter than 4/5 L = "
-                    f"{COLLAPSE_BELOW * L:.4g}); {dv} vertices, {df} faces; longest edge now "
-                    f"{new.quality.lengths.max():.3f} L")
-        if phase == "flip":
-            flipped = len(_edge_keys(new.mesh) - _edge_keys(old.mesh))
-            return (f"{flipped} edges flipped; mean |degree - ideal| {old.quality.degree_deviation:.3f} -> "
-                    f"{new.quality.degree_deviation:.3f}; vertices 2 or more off: {old.quality.n_off_degree} -> "
-                    f"{new.quality.n_off_degree}")
-        moved = np.linalg.norm(new.mesh.positions - old.mesh.positions, axis=1) / L
-        if phase == "smooth":
-            n_boundary = int(old.quality.on_boundary.sum())
-            kept = f"; the {n_boundary} boundary vertices stayed put" if n_boundary else ""
-            return f"vertices moved by {moved.mean():.3f} L on average, at most {moved.max():.3f} L{kept}"
-        return f"vertices moved back by {moved.mean():.4f} L on average, at most {moved.max():.4f} L"
-
-    # -- the picture ---------------------------------------------------------------------
-
-    def _make_scene(self, mesh, **options) -> PaintedScene:
-        scene = PaintedScene(mesh, preset=self.look, plotter=options["plotter"], window_size=options["window_size"],
-                             view_direction=self._view_direction, vertex_labels=False)
-        if self._zoom != 1.0:
-            scene.plotter.camera.zoom(self._zoom)
-        return scene
-
-    def _layers(self) -> list[Layer]:
-        snapshot = self.snapshots[self._step]
-        mesh, quality = snapshot.mesh, snapshot.quality
-        live_edges = np.flatnonzero(~mesh.edge_deleted)
-        live_vertices = np.flatnonzero(~mesh.vertex_deleted)
-        ideal = np.where(quality.on_boundary, 4, 6)
-        return [
-            Layer("longer than 4/3 L: to split", TOO_LONG, "edges", live_edges[quality.lengths > SPLIT_ABOVE], 3.0),
-            Layer("shorter than 4/5 L: to collapse", TOO_SHORT, "edges",
-                  live_edges[quality.lengths < COLLAPSE_BELOW], 3.0),
-            Layer("degree 2 or more from the ideal", OFF_DEGREE, "vertices",
-                  live_vertices[np.abs(quality.degrees - ideal) >= 2], 8.0),
-        ]
-
-    def _show(self) -> None:
-        self.scene.paint(self.snapshots[self._step].mesh, layers=self._layers())
+        return self.painter.describe(step)
 
     def histogram_png(self) -> bytes:
         """The histograms of the input and of the mesh shown now, as PNG bytes."""
-        labels = ["input"]
-        if self._step:
-            snapshot = self.snapshots[self._step]
-            labels.append(f"iteration {snapshot.iteration}, {snapshot.phase}")
-        qualities = [self.snapshots[0].quality] + ([self.quality] if self._step else [])
-        return histogram_png(qualities, labels, self.target_length, size=self._histogram_size)
+        return self.painter.histogram_png(self._step)
 
     def screenshot(self, path=None) -> bytes:
         """The view with the histograms below it, as PNG bytes (also written to ``path``)."""
         return grid_png([[super().screenshot()], [self.histogram_png()]], path=path)
 
-    # -- panel ---------------------------------------------------------------------------
-
-    def _controls(self) -> list:
-        return self._button_row([
-            ("start", "the input", lambda: self.go("start")),
-            ("back", "one phase back", self.back),
-            ("step", "the next phase", self.step),
-            ("iteration", "the same phase, one iteration on", lambda: self.go("iteration")),
-            ("end", "the remeshed mesh", lambda: self.go("end")),
-        ])
-
-    def _panel_html(self) -> str:
-        size = panel_css(self.look)["font"]
-        cell = "padding:2px 6px;border-bottom:1px solid #ddd;text-align:right;white-space:nowrap"
-        header = "".join(f'<th style="{cell}">{h}</th>'
-                         for h in ("", "phase", "V", "F", "short", "long", "|deg - ideal|", "min angle"))
-        rows = []
-        for k, snapshot in enumerate(self.snapshots):
-            q = snapshot.quality
-            style = "font-weight:bold;background:#FFF3D6;" if k == self._step else (
-                "color:#AAAAAA;" if k > self._step else "")
-            name = "input" if snapshot.phase == "input" else f"{snapshot.iteration} {snapshot.phase}"
-            cells = (k, name, q.n_vertices, q.n_faces, q.n_short, q.n_long, f"{q.degree_deviation:.3f}",
-                     f"{q.min_angle_mean:.1f}")
-            rows.append("<tr>" + "".join(f'<td style="{cell};{style}">{html.escape(str(c))}</td>' for c in cells)
-                        + "</tr>")
-        table = (f'<table style="border-collapse:collapse;font-size:calc({size} * 0.9);font-family:monospace">'
-                 f'{header}{"".join(rows)}</table>')
-        text = "<br>".join(html.escape(line) for line in self.describe().splitlines()[1:-1])
-        return (f'<div style="font-size:{size};max-width:38em;margin:4px 0">{text}</div>{table}')
-
     def _refresh_panel(self) -> None:
-        self._info.value = self._panel_html()
-        self._legend.value = legend_html(self.scene.legend_entries(), self.look)
+        super()._refresh_panel()
         self._histograms.value = self.histogram_png()
 
 

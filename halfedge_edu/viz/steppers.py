@@ -7,10 +7,11 @@
     w.go("phase")         # to the start of the next phase; also "start", "end", "back", 5
     print(w.describe())
 
-How it works: the stepper copies the mesh, runs the real operation on the copy with an
-:class:`~halfedge_edu.core.ops.log.OperationLog`, and keeps the mesh as it was before. Step
-``k`` shows "before, plus the first k changes applied" (``log.replay``), so going back
-is as cheap as going forward and the pictures can never disagree with the operation.
+How it works: :class:`OperationSteps` copies the mesh, runs the real operation on the copy
+with an :class:`~halfedge_edu.core.ops.log.OperationLog`, and keeps the mesh as it was
+before. Step ``k`` is "before, plus the first k changes applied" (``log.replay``), so
+going back is as cheap as going forward and the pictures can never disagree with the
+operation. :class:`OperationPainter` draws a step as halfedge arrows with roles.
 A change that creates an element is shown together with the lines that fill in its
 first pointers (``-1 -> ...``). In between, a face whose ``next`` loop is no longer a
 triangle is drawn in a "rewiring" colour, and an arrow sits in the face it belongs to
@@ -28,18 +29,17 @@ from collections import defaultdict
 import numpy as np
 
 from ..core.elements import Halfedge
-from .keys import KeyArea
 from .neighbourhood import ring_window
-from .palette import panel_css, preset as _preset
-from .pictures import grid_png, legend_png
+from .palette import panel_css
 from .screen import unit
 from .scene import MAX_ARROWS, HalfedgeScene
-from .widgets import StepperWidget, legend_html, panel_button, table_html
+from .steps import Stepper, phase_moves
+from .widgets import legend_html, table_html
 
 # Stepper roles by the kind of element they colour.
-_CHANGED = {"halfedge": "changed", "vertex": "changed_vertex", "face": "changed_face"}
-_OLD = {"halfedge": "old_target", "vertex": "old_vertex", "face": "old_face"}
-_NEW = {"halfedge": "new_target", "vertex": "new_vertex", "face": "new_face"}
+CHANGED = {"halfedge": "changed", "vertex": "changed_vertex", "face": "changed_face"}
+OLD = {"halfedge": "old_target", "vertex": "old_vertex", "face": "old_face"}
+NEW = {"halfedge": "new_target", "vertex": "new_vertex", "face": "new_face"}
 _DOOMED = {"halfedge": "doomed", "vertex": "doomed_vertex", "face": "doomed_face"}
 _CREATED = {"halfedge": "created", "vertex": "created_vertex", "face": "created_face"}
 _NAMED = {"halfedge": "named", "vertex": "named_vertex", "face": "named_face"}
@@ -79,70 +79,154 @@ def _padded(array: np.ndarray, length: int, fill) -> np.ndarray:
     return out
 
 
-class OperationStepper(StepperWidget):
-    """Shared machinery of the flip, split and collapse steppers (use those).
+#: Rows of the change table shown at once (see OperationPainter.table_window).
+TABLE_WINDOW = 12
+#: How far across its edge, toward its face's third corner, an arrow is moved when it
+#: would lie on another (a fraction of the distance from the edge to that corner).
+OVERLAP_INSET = 0.3
+
+
+def _operations():
+    """operation name -> (its check, a call ``run(mesh, edge, position, log)``)."""
+    from ..core.ops import can_collapse, can_flip, can_split, collapse, flip, split
+
+    return {"flip": (can_flip, lambda mesh, edge, position, log: flip(mesh, edge, log=log)),
+            "split": (can_split, lambda mesh, edge, position, log: split(mesh, edge, position, log=log)),
+            "collapse": (can_collapse, lambda mesh, edge, position, log: collapse(mesh, edge, position, log=log))}
+
+
+class OperationSteps:
+    """The :class:`~.steps.Steps` of one local operation: step 0 the gathered elements,
+    then one step per group of pointer changes (:func:`group_changes`) in its log.
 
     Args:
         mesh: the mesh; it is copied, never changed.
-        edge: an edge index, an :class:`Edge`, or (collapse) a :class:`Halfedge`
-            whose origin is removed.
-        position: for split and collapse, where the new or merged vertex goes
-            (the midpoint by default).
-        mode, preset, rings, window_size: as for every widget.
+        edge: an edge index, an :class:`Edge`, or (collapse) a :class:`Halfedge` whose
+            origin is removed.
+        operation: "flip", "split" or "collapse".
+        position: for split and collapse, where the new or merged vertex goes.
+
+    ``before`` and ``after`` are the mesh before and after, ``check`` the operation's
+    :class:`~halfedge_edu.core.ops.check.OpCheck` (a refused operation has no steps),
+    ``log`` its :class:`~halfedge_edu.core.ops.log.OperationLog`, ``groups`` the
+    ``(start, stop)`` of each step in ``log.changes``.
+    """
+
+    def __init__(self, mesh, edge, operation: str, position=None):
+        from ..core.ops.log import OperationLog
+
+        can, run = _operations()[operation]
+        self.operation = operation
+        self.before = mesh.copy()
+        self.after = mesh.copy()
+        argument = self.after.halfedge(edge.index) if isinstance(edge, Halfedge) else int(edge)
+        self.check = can(self.after, argument)
+        self.log = OperationLog()
+        if self.check:
+            run(self.after, argument, position, self.log)
+        self.groups = group_changes(self.log.changes)
+        self._shown = (None, 0)              # the state made last and its count of changes
+
+    @property
+    def n_steps(self) -> int:
+        return len(self.groups)
+
+    @property
+    def result(self):
+        return self.after.copy()
+
+    def stop(self, k: int) -> int:
+        """How many of the log's changes are applied at step ``k``."""
+        return self.groups[k - 1][1] if k else 0
+
+    def mesh(self, k: int):
+        """The mesh before the operation with the changes of its first ``k`` steps applied.
+
+        Replaying from the start copies the mesh before and grows every array an element
+        is created in (about 3 ms on the bunny). From the state made last it is cheaper:
+        a step forward copies that state (with the room its arrays have grown) and applies
+        only the changes since; a step back writes the old values of the changes in
+        between, newest first, unless one of them created or deleted an element (an
+        index cannot be taken back: then it replays from the start).
+        """
+        stop = self.stop(k)
+        shown, shown_stop = self._shown
+        if shown is not None and stop == shown_stop:
+            return shown
+        if shown is None or (stop < shown_stop and not self.log.can_take_back(stop, shown_stop)):
+            state = self.before.copy()
+            self.log.replay(state, stop)
+        elif stop >= shown_stop:
+            state = shown.copy()
+            self.log.replay(state, stop, start=shown_stop)
+        else:
+            state = shown.copy()
+            self.log.take_back(state, stop, shown_stop)
+        self._shown = (state, stop)
+        return state
+
+    def phase_steps(self) -> list[int]:
+        """The step numbers at which a phase starts."""
+        starts = []
+        for position, _title in self.log.phases:
+            for k, (start, stop) in enumerate(self.groups, start=1):
+                if start <= position < stop:
+                    starts.append(k)
+                    break
+        return sorted(set(starts))
+
+    def phase_title(self, k: int) -> str:
+        """The title of the phase step ``k`` belongs to ("gather the elements" at step 0)."""
+        if k == 0:
+            return "gather the elements"
+        start = self.groups[k - 1][0]
+        title = ""
+        for position, phase in self.log.phases:
+            if position <= start:
+                title = phase
+        return title
+
+    def moves(self, k: int) -> dict[str, int]:
+        """"phase" (the start of the next phase) and "phase back"."""
+        return phase_moves(self.phase_steps(), k, self.n_steps)
+
+    def resolve(self, target, k: int) -> int | None:
+        return None
+
+    def edge_index(self) -> int:
+        """The edge the operation was asked about (also when it was refused), or -1."""
+        if self.check:
+            return self.log.edge
+        for kind, index in self.check.elements:
+            if kind == "edge":
+                return index
+        return -1
+
+
+class OperationPainter:
+    """How a step of a local operation looks (a :class:`~.steps.Painter`): the mesh as
+    halfedge arrows, the gathered elements by name, the changes of the step in the
+    "old -> new" colours, and a panel with the change table.
 
     Keys (mouse pointer over the panel below the buttons): → or space the next change,
     ← one back, PgDn the next phase, Home the start, End the end.
     """
 
-    operation = ""
-    KEYS = {**StepperWidget.KEYS, "PageDown": "phase"}
+    keys = {"PageDown": "phase"}
+    moves_help = "a step number"
 
-    def __init__(self, mesh, edge, *, position=None, mode: str | None = None, preset="default",
-                 rings: int = 2, window_size=None):
-        from ..core.ops.log import OperationLog
-
-        self.before = mesh.copy()
-        self.after = mesh.copy()
-        argument = self.after.halfedge(edge.index) if isinstance(edge, Halfedge) else int(edge)
-        self.check = self._can(self.after, argument)
-        self.log = OperationLog()
-        if self.check:
-            self._run(self.after, argument, position, self.log)
-        self.groups = group_changes(self.log.changes)
-        self._step = 0
-        self._names = self._element_names()
-        self._shown = (None, 0)              # the state shown last and its count of changes
-        super().__init__(self.before.copy(), mode=mode, preset=preset, labels=None, rings=rings,
-                         window_size=window_size)
-
-    # -- what subclasses provide ---------------------------------------------------------
-
-    def _can(self, mesh, edge):
-        raise NotImplementedError
-
-    def _run(self, mesh, edge, position, log) -> None:
-        raise NotImplementedError
-
-    # -- public --------------------------------------------------------------------------
-
-    @property
-    def n_steps(self) -> int:
-        """How many steps after step 0 (the gathered elements)."""
-        return len(self.groups)
-
-    @property
-    def result(self):
-        """A copy of the mesh after the operation (the mesh as it was, if refused)."""
-        return self.after.copy()
-
-    @property
-    def state(self):
-        """The mesh as it is at the current step (usually not valid half way)."""
-        return self.scene.mesh
-
-    def _named_moves(self) -> dict[str, int]:
-        """Also "phase" (the start of the next phase) and "phase back"."""
-        return {**super()._named_moves(), **self._phase_moves(self._phase_steps())}
+    def __init__(self, steps: OperationSteps):
+        self.steps = steps
+        self.before, self.after, self.log, self.check = steps.before, steps.after, steps.log, steps.check
+        self.groups = steps.groups
+        self.title = f"Edge {steps.operation}: step by step"
+        self.buttons = () if not steps.check else (
+            ("start", "back to the gathered elements", "start"),
+            ("back", "one change back", "back"),
+            ("step", "apply the next change", "step"),
+            ("phase", "to the start of the next phase", "phase"),
+            ("end", "all changes applied", "end"))
+        self.names = self._element_names()
 
     # -- the scene -----------------------------------------------------------------------
 
@@ -272,7 +356,7 @@ class OperationStepper(StepperWidget):
         corners[from_before] = b_corners[faces[from_before]]
         return corners
 
-    def _make_scene(self, mesh, **options) -> HalfedgeScene:
+    def make_scene(self, mesh, look, **options) -> HalfedgeScene:
         """A scene of the mesh before, with the operation's faces kept apart."""
         self._prepare_references()
         vertices = self._operation_vertices()
@@ -282,46 +366,27 @@ class OperationStepper(StepperWidget):
             _, around = ring_window(self.before, vertices, options["rings"])
             created = np.arange(self.before.n_halfedge_slots, self.after.n_halfedge_slots)
             window = np.unique(np.concatenate([around, created]))
-        scene = HalfedgeScene(mesh, preset=self.look, follow=False, local_faces=self._touched_faces(),
+        scene = HalfedgeScene(mesh, preset=look, follow=False, local_faces=self._touched_faces(),
                               corners=self._arrow_corners, face_corners=self._face_corners, window=window,
                               **options)
         if not self.check:
             # Face the refused edge itself; the other elements of the reason are lit up.
-            edge = self._edge_index()
+            edge = self.steps.edge_index()
             if edge >= 0:
                 vertices = np.array([self.before.halfedge_vertex[2 * edge], self.before.halfedge_vertex[2 * edge + 1]])
         if len(vertices):
             scene.look_at(vertices)
         return scene
 
-    def _show(self) -> None:
-        stop = self.groups[self._step - 1][1] if self._step else 0
-        self.scene.set_mesh(self._state_after(stop), self._roles(), names=self._names)
+    def paint(self, scene, k: int) -> None:
+        scene.set_mesh(self.steps.mesh(k), self.roles(k), names=self.names)
 
-    def _state_after(self, stop: int):
-        """A new mesh: the mesh before the operation with its first ``stop`` changes applied.
+    def legend_html(self, scene, look) -> str:
+        return legend_html(scene.legend_entries(), look)
 
-        Replaying from the start copies the mesh before and grows every array an element
-        is created in (about 3 ms on the bunny). From the state shown last it is cheaper:
-        a step forward copies that state (with the room its arrays have grown) and applies
-        only the changes since; a step back writes the old values of the changes in
-        between, newest first, unless one of them created or deleted an element (an
-        index cannot be taken back: then it replays from the start).
-        """
-        shown, shown_stop = self._shown
-        if shown is None or (stop < shown_stop and not self.log.can_take_back(stop, shown_stop)):
-            state = self.before.copy()
-            self.log.replay(state, stop)
-        elif stop >= shown_stop:
-            state = shown.copy()
-            self.log.replay(state, stop, start=shown_stop)
-        else:
-            state = shown.copy()
-            self.log.take_back(state, stop, shown_stop)
-        self._shown = (state, stop)
-        return state
-
-    def _roles(self) -> dict[str, list[int]]:
+    def roles(self, k: int) -> dict[str, list[int]]:
+        """Role -> elements at step ``k``: named at step 0, then created, doomed, and the
+        step's changes with their old and new targets; the refused elements if refused."""
         roles: dict[str, list[int]] = defaultdict(list)
 
         def add(table, kind, index):
@@ -337,48 +402,28 @@ class OperationStepper(StepperWidget):
                 elif kind == "vertex":
                     roles["refused_vertex"].append(index)
             return dict(roles)
-        done = self.groups[self._step - 1][1] if self._step else 0
+        done = self.steps.stop(k)
         for position, change in enumerate(self.log.changes):
             if change.field == "created" and position < done:
                 add(_CREATED, change.kind, change.index)
             elif change.field == "deleted" and position >= done:
                 add(_DOOMED, change.kind, change.index)
-        if self._step == 0:
+        if k == 0:
             for kind, index in self.log.named.values():
                 add(_NAMED, kind, index)
             return dict(roles)
-        start, stop = self.groups[self._step - 1]
+        start, stop = self.groups[k - 1]
         for change in self.log.changes[start:stop]:
             if change.field in ("created", "deleted"):
                 continue
-            add(_CHANGED, change.kind, change.index)
+            add(CHANGED, change.kind, change.index)
             target = _TARGET.get((change.kind, change.field))
             if target is not None:
-                add(_OLD, target, change.old)
-                add(_NEW, target, change.new)
+                add(OLD, target, change.old)
+                add(NEW, target, change.new)
         return dict(roles)
 
     # -- text ----------------------------------------------------------------------------
-
-    def _phase_steps(self) -> list[int]:
-        """The step numbers at which a phase starts."""
-        starts = []
-        for position, _title in self.log.phases:
-            for k, (start, stop) in enumerate(self.groups, start=1):
-                if start <= position < stop:
-                    starts.append(k)
-                    break
-        return sorted(set(starts))
-
-    def _phase_title(self) -> str:
-        if self._step == 0:
-            return "gather the elements"
-        start = self.groups[self._step - 1][0]
-        title = ""
-        for position, phase in self.log.phases:
-            if position <= start:
-                title = phase
-        return title
 
     def _value(self, kind: str | None, value) -> str:
         """A pointer value with the operation's name for it, e.g. ``16 (h2)``."""
@@ -386,7 +431,7 @@ class OperationStepper(StepperWidget):
             if isinstance(value, tuple):
                 return "(" + ", ".join(f"{float(c):.4g}" for c in value) + ")"
             return str(value)
-        name = self._names.get((kind, int(value)))
+        name = self.names.get((kind, int(value)))
         return f"{value} ({name})" if name else str(value)
 
     def _change_text(self, change) -> str:
@@ -403,82 +448,60 @@ class OperationStepper(StepperWidget):
         start, stop = self.groups[k - 1]
         return [self._change_text(change) for change in self.log.changes[start:stop]]
 
-    def _counts(self, mesh) -> str:
+    @staticmethod
+    def _counts(mesh) -> str:
         return f"{mesh.n_vertices} vertices, {mesh.n_edges} edges, {mesh.n_faces} faces"
 
     def _heading(self) -> str:
-        return f"{self.operation} of edge {self.log.edge if self.check else self._edge_index()}"
+        return f"{self.steps.operation} of edge {self.steps.edge_index()}"
 
-    def _edge_index(self) -> int:
-        for kind, index in self.check.elements:
-            if kind == "edge":
-                return index
-        return -1
-
-    def describe(self) -> str:
+    def describe(self, k: int) -> str:
         if not self.check:
             return f"{self._heading()}: refused ({self.check.rule})\nreason: {self.check.reason}"
-        lines = [f"{self._heading()}: step {self._step} of {self.n_steps} ({self._phase_title()})"]
-        if self._step == 0:
+        lines = [f"{self._heading()}: step {k} of {self.steps.n_steps} ({self.steps.phase_title(k)})"]
+        if k == 0:
             lines.append("gathered: " + ", ".join(f"{name} = {kind} {index}"
                                                   for name, (kind, index) in self.log.named.items()))
             lines += self.log.notes
         else:
-            lines += [f"now: {text}" for text in self._group_text(self._step)]
-        state = self.scene.mesh if hasattr(self, "scene") else self.before
-        lines.append(f"mesh: {self._counts(state)}")
+            lines += [f"now: {text}" for text in self._group_text(k)]
+        lines.append(f"mesh: {self._counts(self.steps.mesh(k))}")
         return "\n".join(lines)
 
     # -- panel ---------------------------------------------------------------------------
 
-    @property
-    def title(self) -> str:  # type: ignore[override]
-        return f"Edge {self.operation}: step by step"
-
-    def _controls(self) -> list:
-        if not self.check:
-            self.buttons = {}
-            return []
-        return self._button_row([
-            ("start", "back to the gathered elements", lambda: self.go("start")),
-            ("back", "one change back", self.back),
-            ("step", "apply the next change", self.step),
-            ("phase", "to the start of the next phase", lambda: self.go("phase")),
-            ("end", "all changes applied", lambda: self.go("end")),
-        ])
-
-    def _panel_html(self) -> str:
-        css = panel_css(self.look)
+    def panel_html(self, stepper) -> str:
+        k = stepper.step_index
+        css = panel_css(stepper.look)
         size = css["font"]
         if not self.check:
             return (f'<div style="font-size:{size}"><b>{html.escape(self._heading())}: refused</b> '
                     f'(<code>{html.escape(str(self.check.rule))}</code>)<br>{html.escape(self.check.reason)}</div>')
         top = (f'<div style="font-size:{size};margin:4px 0"><b>{html.escape(self._heading())}</b>: step '
-               f"{self._step} of {self.n_steps}<br><i>{html.escape(self._phase_title())}</i></div>")
-        if self._step == 0:
+               f"{k} of {self.steps.n_steps}<br><i>{html.escape(self.steps.phase_title(k))}</i></div>")
+        if k == 0:
             rows = [([name, f"{kind} {index}"], _NAMED[kind] if kind in _NAMED else None)
                     for name, (kind, index) in self.log.named.items()]
             rows += [(["", ""], None)] * (self._window_rows() - len(rows) - len(self.log.notes))
             notes = "".join(f'<div style="font-size:{size}">{html.escape(n)}</div>' for n in self.log.notes)
-            body = notes + table_html(rows, self.look, header=("name", "element"))
+            body = notes + table_html(rows, stepper.look, header=("name", "element"))
         else:
             rows, mark = [], None
-            current = self.groups[self._step - 1]
-            for k, (start, stop) in enumerate(self.groups, start=1):
+            current = self.groups[k - 1]
+            for j, (start, stop) in enumerate(self.groups, start=1):
                 for position in range(start, stop):
                     change = self.log.changes[position]
-                    role = _CHANGED.get(change.kind) if k == self._step else None
+                    role = CHANGED.get(change.kind) if j == k else None
                     text = self._change_text(change)
-                    if k > self._step:
+                    if j > k:
                         text = "  " + text
-                    rows.append(([k, text], role))
+                    rows.append(([j, text], role))
                     if (start, stop) == current and mark is None:
                         mark = len(rows) - 1
-            body = self._table_window(rows, mark, size)
+            body = self._table_window(rows, mark, size, stepper.look)
         counts = (f'<div style="font-size:{size};margin-top:6px">before: {self._counts(self.before)}<br>'
-                  f"now: {self._counts(self.scene.mesh)}<br>after: {self._counts(self.after)}</div>")
+                  f"now: {self._counts(self.steps.mesh(k))}<br>after: {self._counts(self.after)}</div>")
         return top + body + counts
-
 
     def _window_rows(self) -> int:
         """How many rows the panel's table shows at every step: enough for the named
@@ -486,7 +509,7 @@ class OperationStepper(StepperWidget):
         all steps keeps the panel's height from jumping as the learner steps."""
         return max(TABLE_WINDOW, len(self.log.named) + len(self.log.notes))
 
-    def _table_window(self, rows, mark: int, size: str) -> str:
+    def _table_window(self, rows, mark: int, size: str, look) -> str:
         """The change table cut to :meth:`_window_rows` rows around the marked one (so the
         current change is always in sight), with a line above and below saying how many
         rows are left out."""
@@ -500,15 +523,59 @@ class OperationStepper(StepperWidget):
             text = f"... {count} {where} row{'s' if count != 1 else ''}" if count else "&nbsp;"
             return f'<div style="font-size:{size};color:#666666">{text}</div>'
 
-        return (more(first, "earlier") + table_html(window, self.look, header=("step", "change (old -> new)"),
+        return (more(first, "earlier") + table_html(window, look, header=("step", "change (old -> new)"),
                                                     mark_row=mark - first) + more(later, "later"))
 
 
-#: Rows of the change table shown at once (see OperationStepper._table_window).
-TABLE_WINDOW = 12
-#: How far across its edge, toward its face's third corner, an arrow is moved when it
-#: would lie on another (a fraction of the distance from the edge to that corner).
-OVERLAP_INSET = 0.3
+class OperationStepper(Stepper):
+    """Shared machinery of the flip, split and collapse steppers (use those): a
+    :class:`~.steps.Stepper` over :class:`OperationSteps`, painted by :class:`OperationPainter`.
+
+    Args:
+        mesh: the mesh; it is copied, never changed.
+        edge: an edge index, an :class:`Edge`, or (collapse) a :class:`Halfedge`
+            whose origin is removed.
+        position: for split and collapse, where the new or merged vertex goes
+            (the midpoint by default).
+        mode, preset, rings, window_size: as for every widget.
+
+    ``before``, ``after``, ``check``, ``log`` and ``groups`` are those of its
+    :class:`OperationSteps`. Keys (mouse pointer over the panel below the buttons): → or
+    space the next change, ← one back, PgDn the next phase, Home the start, End the end.
+    """
+
+    operation = ""
+
+    def __init__(self, mesh, edge, *, position=None, mode: str | None = None, preset="default",
+                 rings: int = 2, window_size=None):
+        steps = OperationSteps(mesh, edge, self.operation, position)
+        super().__init__(steps, OperationPainter(steps), mode=mode, preset=preset, window_size=window_size,
+                         rings=rings)
+
+    @property
+    def before(self):
+        """The mesh before the operation (the steps' own copy: do not change it)."""
+        return self.source.before
+
+    @property
+    def after(self):
+        """The mesh after the operation (the steps' own copy; ``result`` gives a new one)."""
+        return self.source.after
+
+    @property
+    def check(self):
+        """The operation's :class:`~halfedge_edu.core.ops.check.OpCheck`."""
+        return self.source.check
+
+    @property
+    def log(self):
+        """The operation's :class:`~halfedge_edu.core.ops.log.OperationLog`."""
+        return self.source.log
+
+    @property
+    def groups(self) -> list[tuple[int, int]]:
+        """``(start, stop)`` in ``log.changes`` of each step after step 0."""
+        return self.source.groups
 
 
 class FlipStepper(OperationStepper):
@@ -517,32 +584,12 @@ class FlipStepper(OperationStepper):
 
     operation = "flip"
 
-    def _can(self, mesh, edge):
-        from ..core.ops import can_flip
-
-        return can_flip(mesh, edge)
-
-    def _run(self, mesh, edge, position, log) -> None:
-        from ..core.ops import flip
-
-        flip(mesh, edge, log=log)
-
 
 class SplitStepper(OperationStepper):
     """Step through an edge split (chapter 06): the new vertex m, the new edges and
     faces, then each pointer that links them in."""
 
     operation = "split"
-
-    def _can(self, mesh, edge):
-        from ..core.ops import can_split
-
-        return can_split(mesh, edge)
-
-    def _run(self, mesh, edge, position, log) -> None:
-        from ..core.ops import split
-
-        split(mesh, edge, position, log=log)
 
 
 class CollapseStepper(OperationStepper):
@@ -551,253 +598,53 @@ class CollapseStepper(OperationStepper):
 
     operation = "collapse"
 
-    def _can(self, mesh, edge):
-        from ..core.ops import can_collapse
 
-        return can_collapse(mesh, edge)
+# ----------------------------------------------------------------------------------------
+# Still pictures of an operation's log (chapters 06 and 07)
+# ----------------------------------------------------------------------------------------
 
-    def _run(self, mesh, edge, position, log) -> None:
-        from ..core.ops import collapse
+def gathered_roles(log) -> dict[str, list[int]]:
+    """The palette roles of what ``log``'s operation gathered: ``named`` (halfedges),
+    ``named_vertex`` and ``named_face``."""
+    return {role: [index for kind, index in log.named.values() if kind == kind_of]
+            for role, kind_of in (("named", "halfedge"), ("named_vertex", "vertex"), ("named_face", "face"))}
 
-        collapse(mesh, edge, position, log=log)
+
+def created_roles(log) -> dict[str, list[int]]:
+    """The palette roles of what ``log``'s operation created: ``created`` (halfedges),
+    ``created_vertex`` and ``created_face``."""
+    return {role: [index for kind, index in log.created if kind == kind_of]
+            for role, kind_of in (("created", "halfedge"), ("created_vertex", "vertex"), ("created_face", "face"))}
 
 
-class CollapseAtlas:
-    """The collapse cases side by side, stepped together one phase at a time, and the
-    collapses the link condition refuses, each with its reason (chapters 07 and 08).
+def named_picture(mesh, log, roles=None, *, size=(400, 300), labels=("vertex",), only_created: bool = False,
+                  camera=None, follow="auto", legend: bool = False) -> bytes:
+    """A picture (PNG bytes) of ``mesh`` with the elements of ``log`` labelled by the
+    names the operation gave them (``v0``, ``h_AB``, ``gL/gR`` where one element has two).
 
     Args:
-        cases: ``(title, mesh, edge)`` of the allowed collapses to compare; by default
-            the removed vertex of degree 3 (the cube's edge 0) and of degree > 3 (the
-            single-collapse mesh's edge 0).
-        refused: ``(title, mesh, edge)`` of collapses that are refused; by default the
-            tetrahedron, the figure-8 strip and the lone triangle.
-        mode, preset: as for every widget. The refused cases are small still pictures.
-
-    ``atlas.step()`` (or ``go("phase")``) moves every case to the end of the next phase
-    of the collapse; ``go("start")``, ``go("end")``, ``go("back")`` or a phase number.
-    Each case is a :class:`CollapseStepper` (``atlas.steppers``) and can also be
-    stepped on its own.
-
-    Keys (mouse pointer over the two lines under the buttons: the keys and the phase):
-    → space or PgDn the next phase, ← one back, Home the start, End the end;
-    ``atlas.key_area.press(key)`` from code.
+        mesh: the mesh before or after the operation (a deleted element is left out).
+        log: the operation's :class:`~halfedge_edu.core.ops.log.OperationLog`.
+        roles: palette role -> elements to colour (default :func:`gathered_roles`).
+        size: the picture's size in pixels.
+        labels: which kinds of element get index labels, as for :class:`HalfedgeScene`.
+        only_created: name only the vertices and the elements the operation created.
+        camera: a camera position ``[eye, focus, up]`` (default: the scene's own).
+        follow: whether the camera turns toward the highlight, as for :class:`HalfedgeScene`.
+        legend: draw the roles' legend in the picture.
     """
+    from .scene import scene_picture
 
-    KEYS = {"ArrowRight": "phase", "Space": "phase", "PageDown": "phase", "ArrowLeft": "back",
-            "Home": "start", "End": "end"}
+    names: dict[tuple[str, int], str] = {}
+    for name, element in log.named.items():
+        if only_created and element not in log.created and element[0] != "vertex":
+            continue
+        names[element] = f"{names[element]}/{name}" if element in names else name
+    roles = gathered_roles(log) if roles is None else roles
 
-    title = "Edge collapse: the cases side by side"
+    def show(scene):
+        if camera is not None:
+            scene.plotter.camera_position = camera
+        scene.set_roles(roles, names=names)       # deleted elements are left out
 
-    def __init__(self, cases=None, refused=None, *, mode: str | None = None, preset="default"):
-        import ipywidgets as widgets
-
-        from ..data import sample
-        from .renderer import choose_mode
-
-        self.mode = choose_mode(mode)
-        self.look = _preset(preset)
-        large = self.look.name == "large"
-        if cases is None:
-            cases = [("removed vertex of degree 3", sample("cube"), 0),
-                     ("removed vertex of degree > 3", sample("single_collapse"), 0)]
-        if refused is None:
-            refused = [("tetrahedron", sample("tetrahedron"), 0), ("figure 8", sample("figure8"), 0),
-                       ("lone triangle", sample("lone_triangle"), 0)]
-        case_size = (600, 450) if large else (440, 330)
-        thumb_size = (400, 300) if large else (300, 225)
-        self.titles = [title for title, _, _ in cases]
-        self.steppers = [CollapseStepper(mesh, edge, mode=self.mode, preset=self.look, window_size=case_size)
-                         for _, mesh, edge in cases]
-        self.refused_titles = [title for title, _, _ in refused]
-        self.refused = [CollapseStepper(mesh, edge, mode="static", preset=self.look, window_size=thumb_size)
-                        for _, mesh, edge in refused]
-        for stepper in self.refused:
-            self._show_refused(stepper)
-        self.phases = [title for _, title in self.steppers[0].log.phases] if self.steppers else []
-        self._phase = 0
-
-        css = panel_css(self.look)
-        self._status = widgets.HTML()
-        self._legend = widgets.HTML(layout=widgets.Layout(margin="0 0 0 12px"))
-        self._captions = [widgets.HTML(layout=widgets.Layout(width=f"{case_size[0]}px")) for _ in self.steppers]
-        buttons = widgets.HBox([
-            self._button("start", lambda: self.go("start")),
-            self._button("back", self.back),
-            self._button("phase", self.step),
-            self._button("end", lambda: self.go("end")),
-        ])
-        self.buttons = {b.description: b for b in buttons.children}
-        columns = widgets.HBox([
-            widgets.VBox([widgets.HTML(f'<b style="font-size:{css["font"]}">{html.escape(title)}</b>'),
-                          stepper.view.widget, caption])
-            for title, stepper, caption in zip(self.titles, self.steppers, self._captions)
-        ] + [self._legend], layout=widgets.Layout(flex_flow="row wrap"))     # narrow: the legend goes below
-        refusals = widgets.HBox([
-            widgets.VBox([widgets.HTML(f'<b style="font-size:{css["font"]}">{html.escape(title)}</b>'),
-                          stepper.view.widget,
-                          widgets.HTML(f'<div style="font-size:{css["font"]};width:{thumb_size[0]}px">'
-                                       f'<code>{html.escape(str(stepper.check.rule))}</code>: '
-                                       f"{html.escape(stepper.check.reason)}</div>")],
-                         layout=widgets.Layout(margin="0 12px 0 0"))
-            for title, stepper in zip(self.refused_titles, self.refused)
-        ], layout=widgets.Layout(flex_flow="row wrap"))
-        heading = f'<b style="font-size:calc({css["font"]} * 1.25)">{html.escape(self.title)}</b>'
-        self.key_area = KeyArea([self._status], self.buttons, self.KEYS, self.look)
-        self.widget = widgets.VBox([
-            widgets.HTML(heading), buttons, self.key_area.widget, columns,
-            widgets.HTML(f'<b style="font-size:calc({css["font"]} * 1.15)">Refused: the link condition and '
-                         f"the boundary rules</b>"),
-            refusals,
-        ])
-        self._refresh()
-
-    def _button(self, label: str, action):
-        return panel_button(self.look, label, "", action)
-
-    @staticmethod
-    def _show_refused(stepper) -> None:
-        """Show a refused collapse so its reason can be followed: the edge and its ends'
-        neighbours fill the picture, seen at a slant (a tetrahedron seen along its edge is
-        a flat rhombus), and every vertex there is labelled, as the reason names vertices."""
-        mesh, scene = stepper.before, stepper.scene
-        edge = next(index for kind, index in stepper.check.elements if kind == "edge")
-        ends = mesh.edge_vertices()[edge]                                      # (2,)
-        neighbours = [h.tip.index for v in ends for h in mesh.vertex(int(v)).outgoing()]
-        near = np.unique(np.concatenate([ends, neighbours]))
-        points = mesh.positions[near]                                         # (k, 3)
-        centre = mesh.positions[ends].mean(axis=0)
-        _, spread, axes = np.linalg.svd(points - points.mean(axis=0))
-        if spread[-1] < 1e-9 * spread[0]:
-            direction = axes[2]                  # a flat patch: straight onto its plane
-        else:
-            # A solid: from outside the edge, turned aside and a little along the edge.
-            along = unit(mesh.positions[ends[1]] - mesh.positions[ends[0]])
-            outward = unit(centre - mesh.positions[~mesh.vertex_deleted].mean(axis=0))
-            side = unit(np.cross(along, outward))
-            direction = unit(outward + 0.3 * along + 0.3 * side)
-        camera = scene.plotter.camera
-        camera.focal_point = tuple(centre)
-        camera.position = tuple(centre + direction)
-        scene.plotter.reset_camera(bounds=np.column_stack([points.min(axis=0), points.max(axis=0)]).ravel())
-        scene.set_roles(scene.roles, names={("vertex", int(v)): f"v{int(v)}" for v in near})
-        stepper.view.update()
-
-    @property
-    def phase(self) -> int:
-        """0 (gathered) to ``len(self.phases)`` (done): every phase up to this one is applied."""
-        return self._phase
-
-    def _end_of_phase(self, stepper, phase: int) -> int:
-        """The step of ``stepper`` at which its phases up to ``phase`` are all applied."""
-        if phase == 0:
-            return 0
-        phases = stepper.log.phases
-        stop = phases[phase][0] if phase < len(phases) else len(stepper.log.changes)
-        return sum(1 for _, end in stepper.groups if end <= stop)
-
-    def go(self, target) -> int:
-        """Show every case at the end of a phase: "phase" (next), "back", "start", "end", or a number."""
-        last, move = len(self.phases), None
-        if isinstance(target, str):
-            moves = {"phase": self._phase + 1, "next": self._phase + 1, "step": self._phase + 1,
-                     "back": self._phase - 1, "start": 0, "end": last}
-            if target not in moves:
-                raise ValueError(f"unknown move {target!r}: use {', '.join(repr(m) for m in moves)} or a phase number")
-            move, target = target, min(max(moves[target], 0), last)
-            if target == self._phase:
-                self._refresh(f"{move}: phase {self._phase} of {last} is the "
-                              + ("last one; ← back or Home to go through it again" if target == last
-                                 else "start; → or space goes forward"))
-                return self._phase
-        target = int(target)
-        if not 0 <= target <= last:
-            raise IndexError(f"there is no phase {target}: phases run from 0 to {last}")
-        self._phase = target
-        for stepper in self.steppers:
-            stepper.go(self._end_of_phase(stepper, target))
-            if target and self._end_of_phase(stepper, target) == self._end_of_phase(stepper, target - 1):
-                self._without_changes(stepper)
-        self._refresh()
-        return self._phase
-
-    @staticmethod
-    def _without_changes(stepper) -> None:
-        """Take the "changes now" highlight off a case that changes nothing in this phase
-        (it would still show the last change of an earlier phase)."""
-        scene = stepper.scene
-        now = {*_CHANGED.values(), *_OLD.values(), *_NEW.values()}
-        scene.set_roles({role: members for role, members in scene.roles.items() if role not in now},
-                        names=scene.names)
-        stepper.view.update()
-
-    def step(self) -> int:
-        """Every case to the end of the next phase."""
-        return self.go("phase")
-
-    def back(self) -> int:
-        return self.go("back")
-
-    def _phase_title(self) -> str:
-        if self._phase == 0:
-            return "gather the elements"
-        return self.phases[self._phase - 1]
-
-    def _refresh(self, note: str = "") -> None:
-        """The phase in words, and ``note`` (why a move did not move) below it."""
-        size = panel_css(self.look)["font"]
-        self._status.value = (f'<div style="font-size:{size}">phase {self._phase} of {len(self.phases)}: '
-                              f"<i>{html.escape(self._phase_title())}</i></div>"
-                              + (f'<div style="font-size:{size};color:#555">{html.escape(note)}</div>' if note else ""))
-        self._legend.value = legend_html(self.legend_entries(), self.look)
-        for caption, stepper in zip(self._captions, self.steppers):
-            state = stepper.state
-            notes = "".join(f"<div>{html.escape(n)}</div>" for n in stepper.log.notes)
-            caption.value = (f'<div style="font-size:{size}">{notes}<div>V - E + F = {state.n_vertices} - '
-                             f"{state.n_edges} + {state.n_faces} = {state.euler_characteristic}</div></div>")
-
-    def describe(self) -> str:
-        """Each case at the current phase, then each refused case with its reason."""
-        lines = [f"phase {self._phase} of {len(self.phases)}: {self._phase_title()}"]
-        for title, stepper in zip(self.titles, self.steppers):
-            state = stepper.state
-            lines.append(f"{title}: collapse of edge {stepper.log.edge}, step {stepper.step_index} of "
-                         f"{stepper.n_steps}; V - E + F = {state.n_vertices} - {state.n_edges} + "
-                         f"{state.n_faces} = {state.euler_characteristic}")
-            lines += [f"  {note}" for note in stepper.log.notes]
-        for title, stepper in zip(self.refused_titles, self.refused):
-            lines.append(f"refused, {title} ({stepper.check.rule}): {stepper.check.reason}")
-        return "\n".join(lines)
-
-    def legend_entries(self) -> list[tuple[str, str, str]]:
-        """What the colours of every picture of the atlas mean now, each once:
-        ``(text, "#RRGGBB", kind)`` as :meth:`HalfedgeScene.legend_entries`."""
-        entries: dict[tuple[str, str, str], None] = {}
-        for stepper in self.steppers + self.refused:
-            entries.update(dict.fromkeys(stepper.scene.legend_entries()))
-        return list(entries)
-
-    def screenshot(self, path=None) -> bytes:
-        """Every picture of the atlas in one PNG, titled: the cases in a row with the
-        legend beside them, the refusals below."""
-        phase = f"phase {self._phase} of {len(self.phases)}"
-        return grid_png([[s.screenshot() for s in self.steppers] + [legend_png(self.legend_entries())],
-                         [s.screenshot() for s in self.refused]],
-                        [[f"{title} ({phase})" for title in self.titles] + ["legend"],
-                         [f"refused: {title}" for title in self.refused_titles]], path=path)
-
-    def close(self) -> None:
-        self.key_area.close()
-        self.widget.close()
-        for stepper in self.steppers + self.refused:
-            stepper.close()
-
-    def _repr_mimebundle_(self, include=None, exclude=None):
-        import base64
-
-        for stepper in self.steppers + self.refused:   # their pictures are part of this widget
-            stepper.view.shown()
-        bundle = self.widget._repr_mimebundle_(include=include, exclude=exclude)
-        bundle["text/plain"] = self.describe()
-        bundle["image/png"] = base64.b64encode(self.screenshot()).decode("ascii")
-        return bundle
+    return scene_picture(mesh, show, window_size=size, legend=legend, labels=labels, follow=follow)

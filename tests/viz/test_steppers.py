@@ -12,7 +12,8 @@ from halfedge_edu.data import sample
 from halfedge_edu.core.ops import OperationLog, split
 from halfedge_edu.viz.arrows import HEAD, typical_edge_length
 from halfedge_edu.viz.palette import ROLES, rgb
-from halfedge_edu.viz.steppers import CollapseAtlas, CollapseStepper, FlipStepper, SplitStepper, group_changes
+from halfedge_edu.viz.atlas import CollapseAtlas
+from halfedge_edu.viz.steppers import CollapseStepper, FlipStepper, SplitStepper, group_changes
 
 ARRAYS = ("halfedge_next", "halfedge_prev", "halfedge_vertex", "halfedge_face", "vertex_halfedge", "face_halfedge")
 
@@ -94,7 +95,7 @@ def test_buttons_step_forward_and_back(flip_stepper):
 
 
 def test_phase_jumps_to_the_start_of_the_next_phase(flip_stepper):
-    starts = flip_stepper._phase_steps()
+    starts = flip_stepper.source.phase_steps()
     assert flip_stepper.go("phase") == starts[0]
     assert flip_stepper.go("phase") == starts[1]
     assert flip_stepper.go("phase back") == starts[0]
