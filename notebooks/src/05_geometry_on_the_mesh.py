@@ -342,56 +342,7 @@ show(picture)
 # in JupyterLab, in VS Code and, as a still picture, on GitHub.
 
 # %%
-import base64
-
-import ipywidgets as widgets
-
-from halfedge_edu.viz import on_main_thread, plotter_png
-
-
-class SmoothingViewer:
-    """A slider over smoothing iterations and a flat/smooth toggle for one mesh."""
-
-    def __init__(self, mesh, max_iterations=60, window_size=(460, 360)):
-        self.mesh = mesh
-        self.plotter = pv.Plotter(off_screen=True, window_size=list(window_size))
-        self.surface = mesh.to_pyvista()
-        self.actor = self.plotter.add_mesh(self.surface, color="#E8B96A")
-        self.plotter.camera_position = [(2.6, 0.9, -2.2), (0.0, 0.1, 0.1), (0.0, 1.0, 0.0)]
-        self.iterations = widgets.IntSlider(value=0, min=0, max=max_iterations, description="iterations")
-        self.shading = widgets.ToggleButtons(options=["flat", "smooth"], value="flat")
-        self.image = widgets.Image(format="png")
-        self.status = widgets.Label()
-        # Changes from the browser arrive on another thread; redraws run on the main one.
-        self.iterations.observe(on_main_thread(self.redraw), names="value")
-        self.shading.observe(on_main_thread(self.redraw), names="value")
-        self.panel = widgets.VBox([widgets.HBox([self.iterations, self.shading]), self.image, self.status])
-        self.redraw()
-
-    def redraw(self, change=None):
-        self.smoothed = smooth(self.mesh, iterations=self.iterations.value)
-        self.surface.points = self.smoothed.positions
-        if self.shading.value == "smooth":
-            self.surface.point_data["Normals"] = vertex_normals(self.smoothed)
-            self.surface.point_data.active_normals_name = "Normals"
-            self.actor.prop.interpolation = "gouraud"
-        else:
-            self.surface.point_data.pop("Normals", None)
-            self.actor.prop.interpolation = "flat"
-        self.image.value = plotter_png(self.plotter)
-        self.status.value = self.describe()
-
-    def describe(self):
-        return (f"{self.iterations.value} iterations, {self.shading.value} shading: "
-                f"volume {volume(self.smoothed):.4f}")
-
-    def _repr_mimebundle_(self, **kwargs):
-        # The live panel where widgets run; the current picture everywhere else.
-        bundle = self.panel._repr_mimebundle_(**kwargs) or {}
-        bundle["image/png"] = base64.b64encode(self.image.value).decode("ascii")
-        bundle["text/plain"] = self.describe()
-        return bundle
-
+from halfedge_edu.viz import SmoothingViewer
 
 rng = np.random.default_rng(5)
 noisy = spot.copy()

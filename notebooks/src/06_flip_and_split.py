@@ -22,16 +22,7 @@ import numpy as np
 
 import halfedge_edu as hx
 from halfedge_edu.core.ops import OperationLog, can_flip, can_split, flip, split
-from halfedge_edu.viz import FlipStepper, SplitStepper, scene_picture, side_by_side
-
-
-def named_picture(mesh, log, roles, size=(400, 300), labels="auto", only_created=False):
-    """A picture of ``mesh`` with the elements of ``log`` labelled by their names."""
-    names = {element: name for name, element in log.named.items()
-             if not only_created or element in log.created or element[0] == "vertex"}
-    return scene_picture(mesh, lambda scene: scene.set_roles(roles, names=names),
-                         window_size=size, legend=False, labels=labels)
-
+from halfedge_edu.viz import FlipStepper, SplitStepper, created_roles, named_picture, side_by_side
 
 strip = hx.sample("strip")
 log = OperationLog()
@@ -39,8 +30,7 @@ flipped = strip.copy()
 flip(flipped, 1, log=log)
 quad = [index for name, (kind, index) in log.named.items() if kind == "halfedge"]
 side_by_side(
-    [named_picture(strip, log, {"named": quad}, labels=("vertex",)),
-     named_picture(flipped, log, {"named": quad}, labels=("vertex",))],
+    [named_picture(strip, log, {"named": quad}), named_picture(flipped, log, {"named": quad})],
     ["before: edge 1 joins v0 and v1", "after flip(1): edge 1 joins v2 and v3"],
 )
 
@@ -184,14 +174,8 @@ split(split_inside, 1, log=log_inside)
 split(split_boundary, 0, log=log_boundary)
 
 
-def new_elements(log):
-    return {"created": [i for kind, i in log.created if kind == "halfedge"],
-            "created_vertex": [i for kind, i in log.created if kind == "vertex"],
-            "created_face": [i for kind, i in log.created if kind == "face"]}
-
-
 side_by_side(
-    [named_picture(mesh, log, new_elements(log), size=(420, 320), labels=("vertex",), only_created=True)
+    [named_picture(mesh, log, created_roles(log), size=(420, 320), only_created=True)
      for mesh, log in ((split_inside, log_inside), (split_boundary, log_boundary))],
     ["split(1): interior edge 1", "split(0): boundary edge 0"],
 )
@@ -413,23 +397,13 @@ buggy = check_flip(flip_without_step_4)
 buggy
 
 # %% tags=["solution"]
-def wrong_pointer_picture(mesh, log, owner, wrong, right, size=(440, 330)):
-    """``mesh`` with the pointer a check complains about: element ``owner`` (kind, index)
-    points at halfedge ``wrong`` where the library's operation points at ``right``. The
-    labels use the operation's names (those of ``log``), as the check's message does."""
-    names = {element: name for name, element in log.named.items()}
-    kind, index = owner
-    roles = {"wrong_vertex" if kind == "vertex" else "wrong_owner": [index], "wrong": [wrong], "right": [right]}
-    return scene_picture(mesh, lambda scene: scene.set_roles(roles, names=names), window_size=size,
-                         labels=("vertex",))
-
-
 learner, reference, reference_log = hx.sample("cube"), hx.sample("cube"), OperationLog()
 flip_without_step_4(learner, 1)
 flip(reference, 1, log=reference_log)
 vertex = buggy.element[1]
-side_by_side([wrong_pointer_picture(learner, reference_log, ("vertex", vertex), learner.vertex_halfedge[vertex],
-                                    reference.vertex_halfedge[vertex])],
+wrong_pointer = {"wrong_vertex": [vertex], "wrong": [learner.vertex_halfedge[vertex]],
+                 "right": [reference.vertex_halfedge[vertex]]}
+side_by_side([named_picture(learner, reference_log, wrong_pointer, size=(440, 330), legend=True)],
              ["after flip_without_step_4(1) on the cube"])
 
 # %% [markdown] tags=["solution"]

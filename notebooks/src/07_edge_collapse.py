@@ -23,27 +23,7 @@ import numpy as np
 
 import halfedge_edu as hx
 from halfedge_edu.core.ops import OperationLog, can_collapse, collapse
-from halfedge_edu.viz import CollapseAtlas, CollapseStepper, grid, scene_picture
-
-
-def _names(log):
-    """Element -> its names in ``log``, joined where one element has two (``gL/gR``)."""
-    names = {}
-    for name, element in log.named.items():
-        names[element] = f"{names[element]}/{name}" if element in names else name
-    return names
-
-
-def named_picture(mesh, log, roles, size=(380, 290), camera=None):
-    """A picture of ``mesh`` with the elements of ``log`` labelled by their names."""
-    names = _names(log)
-
-    def show(scene):
-        if camera is not None:
-            scene.plotter.camera_position = camera
-        scene.set_roles(roles, names=names)  # deleted ones are skipped
-
-    return scene_picture(mesh, show, window_size=size, legend=False, labels=("vertex",), follow=False)
+from halfedge_edu.viz import CollapseAtlas, CollapseStepper, grid, named_picture
 
 
 def collapsed(mesh, h):
@@ -53,20 +33,15 @@ def collapsed(mesh, h):
     return result, log
 
 
-def roles_of(log):
-    named = lambda kind: [i for k, i in log.named.values() if k == kind]  # noqa: E731
-    return {"named": named("halfedge"), "named_vertex": named("vertex"), "named_face": named("face")}
-
-
 cube, single = hx.sample("cube"), hx.sample("single_collapse")
 cube_after, cube_log = collapsed(cube, 0)
 single_after, single_log = collapsed(single, 0)
 corner_view = [(-1.9, -2.4, -1.6), (0.5, 0.5, 0.5), (0.0, 0.0, 1.0)]   # the cube seen from below vertex 0
+small = {"size": (380, 290), "follow": False}
 grid(
-    [[named_picture(cube, cube_log, roles_of(cube_log), camera=corner_view),
-      named_picture(cube_after, cube_log, roles_of(cube_log), camera=corner_view)],
-     [named_picture(single, single_log, roles_of(single_log)),
-      named_picture(single_after, single_log, roles_of(single_log))]],
+    [[named_picture(cube, cube_log, camera=corner_view, **small),
+      named_picture(cube_after, cube_log, camera=corner_view, **small)],
+     [named_picture(single, single_log, **small), named_picture(single_after, single_log, **small)]],
     [["cube, before: vB = vertex 0 has degree 3", "cube, after collapsing halfedge 0"],
      ["single_collapse, before: vB = vertex 0 has degree 6", "single_collapse, after collapsing halfedge 0"]],
 )
@@ -439,27 +414,13 @@ buggy = check_collapse(collapse_reading_too_early)
 buggy
 
 # %% tags=["solution"]
-def wrong_pointer_picture(mesh, log, owner, wrong, right, size=(440, 330), camera=None):
-    """``mesh`` with the pointer a check complains about: element ``owner`` (kind, index)
-    points at halfedge ``wrong`` where the library's operation points at ``right``. The
-    labels use the operation's names (those of ``log``), as the check's message does."""
-    names = _names(log)
-    kind, index = owner
-    roles = {"wrong_vertex" if kind == "vertex" else "wrong_owner": [index], "wrong": [wrong], "right": [right]}
-
-    def show(scene):
-        if camera is not None:
-            scene.plotter.camera_position = camera
-        scene.set_roles(roles, names=names)
-
-    return scene_picture(mesh, show, window_size=size, labels=("vertex",), follow=False)
-
-
 learner = cube.copy()
 collapse_reading_too_early(learner, 0)
 halfedge = buggy.element[1]
-grid([[wrong_pointer_picture(cube, cube_log, ("halfedge", halfedge), learner.halfedge_next[halfedge],
-                             cube_after.halfedge_next[halfedge], camera=corner_view)]],
+wrong_pointer = {"wrong_owner": [halfedge], "wrong": [learner.halfedge_next[halfedge]],
+                 "right": [cube_after.halfedge_next[halfedge]]}
+grid([[named_picture(cube, cube_log, wrong_pointer, size=(440, 330), camera=corner_view, follow=False,
+                     legend=True)]],
      [["the cube before the collapse: h_R_A's next"]])
 
 # %% [markdown] tags=["solution"]

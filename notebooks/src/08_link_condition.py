@@ -18,83 +18,13 @@
 # - write the test yourself from one-rings.
 
 # %%
-import numpy as np
-import pyvista as pv
-
 import halfedge_edu as hx
 from halfedge_edu.core.ops import can_collapse, collapse, link_condition, link_of_edge, link_of_vertex
 from halfedge_edu.core.ops.link import BOUNDARY
-from halfedge_edu.viz import plotter_png, side_by_side
-from halfedge_edu.viz.screen import beside
+from halfedge_edu.viz import LINK_VIEWS, LinkViewer, link_png, side_by_side
 
-LINK_A, LINK_B, SHARED, EXTRA = "#E69F00", "#56B4E9", "#009E73", "#D55E00"   # Okabe-Ito colours
-
-#: Where to look from, per sample (None: along the normal of the edge's faces).
-VIEWS = {"cube": (-1.0, -1.3, -0.8), "tetrahedron": (-1.0, -0.35, 0.25), "octahedron": (1.0, 0.6, 0.8)}
-
-
-def draw_link(plotter, mesh, e, view=None):
-    """Draw edge e's link condition: link(a) orange, link(b) blue, what they share green
-    if it belongs to link(ab) and vermillion if it does not. Returns the LinkCondition."""
-    lc = link_condition(mesh, e)
-    P = mesh.positions
-    scale = float(np.median([edge.length for edge in mesh.edges]))
-    normals = hx.vertex_normals(mesh)
-    lifted = P + 0.02 * scale * normals                     # lines just above the surface
-    plotter.add_mesh(mesh.to_pyvista(), color="#EEEBE4", show_edges=True, edge_color="#5F5B54", line_width=1.2,
-                     opacity=0.55 if mesh.is_closed else 1.0)
-
-    def lines(pairs, color, width):
-        pairs = [(i, j) for i, j in pairs if BOUNDARY not in (i, j)]   # the boundary is not a point to draw
-        if pairs:
-            cells = np.hstack([[2, i, j] for i, j in sorted(pairs)])
-            plotter.add_mesh(pv.PolyData(lifted, lines=cells), color=color, line_width=width,
-                             render_lines_as_tubes=True)
-
-    def points(vertices, color, size):
-        vertices = sorted(v for v in vertices if v != BOUNDARY)
-        if vertices:
-            plotter.add_mesh(pv.PolyData(lifted[vertices]), color=color, point_size=size,
-                             render_points_as_spheres=True)
-
-    if BOUNDARY in lc.extra.vertices:                       # draw the boundary loop instead
-        loop = [(int(mesh.halfedge_vertex[h]), int(mesh.halfedge_vertex[h ^ 1]))
-                for l in mesh.boundary_loops() for h in l]
-        lines(loop, EXTRA, 5)
-    lines(lc.link_a.edges - lc.shared.edges, LINK_A, 7)
-    lines(lc.link_b.edges - lc.shared.edges, LINK_B, 7)
-    lines(lc.extra.edges, EXTRA, 10)
-    lines([(lc.a, lc.b)], "#222222", 9)
-    points([lc.a, lc.b], "#222222", 18)
-    points(lc.shared.vertices & lc.link_ab.vertices, SHARED, 22)
-    points(lc.extra.vertices, EXTRA, 26)
-    centre = P[~mesh.vertex_deleted].mean(axis=0)
-    radius = float(np.linalg.norm(P[~mesh.vertex_deleted] - centre, axis=1).max())
-    if view is None:
-        view = np.mean([f.normal for f in mesh.edge(e).faces()], axis=0)
-    direction = np.asarray(view, dtype=float) / np.linalg.norm(view)
-    up = (0.0, 0.0, 1.0) if abs(direction[2]) < 0.9 else (0.0, 1.0, 0.0)
-    plotter.camera_position = [tuple(centre + 4.6 * radius * direction), tuple(centre), up]
-    # Labels a few pixels up and right of their dots on screen (the camera is set), so
-    # that no dot covers its own label.
-    labelled = [lc.a, lc.b] + sorted(v for v in lc.shared.vertices if v != BOUNDARY)
-    words = ["a" if v == lc.a else "b" if v == lc.b else str(v) for v in labelled]
-    plotter.add_point_labels(beside(plotter, plotter.window_size, lifted[labelled], 14), words, font_size=13,
-                             text_color="black", shape_color="white", shape_opacity=0.8,
-                             justification_horizontal="left", justification_vertical="bottom",
-                             show_points=False, always_visible=True)
-    return lc
-
-
-def link_png(mesh, e, view=None, size=(320, 300)):
-    plotter = pv.Plotter(off_screen=True, window_size=list(size))
-    draw_link(plotter, mesh, e, view)
-    png = plotter_png(plotter)
-    plotter.close()
-    return png
-
-
-examples = [("single_collapse", 0, (0, 0, 1)), ("cube", 1, VIEWS["cube"]), ("tetrahedron", 0, VIEWS["tetrahedron"])]
+examples = [("single_collapse", 0, (0, 0, 1)), ("cube", 1, LINK_VIEWS["cube"]),
+            ("tetrahedron", 0, LINK_VIEWS["tetrahedron"])]
 side_by_side([link_png(hx.sample(name), e, view) for name, e, view in examples],
              ["allowed: single_collapse, edge 0", "refused: cube, edge 1", "refused: tetrahedron, edge 0"])
 
@@ -277,63 +207,6 @@ for name in ("figure8", "lone_triangle"):
 # but both their ends are on the rim.
 
 # %%
-import ipywidgets as widgets
-
-from halfedge_edu.viz import on_main_thread
-
-
-class LinkViewer:
-    """A mesh and an edge: the link picture and the sets of the link condition."""
-
-    def __init__(self, name="single_collapse", edge=0, window_size=(420, 360)):
-        self.plotter = pv.Plotter(off_screen=True, window_size=list(window_size))
-        self.mesh_choice = widgets.Dropdown(
-            options=["single_collapse", "cube", "tetrahedron", "octahedron", "open_patch", "figure8",
-                     "lone_triangle", "icosphere"], value=name, description="mesh")
-        self.edge_choice = widgets.IntSlider(value=edge, min=0, max=edge, description="edge")
-        self.image = widgets.Image(format="png")
-        self.text = widgets.HTML()
-        # Changes from the browser arrive on another thread; redraws run on the main one
-        # (a render from another thread breaks the plotter's OpenGL context).
-        self.mesh_choice.observe(on_main_thread(self._new_mesh), names="value")
-        self.edge_choice.observe(on_main_thread(self.redraw), names="value")
-        self.panel = widgets.HBox([self.image, widgets.VBox([self.mesh_choice, self.edge_choice, self.text])])
-        self._new_mesh()
-
-    def _new_mesh(self, change=None):
-        name = self.mesh_choice.value
-        self.mesh = hx.sample(name, subdivisions=1) if name == "icosphere" else hx.sample(name)
-        edge = min(self.edge_choice.value, self.mesh.n_edges - 1)
-        with self.edge_choice.hold_trait_notifications():
-            self.edge_choice.max = self.mesh.n_edges - 1
-            self.edge_choice.value = edge
-        self.redraw()
-
-    def redraw(self, change=None):
-        self.plotter.clear_actors()
-        self.condition = draw_link(self.plotter, self.mesh, self.edge_choice.value, VIEWS.get(self.mesh_choice.value))
-        self.image.value = plotter_png(self.plotter)
-        self.text.value = "<pre>" + self.describe() + "</pre>"
-
-    def describe(self):
-        lc, check = self.condition, can_collapse(self.mesh, self.edge_choice.value)
-        return "\n".join([
-            f"{self.mesh_choice.value}, edge {self.edge_choice.value} (a = {lc.a}, b = {lc.b})",
-            f"link(a) ∩ link(b): {show(lc.shared.vertices)} {show_edges(lc.shared.edges)}",
-            f"link(ab):          {show(lc.link_ab.vertices)}",
-            f"extra:             {show(lc.extra.vertices)} {show_edges(lc.extra.edges)}",
-            "collapse allowed" if check else f"collapse refused ({check.rule})",
-        ])
-
-    def _repr_mimebundle_(self, **kwargs):
-        # The live panel where widgets run; the current picture everywhere else.
-        bundle = self.panel._repr_mimebundle_(**kwargs) or {}
-        import base64
-        bundle["image/png"] = base64.b64encode(self.image.value).decode("ascii")
-        bundle["text/plain"] = self.describe()
-        return bundle
-
-
 viewer = LinkViewer("cube", 1)
 viewer
 
@@ -351,8 +224,7 @@ print()
 driven.mesh_choice.value = "open_patch"
 driven.edge_choice.value = 11
 print(driven.describe())
-driven.panel.close()
-driven.plotter.close()
+driven.close()
 
 # %% [markdown]
 # ## Check yourself
