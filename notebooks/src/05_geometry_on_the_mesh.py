@@ -20,7 +20,7 @@ import pyvista as pv
 
 import halfedge_edu as hx
 from halfedge_edu import face_normals, smooth, vertex_normals
-from halfedge_edu.viz import show
+from halfedge_edu.viz import SmoothingViewer, show
 
 spot = hx.sample("spot")
 V, F = spot.to_arrays()
@@ -338,12 +338,11 @@ show(picture)
 # go too. Switch between flat and smooth shading: flat shading shows the noise much
 # more than smooth shading does.
 #
-# The viewer is a small ipywidgets panel drawing off screen into an image, so it works
-# in JupyterLab, in VS Code and, as a still picture, on GitHub.
+# The viewer (`SmoothingViewer`, in `halfedge_edu/viz/smoothing_viewer.py`) is a small
+# ipywidgets panel drawing off screen into an image, so it works in JupyterLab, in VS Code
+# and, as a still picture, on GitHub.
 
 # %%
-from halfedge_edu.viz import SmoothingViewer
-
 rng = np.random.default_rng(5)
 noisy = spot.copy()
 noisy.positions[:] += 0.012 * rng.standard_normal((noisy.n_vertices, 1)) * vertex_normals(spot)

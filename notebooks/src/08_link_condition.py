@@ -37,7 +37,9 @@ side_by_side([link_png(hx.sample(name), e, view) for name, e, view in examples],
 # On the left the two rings touch in exactly the two opposite vertices, 4 and 8: this
 # edge may collapse. In the middle, on the cube, the rings also share vertex 1 and the
 # edge 0 – 1. On the right, the tetrahedron's rings share only the opposite vertices 2
-# and 3, but also the edge between them. Both of those collapses are refused.
+# and 3, but also the edge between them. Both of those collapses are refused. (The
+# pictures are drawn by `draw_link` in `halfedge_edu/viz/link_viewer.py`, which reads the
+# colours from the palette's `link_*` roles.)
 
 # %% [markdown]
 # ## 1. Links
