@@ -276,15 +276,26 @@ class CornerTable:
         d``, no edge ``c-d`` yet: :meth:`contains`), and no two of the edges may share
         a face. The slots are then out of key order: :meth:`in_key_order`.
         """
+        slot = self.edge[h]
+        twin = np.where(self.first[slot] == h, self.second[slot], self.first[slot])
+        flat = self.faces.reshape(-1)
+        a, b = flat[h], flat[next_halfedge(h)]
+        c, d = flat[prev_halfedge(h)], flat[prev_halfedge(twin)]
+        self.faces[h // 3] = np.stack([c, a, d], axis=1)
+        self.faces[twin // 3] = np.stack([d, b, c], axis=1)
+        return self.record_flips(h, twin, c, d)
+
+    def record_flips(self, h: np.ndarray, twin: np.ndarray, c: np.ndarray, d: np.ndarray) -> np.ndarray:
+        """The slots' half of :meth:`flip`, for a caller that wrote the new faces itself.
+
+        ``h`` (k,) the flipped halfedges, ``twin`` (k,) theirs, ``c`` and ``d`` (k,) the
+        vertices opposite them (the new edge's ends). Returns the flipped slots (k,).
+        """
         if self.flipped is None:
             self.flipped = np.zeros(len(self.keys), dtype=bool)
             self.keys = self.keys.copy()                               # start_keys stays sorted, for look-ups
         edge = self.edge                                               # kept up to date below
         slot = edge[h]
-        twin = np.where(self.first[slot] == h, self.second[slot], self.first[slot])
-        flat = self.faces.reshape(-1)
-        a, b = flat[h], flat[next_halfedge(h)]
-        c, d = flat[prev_halfedge(h)], flat[prev_halfedge(twin)]
         f1, f2 = 3 * (h // 3), 3 * (twin // 3)                         # each face's first halfedge
         # The edges c-a, a-d, d-b and b-c: their halfedge before the flip, and after.
         around = [(prev_halfedge(h), f1), (next_halfedge(twin), f1 + 1),
@@ -300,8 +311,6 @@ class CornerTable:
         edge[f1 + 2] = slot
         edge[f2 + 2] = slot
         self.flipped[slot] = True
-        self.faces[f1 // 3] = np.stack([c, a, d], axis=1)
-        self.faces[f2 // 3] = np.stack([d, b, c], axis=1)
         self._tip = None                                               # worked out again if the rings are asked for
         for name in _DERIVED:
             self.__dict__.pop(name, None)
