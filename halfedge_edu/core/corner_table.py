@@ -99,8 +99,8 @@ def edge_table(faces: np.ndarray, n_vertices: int) -> EdgeTable:
     return CornerTable(faces, n_vertices).edge_columns()
 
 
-#: What :meth:`CornerTable.flip` makes stale: the tables worked out from the slots'
-#: contents (``edge``, ``first``, ``second`` and ``keys`` it keeps up to date itself).
+#: What a flip (:meth:`CornerTable.record_flips`) makes stale: the tables worked out from
+#: the slots' contents (``edge``, ``first``, ``second`` and ``keys`` it keeps up to date itself).
 _DERIVED = ("edges", "boundary_halfedge", "twin", "face_across", "_rings")
 
 
@@ -121,7 +121,10 @@ class CornerTable:
     * ``first``, ``second`` (E,) the halfedges using the edge, ``second`` -1 on the
       boundary; ``count`` (E,) how many use it (1 on the boundary, 2 inside);
       ``boundary`` (E,) ``count == 1``; ``boundary_halfedge`` (b,) ``first`` of each
-      boundary edge, in slot order.
+      boundary edge, in slot order. Before any flip, ``first`` is the lower-numbered
+      of an interior edge's two halfedges (the sort is stable);
+    * ``start_keys`` (E,) the keys before any flip, ascending; ``flipped`` (E,) the
+      slots flips have changed (None before the first flip).
 
     Per halfedge: ``edge`` (3m,) its edge's slot; ``twin`` (3m,) the halfedge the other
     way along its edge, -1 on the boundary. Per face: ``face_across`` (m, 3) the face
