@@ -21,9 +21,10 @@ it picks, pass after pass, instead of every candidate.
 
 A round needs the same few tables of the face array every time: the edges, the face
 across each edge, the faces (and their corners) and the neighbours around every vertex.
-:func:`round_tables` builds them all from two sorts, and the checks take them as
-keyword arguments (``face_across``, ``neighbours``, ``corners_around``) where they
-replace a search.
+They are the face array's corner table (:class:`halfedge_edu.core.corner_table.CornerTable`,
+the course's halfedges with ``next`` by arithmetic): :func:`round_tables` builds it
+from two sorts, and the checks take its arrays as keyword arguments (``face_across``,
+``neighbours``, ``corners_around``) where they replace a search.
 
 Why rebuild them every round rather than patch the rows a round changed: a round's
 collapses are spread over the whole mesh, one every few rings, so on the benchmark
@@ -40,7 +41,8 @@ from typing import Callable, NamedTuple
 
 import numpy as np
 
-from ..core.arrays import expand, key_ends, sort_undirected
+from ..core.arrays import expand, grouping_order
+from ..core.corner_table import CornerTable
 
 __all__ = [
     "FOLD_ANGLE", "RoundTables", "choose_round", "collapse_topology_ok", "drop_folding_neighbours", "independent_edges",
@@ -356,7 +358,7 @@ def no_turned_faces(
     # face on one side of that edge holds y as its u, the face on the other side as its w.
     key_u = owner * len(vertices) + u                                   # (j,) owner and far end
     key_w = owner * len(vertices) + w
-    by_w = _grouping_order(key_w, len(keep) * len(vertices))
+    by_w = grouping_order(key_w, len(keep) * len(vertices))
     sorted_w = key_w[by_w]
     at = np.minimum(np.searchsorted(sorted_w, key_u), max(len(sorted_w) - 1, 0))
     first = np.flatnonzero(np.take(sorted_w, at) == key_u) if len(sorted_w) else at
@@ -387,126 +389,22 @@ def no_turned_faces(
     return ok
 
 
-class RoundTables(NamedTuple):
-    """What a round of collapses asks about a face array (m, 3), built once per round.
+#: What a round of collapses asks about a face array: its :class:`CornerTable`. The
+#: checks read ``edges``, ``boundary``, ``boundary_halfedge``, ``face_across`` and the
+#: rings ``faces_around``, ``neighbours`` and ``corners_around`` (the name is the one
+#: rounds used before the corner table had its own).
+RoundTables = CornerTable
 
-    ``edges`` (E, 2) low/high in key order and ``boundary`` (E,) as
-    :func:`halfedge_edu.core.arrays.unique_edges` gives them; ``boundary_halfedge``
-    (b,) the directed edge ``3 f + k`` (``faces[f, k] -> faces[f, k + 1]``) of each
-    boundary edge, in the same order; ``face_across`` (m, 3) the face across each
-    face's edge ``k``, -1 on the boundary; ``faces_around`` and ``neighbours`` each
-    vertex's faces and neighbours as CSR, the rows of
-    :func:`halfedge_edu.core.arrays.vertex_faces` and
-    :func:`halfedge_edu.core.arrays.vertex_neighbours` (in another order within a row);
-    ``corners_around`` the same rows as ``faces_around`` with each face's corner
-    ``3 f + k`` (``faces[f, k]`` is the vertex) instead of ``f``, for
-    :func:`no_turned_faces` and :func:`drop_folding_neighbours`.
+
+def round_tables(faces: np.ndarray, n: int) -> CornerTable:
+    """The :class:`~halfedge_edu.core.corner_table.CornerTable` of ``faces`` (m, 3),
+    vertex indices below ``n``: what a round reads, from two sorts.
+
+    The halfedges sorted by their undirected key give the edges and the face across
+    each halfedge; the corners sorted by vertex give the faces and the neighbours
+    around every vertex (worked out when first asked for).
     """
-
-    edges: np.ndarray
-    boundary: np.ndarray
-    boundary_halfedge: np.ndarray
-    face_across: np.ndarray
-    faces_around: tuple[np.ndarray, np.ndarray]
-    neighbours: tuple[np.ndarray, np.ndarray]
-    corners_around: tuple[np.ndarray, np.ndarray] | None = None
-
-
-def round_tables(faces: np.ndarray, n: int) -> RoundTables:
-    """The :class:`RoundTables` of ``faces`` (m, 3), vertex indices below ``n``, from two sorts.
-
-    The directed edges sorted by their undirected key
-    (:func:`halfedge_edu.core.arrays.sort_undirected`) give the edges: the uses of an
-    edge sit next to each other, and an interior edge's two uses each name the other's
-    face. The corners sorted by vertex give the faces and the neighbours around every
-    vertex (:func:`_vertex_rings`).
-    """
-    corner_vertex = faces.reshape(-1)                                  # (3m,) tail of directed edge 3f + k
-    next_vertex = np.empty_like(corner_vertex)                         # (3m,) its head, faces[f, k + 1]
-    next_vertex.reshape(-1, 3)[:, :2] = faces[:, 1:]
-    next_vertex.reshape(-1, 3)[:, 2] = faces[:, 0]
-    n_halfedges = len(corner_vertex)
-    order, sorted_key = sort_undirected(corner_vertex, next_vertex, n)
-    if _used_twice_each(sorted_key):
-        # A closed mesh: the sorted uses pair up, (0, 1), (2, 3), ..., so the runs need no search.
-        keys, first, second = sorted_key[0::2], order[0::2], order[1::2]
-        boundary = np.zeros(len(keys), dtype=bool)
-        boundary_halfedge = first[:0]
-        across = np.empty(n_halfedges, dtype=np.int64)
-        across[first] = second // 3
-        across[second] = first // 3
-    else:
-        new_run = np.ones(n_halfedges, dtype=bool)
-        new_run[1:] = sorted_key[1:] != sorted_key[:-1]
-        starts = np.flatnonzero(new_run)                              # (E,) first use of each edge
-        count = np.diff(np.append(starts, n_halfedges))
-        keys = sorted_key[starts]
-        first = order[starts]
-        inner = count == 2
-        second = order[starts[inner] + 1]
-        across = np.full(n_halfedges, -1, dtype=np.int64)
-        across[first[inner]] = second // 3
-        across[second] = first[inner] // 3
-        boundary = count == 1
-        boundary_halfedge = first[boundary]
-    faces_around, neighbours, corners_around = _vertex_rings(corner_vertex, next_vertex, boundary_halfedge, n)
-    return RoundTables(key_ends(keys, n), boundary, boundary_halfedge,
-                       across.reshape(-1, 3), faces_around, neighbours, corners_around)
-
-
-def _used_twice_each(sorted_key: np.ndarray) -> bool:
-    """True if every key in ``sorted_key`` (ascending) occurs exactly twice: each pair (2i, 2i + 1) equal, and
-    each pair different from the next."""
-    if len(sorted_key) % 2:
-        return False
-    return bool(np.array_equal(sorted_key[0::2], sorted_key[1::2])
-                and not (sorted_key[1:-1:2] == sorted_key[2::2]).any())
-
-
-def _grouping_order(rows: np.ndarray, n: int) -> np.ndarray:
-    """The stable order that sorts ``rows`` (k,) (values below ``n``), as ``np.argsort(rows, kind="stable")``.
-
-    The position is packed into the low bits of each row value and the packed numbers
-    are sorted with ``np.sort``, about twice as fast as an argsort (the trick of
-    :func:`halfedge_edu.core.arrays.sort_undirected`); values too large to pack fall back.
-    """
-    bits = max(1, int(len(rows) - 1).bit_length())
-    if int(n) >= 2 ** (62 - bits):
-        return np.argsort(rows, kind="stable")
-    packed = rows.astype(np.int64)                 # a copy, shifted and sorted in place
-    packed <<= bits
-    packed |= np.arange(len(rows), dtype=np.int64)
-    packed.sort()
-    packed &= (1 << bits) - 1
-    return packed
-
-
-def _vertex_rings(corner_vertex: np.ndarray, next_vertex: np.ndarray, boundary_halfedge: np.ndarray,
-                  n: int) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
-    """Each vertex's faces, neighbours and corners, as three CSRs from one sort of the corners.
-
-    ``corner_vertex`` and ``next_vertex`` (3m,) are the tail and head of each directed
-    edge ``3 f + k``; ``boundary_halfedge`` (b,) the ones on the boundary.
-
-    The neighbours come from the corners: corner ``(f, k)`` at vertex v names the next
-    corner's vertex, ``faces[f, k + 1]``. Around an inner vertex that lists every
-    neighbour once. The faces of a boundary vertex form one open fan (the mesh has no
-    vertex with two fans), and the neighbour at its clockwise end is missing; it is the
-    tail of the boundary edge whose head is v, so each boundary edge adds one row.
-    """
-    rows, values = corner_vertex, next_vertex
-    if len(boundary_halfedge):
-        rows = np.concatenate([rows, next_vertex[boundary_halfedge]])      # (3m + b,) the head for the extra rows
-        values = np.concatenate([values, corner_vertex[boundary_halfedge]])   # ... and the tail as its neighbour
-    order = _grouping_order(rows, n)
-    face_offsets = np.zeros(n + 1, dtype=np.int64)
-    np.cumsum(np.bincount(corner_vertex, minlength=n), out=face_offsets[1:])
-    # A vertex has as many neighbours as faces, plus one on the boundary: count only the extra rows.
-    neighbour_offsets = face_offsets.copy()
-    neighbour_offsets[1:] += np.cumsum(np.bincount(next_vertex[boundary_halfedge], minlength=n))
-    # The sort, without the extra rows (a closed mesh has none).
-    corners = order[order < len(corner_vertex)] if len(boundary_halfedge) else order
-    return (face_offsets, corners // 3), (neighbour_offsets, values[order]), (face_offsets, corners)
+    return CornerTable(faces, n)
 
 
 def drop_folding_neighbours(vertices: np.ndarray, faces: np.ndarray, faces_around: tuple[np.ndarray, np.ndarray],

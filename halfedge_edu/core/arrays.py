@@ -12,7 +12,9 @@ the same few ideas, kept here once:
   and after a sort the uses of one edge sit next to each other: a run of one is a
   boundary edge, a run of two an interior edge, longer runs are non-manifold.
 * **Edge tables.** The distinct edges of a face array, with how many faces use each
-  (:func:`unique_edges`) and, when needed, which corners (:func:`edge_table`).
+  (:func:`unique_edges`). Which halfedges use each edge, their twins and the rings
+  around each vertex are the corner table (:mod:`.corner_table`); its per-edge view
+  ``EdgeTable`` and ``edge_table`` can still be imported from here.
 * **CSR adjacency.** "The neighbours of vertex v" as one flat array plus offsets
   (compressed sparse rows): row v is ``values[offsets[v]:offsets[v + 1]]``
   (:func:`vertex_neighbours`, :func:`vertex_faces`), and :func:`expand` gathers many
@@ -29,15 +31,22 @@ This module imports nothing else from the package, so every layer may use it.
 
 from __future__ import annotations
 
-from typing import NamedTuple
-
 import numpy as np
 
 __all__ = [
-    "EdgeTable", "compact", "cross_rows", "csr", "edge_table", "expand", "face_cross",
-    "face_halfedges", "merge_vertices", "sort_undirected", "undirected_keys", "unique_edges", "vertex_faces",
-    "vertex_neighbours",
+    "compact", "cross_rows", "csr", "expand", "face_cross", "face_halfedges", "grouping_order", "key_ends",
+    "merge_vertices", "sort_undirected", "undirected_keys", "unique_edges", "vertex_faces", "vertex_neighbours",
 ]
+
+
+def __getattr__(name: str):
+    """``EdgeTable`` and ``edge_table``, which live in :mod:`.corner_table` (imported on first
+    use: that module builds on this one)."""
+    if name in ("EdgeTable", "edge_table"):
+        from . import corner_table
+
+        return getattr(corner_table, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 # ----------------------------------------------------------------------------------------
@@ -110,6 +119,24 @@ def sort_undirected(tail: np.ndarray, head: np.ndarray, n_vertices: int) -> tupl
     return order, key[order]
 
 
+def grouping_order(rows: np.ndarray, n: int) -> np.ndarray:
+    """The stable order that sorts ``rows`` (k,) (values below ``n``), as ``np.argsort(rows, kind="stable")``.
+
+    The position is packed into the low bits of each row value and the packed numbers
+    are sorted with ``np.sort``, about twice as fast as an argsort (the trick of
+    :func:`sort_undirected`); values too large to pack fall back.
+    """
+    bits = max(1, int(len(rows) - 1).bit_length())
+    if int(n) >= 2 ** (62 - bits):
+        return np.argsort(rows, kind="stable")
+    packed = rows.astype(np.int64)                 # a copy, shifted and sorted in place
+    packed <<= bits
+    packed |= np.arange(len(rows), dtype=np.int64)
+    packed.sort()
+    packed &= (1 << bits) - 1
+    return packed
+
+
 # ----------------------------------------------------------------------------------------
 # Edge tables
 # ----------------------------------------------------------------------------------------
@@ -119,55 +146,11 @@ def unique_edges(faces: np.ndarray, n_vertices: int) -> tuple[np.ndarray, np.nda
 
     Edges come in key order (by low end, then high end); ``face_count`` is 1 on the
     boundary and 2 inside. One plain sort of the keys: the cheapest table, for code that
-    does not need to know which faces use an edge (for that, :func:`edge_table`).
+    does not need to know which faces use an edge (for that, :class:`.corner_table.CornerTable`).
     """
     key = undirected_keys(*face_halfedges(faces), n_vertices)
     unique_key, count = np.unique(key, return_counts=True)
     return np.stack([unique_key // n_vertices, unique_key % n_vertices], axis=1), count
-
-
-class EdgeTable(NamedTuple):
-    """Edges of a triangle array, each with the directed edges (face corners) that use it.
-
-    ``edges`` (E, 2) low/high, in key order (as :func:`unique_edges`); ``corner_edge``
-    (m, 3) the edge of directed edge ``faces[f, k] -> faces[f, k + 1]``; ``count`` (E,)
-    1 on the boundary, 2 inside; ``first``/``second`` (E,) the directed edges
-    (``3 f + k``) using the edge (``second`` is -1 on the boundary); ``keys`` (E,) the
-    sorted keys, for :func:`numpy.searchsorted` look-ups of an edge by its ends.
-    """
-
-    edges: np.ndarray
-    corner_edge: np.ndarray
-    count: np.ndarray
-    first: np.ndarray
-    second: np.ndarray
-    keys: np.ndarray
-
-    def boundary_vertices(self, n_vertices: int) -> np.ndarray:
-        """(n,) True for vertices on a boundary edge."""
-        on_boundary = np.zeros(n_vertices, dtype=bool)
-        on_boundary[self.edges[self.count == 1].reshape(-1)] = True
-        return on_boundary
-
-
-def edge_table(faces: np.ndarray, n_vertices: int) -> EdgeTable:
-    """The :class:`EdgeTable` of ``faces`` (m, 3), vertex indices below ``n_vertices``.
-
-    Which of an interior edge's two uses is ``first`` is not specified: the sort that
-    groups them is numpy's default (quicksort), several times faster than a stable one.
-    """
-    key = undirected_keys(*face_halfedges(faces), n_vertices)   # (3m,)
-    order = np.argsort(key)
-    sorted_key = key[order]
-    new_run = sorted_key[1:] != sorted_key[:-1]                 # (3m - 1,)
-    starts = np.flatnonzero(np.r_[True, new_run])
-    count = np.diff(np.r_[starts, len(key)])
-    keys = sorted_key[starts]
-    corner_edge = np.empty(len(key), dtype=np.int64)
-    corner_edge[order] = np.cumsum(np.r_[False, new_run])
-    second = np.where(count == 2, order[np.minimum(starts + 1, len(key) - 1)], -1)
-    edges = key_ends(keys, n_vertices)
-    return EdgeTable(edges, corner_edge.reshape(-1, 3), count, order[starts], second, keys)
 
 
 # ----------------------------------------------------------------------------------------

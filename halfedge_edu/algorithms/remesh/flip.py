@@ -8,8 +8,8 @@ degree of a vertex in a regular triangle grid, and 4 on the boundary.
 The flips run in passes: every interior edge's degree gain is computed at once, and a
 set of improving flips that share no vertex is flipped together (:func:`_flip_pass`).
 The edge list is sorted once per phase and then updated in place by each pass
-(:class:`_EdgeUses`: a flip changes five edges, found through the slot each directed
-edge names, without a search).
+(:class:`_EdgeUses`, a view of the faces' corner table: a flip changes five edges,
+found through the slot each halfedge names, without a search).
 """
 
 from __future__ import annotations
@@ -18,7 +18,8 @@ import math
 
 import numpy as np
 
-from ...core.arrays import EdgeTable, cross_rows, edge_table, key_ends
+from ...core.arrays import EdgeTable, cross_rows
+from ...core.corner_table import CornerTable
 from ..features import Features
 
 #: How many flip passes one iteration may take (each pass is one array operation).
@@ -71,37 +72,29 @@ def _unit(vectors: np.ndarray) -> np.ndarray:
 
 
 class _EdgeUses:
-    """The edges of a face array, each with the directed edges that use it, kept up to
-    date through a flip phase without sorting or searching the whole edge list again.
+    """A flip phase's corner table, with each vertex's degree counted as the flips go.
 
-    Each edge has a *slot*, its place in key order when the phase began (``of``). A flip
-    keeps its edge's slot and only changes what is in it (the new key ``c-d`` and its two
-    directed edges), and ``corner_edge`` names the slot of every directed edge, so a
-    flip finds the slots of its edge and of the four edges around it by looking them up
-    there (one read each) instead of searching the sorted keys for them (a random walk
-    through all E keys per look-up). The slots stay in key order except the flipped
-    ones; :meth:`table` puts them back in order once, at the end of the phase, by
-    merging the few flipped edges in.
+    The edges are the slots of a :class:`~halfedge_edu.core.corner_table.CornerTable`
+    (``corners``), sorted once when the phase begins (``of``). A flip keeps its edge's
+    slot and only changes what is in it (the new key ``c-d`` and its two halfedges), and
+    ``corners.edge`` names the slot of every halfedge, so a flip finds the slots of its
+    edge and of the four edges around it by looking them up there (one read each)
+    instead of searching the sorted keys for them (a random walk through all E keys per
+    look-up): :meth:`CornerTable.record_flips`. The slots stay in key order except the
+    flipped ones; :meth:`table` puts them back in order once, at the end of the phase.
 
-    ``keys`` (E,) ``low * n + high`` of the edge in each slot (ascending at the start,
-    flipped slots changed since); ``first``/``second`` (E,) the directed edges ``3 f + k``
-    using it (``second`` -1 on the boundary); ``corner_edge`` (3m,) the slot of each
-    directed edge; ``start_keys`` (E,) the keys at the start, ascending; ``flipped``
-    (E,) the slots flipped since; ``inner`` the slots of interior edges (flips keep
-    them interior); ``degree`` (n,) how many edges each vertex has; ``boundary_vertex``
-    (n,) the vertices on a boundary edge (flips do not change them); ``n`` the number
-    of vertices.
+    Besides the table's ``keys``, ``first``, ``second``, ``start_keys``, :meth:`contains`
+    and :meth:`key_order`, what the flip pass asks: ``inner`` the slots of interior edges
+    (flips keep them interior); ``degree`` (n,) how many edges each vertex has;
+    ``boundary_vertex`` (n,) the vertices on a boundary edge (flips do not change them);
+    ``n`` the number of vertices. The faces are the caller's: :func:`_flip_pass` writes
+    the new faces, then tells the table (:meth:`flip`).
     """
 
-    def __init__(self, keys: np.ndarray, first: np.ndarray, second: np.ndarray, corner_edge: np.ndarray, n: int):
-        """From an :class:`~halfedge_edu.core.arrays.EdgeTable`'s arrays, which it takes
-        over: ``first``, ``second`` and ``corner_edge`` change in place from now on
-        (``keys`` is copied: the sorted keys of the start are kept for look-ups)."""
-        self.n = n
-        self.keys, self.first, self.second = keys.copy(), first, second
-        self.corner_edge = corner_edge.reshape(-1)                     # (3m,)
-        self.start_keys = keys
-        self.flipped = np.zeros(len(keys), dtype=bool)
+    def __init__(self, corners: CornerTable):
+        self.corners = corners
+        self.n = n = corners.n_vertices
+        keys, second = corners.keys, corners.second
         self.inner = np.flatnonzero(second >= 0)
         self.degree = np.bincount(keys // n, minlength=n) + np.bincount(keys % n, minlength=n)
         boundary_edge = keys[second < 0]
@@ -111,76 +104,32 @@ class _EdgeUses:
 
     @classmethod
     def of(cls, faces: np.ndarray, n: int) -> "_EdgeUses":
-        table = edge_table(faces, n)
-        return cls(table.keys, table.first, table.second, table.corner_edge, n)
+        return cls(CornerTable(faces, n))
+
+    keys = property(lambda self: self.corners.keys, doc="(E,) the key of the edge in each slot.")
+    first = property(lambda self: self.corners.first, doc="(E,) a halfedge using each slot's edge.")
+    second = property(lambda self: self.corners.second, doc="(E,) the other one, -1 on the boundary.")
+    start_keys = property(lambda self: self.corners.start_keys, doc="(E,) the keys at the start, ascending.")
 
     def key_order(self, slots: np.ndarray) -> np.ndarray:
-        """(k,) the order that lists the ``slots`` (k,), ascending, by key: the order a
-        fresh sorted table would list them in (only flipped slots can be out of order)."""
-        if not self.flipped.any():
-            return np.arange(len(slots))
-        return np.argsort(self.keys[slots])
+        """:meth:`CornerTable.key_order <halfedge_edu.core.corner_table.CornerTable.key_order>`."""
+        return self.corners.key_order(slots)
 
     def contains(self, keys: np.ndarray) -> np.ndarray:
-        """(k,) whether each of ``keys`` is an edge now: a key of the start not flipped
-        away, or the key a flip put into a slot."""
-        at = np.minimum(np.searchsorted(self.start_keys, keys), len(self.start_keys) - 1)
-        found = (self.start_keys[at] == keys) & ~self.flipped[at]
-        moved = np.sort(self.keys[self.flipped])                       # (j,) the keys flips made
-        if len(moved):
-            at = np.minimum(np.searchsorted(moved, keys), len(moved) - 1)
-            found |= moved[at] == keys
-        return found
+        """:meth:`CornerTable.contains <halfedge_edu.core.corner_table.CornerTable.contains>`."""
+        return self.corners.contains(keys)
 
     def table(self) -> EdgeTable:
-        """The :class:`~halfedge_edu.core.arrays.EdgeTable` of the faces these uses are of,
-        edges in key order as :func:`~halfedge_edu.core.arrays.edge_table` lists them:
-        smoothing and projection after the flips ask for it.
-
-        The slots never flipped are still in key order; the flipped ones (sorted among
-        themselves) are merged in where ``searchsorted`` puts them, in one pass over E.
-        """
-        stay = np.flatnonzero(~self.flipped)                           # (E - j,) ascending keys already
-        moved = np.flatnonzero(self.flipped)                           # (j,)
-        moved = moved[self.key_order(moved)]
-        moved_at = np.searchsorted(self.keys[stay], self.keys[moved]) + np.arange(len(moved))   # final places
-        order = np.empty(len(self.keys), dtype=np.int64)               # (E,) the slot at each final place
-        is_moved = np.zeros(len(self.keys), dtype=bool)
-        is_moved[moved_at] = True
-        order[moved_at] = moved
-        order[~is_moved] = stay
-        place = np.empty_like(order)                                   # (E,) the final place of each slot
-        place[order] = np.arange(len(order))
-        keys, first, second = self.keys[order], self.first[order], self.second[order]
-        count = np.where(second >= 0, 2, 1)
-        corner_edge = place[self.corner_edge].reshape(-1, 3)
-        return EdgeTable(key_ends(keys, self.n), corner_edge, count, first, second, keys)
+        """The :class:`~halfedge_edu.core.corner_table.EdgeTable` of the faces these uses are
+        of, edges in key order as a fresh one lists them: smoothing and projection after
+        the flips ask for it (:meth:`CornerTable.in_key_order`, no sort of all edges)."""
+        return self.corners.in_key_order().edge_columns()
 
     def flip(self, a, b, c, d, h1, h2) -> None:
-        """Record flips of edges ``a-b`` (directed edge ``h1`` in face ``[a, b, c]``, ``h2``
-        in ``[b, a, d]``) into ``c-d``, the faces becoming ``[c, a, d]`` and ``[d, b, c]``
-        (see :func:`_flip_pass`; the flips share no vertex, so no slot is touched twice).
-
-        The four edges around each flipped one keep their slot and key but are used by
-        other directed edges: the ones of the new faces at the same place.
-        """
-        f1, f2 = 3 * (h1 // 3), 3 * (h2 // 3)                          # each face's first directed edge
-        after = lambda h: h + np.where(h % 3 == 2, -2, 1)              # noqa: E731  next in the face
-        before = lambda h: h + np.where(h % 3 == 0, 2, -1)             # noqa: E731  previous in the face
-        slot = self.corner_edge[h1]                                    # (k,) the flipped edges
-        # The edges c-a, a-d, d-b and b-c: their directed edge before the flip, and after.
-        around = [(before(h1), f1), (after(h2), f1 + 1), (before(h2), f2), (after(h1), f2 + 1)]
-        slots = [self.corner_edge[old] for old, _ in around]           # read all before writing any
-        for (old, new), at in zip(around, slots):
-            was_first = self.first[at] == old
-            self.first[at[was_first]] = new[was_first]
-            self.second[at[~was_first]] = new[~was_first]
-            self.corner_edge[new] = at
-        self.keys[slot] = np.minimum(c, d) * self.n + np.maximum(c, d)
-        self.first[slot], self.second[slot] = f1 + 2, f2 + 2           # d -> c in [c, a, d], c -> d in [d, b, c]
-        self.corner_edge[f1 + 2] = slot
-        self.corner_edge[f2 + 2] = slot
-        self.flipped[slot] = True
+        """Record flips of edges ``a-b`` (halfedge ``h1`` in face ``[a, b, c]``, ``h2`` in
+        ``[b, a, d]``) into ``c-d``, the faces becoming ``[c, a, d]`` and ``[d, b, c]``
+        (see :func:`_flip_pass`; the flips share no vertex, so no slot is touched twice)."""
+        self.corners.record_flips(h1, h2, c, d)
         self.degree[a] -= 1                                            # the flips share no vertex: no repeats
         self.degree[b] -= 1
         self.degree[c] += 1
