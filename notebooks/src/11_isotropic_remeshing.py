@@ -189,6 +189,27 @@ print("degrees after flipping it:           ", {k: flipped.vertex(v.index).degre
 # triangle over.
 
 # %% [markdown]
+# > **Sidebar: the fast version uses the same halfedges, with `next` by arithmetic.**
+# > `remesh` and `simplify` flip and collapse thousands of edges at once on a plain face
+# > array `F`, through a *corner table* (`halfedge_edu/core/corner_table.py`). Its
+# > halfedges are the ones of chapter 02, numbered `3f + k`: halfedge `3f + k` leaves
+# > corner `k` of face `f`. The three halfedges of a face sit side by side, so `next`
+# > needs no array: `next(h) = 3 * (h // 3) + (h + 1) % 3`. The mesh does it the other
+# > way round: it stores `next` and gets `twin` by arithmetic (`h ^ 1`). The corner
+# > table finds every `twin` with one sort of all halfedges by their edge. Same
+# > halfedges, same twins:
+
+# %%
+from halfedge_edu.core.corner_table import CornerTable, next_halfedge
+
+V, F = hx.sample("spot").to_arrays()          # V: (2930, 3) positions, F: (5856, 3) corners
+table = CornerTable(F, len(V))                # one sort of all 3F halfedges by their edge
+h = 1                                         # face 0, corner 1: runs F[0, 1] -> F[0, 2]
+print("corner table: next", next_halfedge(h), "| twin", table.twin[h], "in face", table.twin[h] // 3)
+g = hx.HalfedgeMesh.from_faces(V, F).face(0).halfedge.next   # the same halfedge on the mesh
+print("HalfedgeMesh: twin in face", g.twin.face.index)
+
+# %% [markdown]
 # ## 5. Smooth, but only in the tangent plane
 #
 # **Convention: for every vertex `p`, compute the centroid `c` of its neighbours, all
