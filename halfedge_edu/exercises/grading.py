@@ -54,7 +54,7 @@ import subprocess
 import sys
 import time
 import xml.etree.ElementTree as ElementTree
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from .sandbox import Limits, Sandbox
@@ -111,7 +111,8 @@ _REMESH = tuple(f"halfedge_edu.algorithms.remesh{module}" for module in
 #: The checks' own reference code: forbidden to every exercise (``_de_casteljau``, the
 #: debugging lab's right versions, ``smooth_once_in_place`` ...).
 ANSWER_KEYS: tuple[str, ...] = tuple(f"halfedge_edu.exercises.{module}" for module in (
-    "algorithm_checks", "chapter_checks", "checks", "classic_bugs", "io_checks", "ops_checks", "remesh_checks"))
+    "bezier_checks", "chapter_checks", "checks", "classic_bugs", "io_checks", "loop_checks", "ops_checks",
+    "quadric_checks", "remesh_checks"))
 
 #: Every graded exercise (the first ones in chapter order, later additions after them).
 #: The function names are the ones each chapter's exercise cell asks the learner to fill in.
@@ -631,8 +632,3 @@ def summary_line(grade: Grade) -> str:
     tail = f"  ({'; '.join(lost)})" if lost else ""
     return printable(f"{Path(grade.submission).name}  chapter {grade.chapter or '?'}  "
                      f"{grade.score:g}/{grade.max_score:g}{tail}")
-
-
-def as_dict(grade: Grade) -> dict:
-    """The grade as plain data (for tests and custom reports)."""
-    return asdict(grade)

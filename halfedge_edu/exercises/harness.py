@@ -4,9 +4,11 @@
     status, answer = run(learner_function, mesh, 3)   # "ok", "error" or "timeout"
     return failed("flip", checked, "cube", "edge 3 ...", ("halfedge", 6), mesh)
 
-A check module (``checks.py``, ``ops_checks.py``, ``algorithm_checks.py``,
-``remesh_checks.py``) runs the learner's function with :func:`run`, compares its answer
-with the library, and returns :func:`passed` or :func:`failed`; the small helpers at the
+A check module (``checks.py``, ``ops_checks.py``, ``loop_checks.py``,
+``quadric_checks.py``, ``bezier_checks.py``, ``remesh_checks.py`` ...) runs the
+learner's function with :func:`run`, compares its answer with the library, and returns
+:func:`passed` or :func:`failed`; a function that still has blanks (``...``) is not run
+at all (:func:`blanks_left`, the usual opening of a check). The small helpers at the
 end put points and slips into words the same way in every check.
 
 Attention: a learner's function that loops forever is stopped after
@@ -32,7 +34,7 @@ import numpy as np
 from halfedge_edu.core.mesh import HalfedgeMesh
 
 __all__ = [
-    "CheckResult", "TIME_LIMIT", "all_good", "close", "counted", "failed", "hidden_name", "hidden_rng", "own_line",
+    "CheckResult", "TIME_LIMIT", "all_good", "as_point", "blanks_left", "close", "counted", "failed", "hidden_name", "hidden_rng", "own_line",
     "passed", "point_text", "run", "trouble", "unfinished",
 ]
 
@@ -163,6 +165,17 @@ def counted(result: CheckResult, total: int) -> CheckResult:
     """``result`` with ``total`` set: how many cases its check runs. Returns the same object."""
     result.total = total
     return result
+
+
+def blanks_left(exercise: str, total: int, function: Callable, name: str | None = None) -> CheckResult | None:
+    """How every check opens: the result "fill in the blanks" if the learner's ``function``
+    still holds a ``...`` (failed before any case, out of ``total``), else None.
+
+    ``name``: what the message calls the function (by default ``exercise``). Compare the
+    answer with None, not by truth: a failed :class:`CheckResult` is falsy.
+    """
+    words = unfinished(function, exercise if name is None else name)
+    return None if words is None else counted(failed(exercise, [], None, words), total)
 
 
 # --------------------------------------------------------------------------------------
@@ -330,6 +343,15 @@ def unfinished(function: Callable, name: str) -> str | None:
 def point_text(point) -> str:
     """A point or vector as ``(x, y, z)`` with four significant digits."""
     return "(" + ", ".join(f"{float(c):.4g}" for c in np.asarray(point, dtype=np.float64).ravel()) + ")"
+
+
+def as_point(value, size: int = 3) -> np.ndarray | None:
+    """A learner's answer as a point, ``(size,)`` float64, or None if it is not ``size`` numbers."""
+    try:
+        array = np.asarray(value, dtype=np.float64).reshape(-1)
+    except (TypeError, ValueError):
+        return None
+    return array if array.shape == (size,) else None
 
 
 def close(a, b) -> bool:

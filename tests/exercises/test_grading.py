@@ -18,7 +18,7 @@ import nbformat
 import pytest
 
 from halfedge_edu.exercises.grading import (
-    EXERCISES, GradingError, chapter_of, check_function, exercises_for, grade_notebook,
+    ANSWER_KEYS, EXERCISES, GradingError, chapter_of, check_function, exercises_for, grade_notebook,
 )
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -149,6 +149,27 @@ def test_a_chapter_without_exercises_is_refused_by_name():
 def test_every_exercise_names_a_check_the_package_has():
     for exercise in EXERCISES:
         assert check_function(exercise).__name__ == exercise.check, exercise
+
+
+def test_every_module_that_defines_a_check_is_forbidden_to_every_exercise():
+    # A check's reference code (patch_point, warren_beta, a right version of the lab's
+    # bugs ...) is an answer: each module that defines a check_* is in ANSWER_KEYS, so
+    # that splitting a check module cannot leave its new part callable by a learner.
+    import importlib
+    import pkgutil
+
+    import halfedge_edu.exercises as package
+    from halfedge_edu.exercises.harness import CheckResult
+
+    defining = set()
+    for info in pkgutil.iter_modules(package.__path__):
+        module = importlib.import_module(f"{package.__name__}.{info.name}")
+        if any(name.startswith("check_") and getattr(value, "__module__", None) == module.__name__
+               and inspect.signature(value).return_annotation in ("CheckResult", CheckResult)
+               for name, value in vars(module).items()):
+            defining.add(module.__name__)
+    assert {check_function(exercise).__module__ for exercise in EXERCISES} <= defining
+    assert defining <= set(ANSWER_KEYS), sorted(defining - set(ANSWER_KEYS))
 
 
 # --------------------------------------------------------------------------------------

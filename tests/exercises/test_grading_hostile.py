@@ -109,7 +109,7 @@ COPIES = {
         "from halfedge_edu.core.ops import link_condition\n"
         "def collapse_is_safe(mesh, e):\n    return bool(link_condition(mesh, e))"]),
     "de_casteljau": ("12_de_casteljau.ipynb",
-                     ["from halfedge_edu.exercises.algorithm_checks import _de_casteljau as my_de_casteljau"]),
+                     ["from halfedge_edu.exercises.bezier_checks import _de_casteljau as my_de_casteljau"]),
     "lab_right": ("08b_lab_right.ipynb", [
         "from halfedge_edu.exercises import classic_bugs\n"
         "fixed_flip = classic_bugs.flip_right\nfixed_collapse = classic_bugs.collapse_right\n"
