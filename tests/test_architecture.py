@@ -6,13 +6,21 @@ methods, relative (``from ..core import x``) and absolute (``import halfedge_edu
 Each import is an arrow from the importing module's layer to the imported module's
 layer; an arrow that is not in :data:`ALLOWED` runs up and fails the test, with the
 file, the line and the arrow in the message.
+
+And what importing costs: the package's public names load their modules on first use,
+so ``import halfedge_edu`` loads none of them.
 """
 
 from __future__ import annotations
 
 import ast
+import importlib
+import subprocess
+import sys
 from pathlib import Path
 from typing import NamedTuple
+
+import pytest
 
 import halfedge_edu
 
@@ -137,3 +145,59 @@ def test_the_reader_sees_lazy_and_relative_imports():
     assert "halfedge_edu.core.validate" in targets  # ``from .validate import validate`` inside a method
     assert layer_of("halfedge_edu.viz.scene") == "viz"
     assert layer_of("halfedge_edu") == "package"
+
+
+# ------------------------------------------------------------ what ``import halfedge_edu`` loads
+
+def loaded_after(code: str) -> set[str]:
+    """The modules of numpy and of the package that a fresh interpreter has loaded after ``code``."""
+    script = f"import sys\n{code}\nprint(' '.join(sorted(sys.modules)))"
+    result = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                            cwd=PACKAGE_DIR.parent, timeout=120)
+    assert result.returncode == 0, result.stderr
+    return {name for name in result.stdout.split() if name.split(".")[0] in ("numpy", "halfedge_edu")}
+
+
+def test_importing_the_package_loads_none_of_its_modules():
+    assert loaded_after("import halfedge_edu") == {"halfedge_edu"}
+
+
+def test_a_public_name_loads_its_module_on_first_use():
+    loaded = loaded_after("from halfedge_edu import sample")
+    assert {"numpy", "halfedge_edu.data", "halfedge_edu.core"} <= loaded
+    assert "halfedge_edu.algorithms" not in loaded
+
+
+@pytest.mark.parametrize("name", halfedge_edu.__all__)
+def test_every_public_name_is_the_object_of_its_module(name):
+    home = importlib.import_module(halfedge_edu._HOMES[name], "halfedge_edu")
+    assert getattr(halfedge_edu, name) is getattr(home, name)
+
+
+def test_the_subpackages_the_package_used_to_load_are_still_attributes():
+    for name in halfedge_edu._SUBPACKAGES:
+        assert getattr(halfedge_edu, name) is importlib.import_module(f"halfedge_edu.{name}")
+
+
+def test_the_public_names_the_lazy_table_and_the_type_checkers_imports_agree():
+    """Three lists name the public names: ``__all__``, ``_HOMES`` (where each is loaded from)
+    and the ``if TYPE_CHECKING:`` imports editors read. They must say the same."""
+    init = PACKAGE_DIR / "__init__.py"
+    for_type_checkers = {
+        alias.name: "." * node.level + (node.module or "")
+        for node in ast.walk(ast.parse(init.read_text(encoding="utf-8")))
+        if isinstance(node, ast.ImportFrom) and node.level
+        for alias in node.names
+    }
+    assert sorted(halfedge_edu.__all__) == sorted(halfedge_edu._HOMES)
+    assert for_type_checkers == halfedge_edu._HOMES
+
+
+def test_dir_lists_every_public_name_without_loading_it():
+    code = "import halfedge_edu as hx\nassert set(hx.__all__) <= set(dir(hx)), sorted(set(hx.__all__) - set(dir(hx)))"
+    assert loaded_after(code) == {"halfedge_edu"}
+
+
+def test_an_unknown_name_is_an_attribute_error():
+    with pytest.raises(AttributeError, match="'halfedge_edu' has no attribute 'HalfEdgeMesh'"):
+        halfedge_edu.HalfEdgeMesh
