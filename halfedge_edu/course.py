@@ -50,13 +50,13 @@ What happens to each chapter, in DEST (one outcome per chapter, :class:`CourseCo
 Every chapter is written to a temporary file in DEST, flushed to disk (fsync) and then
 renamed over its name, so a chapter in DEST is either whole or absent, never half written.
 
-This module imports only the standard library, so ``halfedge-edu --help`` stays instant
-and ``setup.py`` can load it during a build.
+This module imports only the standard library and nothing of the package, so that
+``setup.py`` can load it by path during a build (tests/test_architecture.py holds it to
+that). The ``course`` subcommand that prints what it did is ``halfedge_edu/cli/course.py``.
 """
 
 from __future__ import annotations
 
-import argparse
 import hashlib
 import importlib.metadata
 import json
@@ -333,57 +333,3 @@ def _place_chapter(notebook_path: Path, target: Path, version: str, update: bool
         return "beside", newer.name
     write_atomically(newer, _notebook_text(chapter))
     return "beside", newer.name
-
-
-def add_course_parser(commands: argparse._SubParsersAction) -> argparse.ArgumentParser:
-    """Register ``course DEST [--update]`` on the command line's subcommands (called by ``cli.build_parser``)."""
-    course = commands.add_parser(
-        "course",
-        help="copy the chapters (student edition, without outputs) into a folder, to open in JupyterLab",
-        description=(
-            "Copy the course's chapters, student edition (exercises without their answers), "
-            "without their stored outputs and stamped with this version of halfedge_edu, into DEST "
-            "(created if missing). A chapter already in DEST is never overwritten; one that is "
-            "not a valid notebook (a copy cut short) is moved aside to NAME.broken and copied again. "
-            "Then: jupyter lab DEST. Needs the notebooks extra: halfedge_edu[notebooks]."
-        ),
-    )
-    course.add_argument("destination", type=Path, metavar="DEST", help="the folder to copy the chapters into")
-    course.add_argument(
-        "--update", action="store_true",
-        help=("bring the chapters of this version into a course copied by an older one: a chapter "
-              "nobody edited is replaced, an edited one is kept and the newer one written beside it"),
-    )
-    course.set_defaults(run=run_course)
-    return course
-
-
-def run_course(args: argparse.Namespace) -> int:
-    """The ``course`` subcommand: copy, then print one line per outcome. Exit status 0, or
-    2 (one line per chapter on stderr) if a chapter could not be copied."""
-    import sys
-
-    from halfedge_edu.cli import EXIT_ERROR, EXIT_OK, InputProblem
-
-    try:
-        result = copy_course(args.destination, update=args.update)
-    except OSError as problem:
-        raise InputProblem(str(problem)) from problem
-    where = result.destination
-    print(f"course: copied {len(result.copied)} chapters (halfedge_edu {result.version}) to {where}")
-    if result.updated:
-        print(f"course: updated {len(result.updated)} unedited chapters to {result.version}: "
-              f"{', '.join(result.updated)}")
-    for name, newer in result.beside:
-        print(f"course: {name} has your edits and was kept; the {result.version} version is beside it: {newer}")
-    for name, broken in result.repaired:
-        print(f"course: {name} was not a valid notebook; copied it again (the broken file is now {broken})")
-    if result.kept:
-        print(f"course: kept {len(result.kept)} already there: {', '.join(result.kept)}")
-    if result.outdated:
-        print(f"course: kept {len(result.outdated)} from another version of halfedge_edu: "
-              f"{', '.join(result.outdated)}; 'halfedge-edu course {where} --update' brings {result.version}")
-    for name, reason in result.skipped:
-        print(f"halfedge-edu: error: {where / name}: not copied: {reason}", file=sys.stderr)
-    print(f"next: jupyter lab {where}")
-    return EXIT_ERROR if result.skipped else EXIT_OK

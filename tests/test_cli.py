@@ -1,4 +1,4 @@
-"""The command line: `halfedge-edu info|check|subdivide|simplify|smooth|remesh|convert` (halfedge_edu/cli.py).
+"""The command line: `halfedge-edu info|check|subdivide|simplify|smooth|remesh|convert` (halfedge_edu/cli/).
 
 Most tests call ``main([...])`` in-process; a few run the real ``python -m
 halfedge_edu`` to check what a user sees. Bad input always means: exit status 2, one
@@ -347,6 +347,65 @@ def test_python_m_subdivide_in_the_loop_assignments_form(tmp_path):
     faces_in = len(hx.read_obj(source).faces)
     assert len(hx.read_obj(tmp_path / "out.obj").faces) == 16 * faces_in
     assert result.stdout == f"subdivide: {faces_in} -> {16 * faces_in} faces, wrote out.obj\n"
+
+
+# ---------------------------------------------------------------- what the command line loads
+
+#: What a subcommand's own module imports and nothing before it may: numpy, the mesh, the
+#: files and the algorithms.
+LIBRARY = ("numpy", "halfedge_edu.core", "halfedge_edu.io", "halfedge_edu.algorithms")
+SUBCOMMAND_MODULES = ("inspect", "transform", "course", "grade", "files")
+
+
+def loaded_by(*argv, cwd=ROOT) -> tuple[subprocess.CompletedProcess, set[str]]:
+    """Run ``python -m halfedge_edu ARGV`` in a fresh interpreter; return the run and every
+    module loaded when it exits (written as the last line of stderr, after the command's own)."""
+    code = ("import atexit, runpy, sys\n"
+            "atexit.register(lambda: print(' '.join(sorted(sys.modules)), file=sys.stderr))\n"
+            "sys.argv = ['halfedge-edu', *sys.argv[1:]]\n"
+            "runpy.run_module('halfedge_edu', run_name='__main__', alter_sys=True)\n")
+    result = subprocess.run([sys.executable, "-c", code, *map(str, argv)],
+                            capture_output=True, text=True, cwd=cwd, timeout=120)
+    *said, modules = result.stderr.splitlines() or [""]
+    return subprocess.CompletedProcess(result.args, result.returncode, result.stdout, "\n".join(said)), set(modules.split())
+
+
+def library_in(modules: set[str]) -> list[str]:
+    return sorted(name for name in modules if name.startswith(LIBRARY))
+
+
+def test_importing_the_command_line_loads_neither_numpy_nor_the_algorithms():
+    code = ("import sys, halfedge_edu.cli\n"
+            "print(' '.join(sorted(m for m in sys.modules if m.startswith(('numpy', 'halfedge_edu')))))")
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, timeout=120)
+    assert result.returncode == 0, result.stderr
+    loaded = set(result.stdout.split())
+    assert "numpy" not in loaded and "halfedge_edu.algorithms" not in loaded
+    assert library_in(loaded) == []
+    assert not loaded & {f"halfedge_edu.cli.{name}" for name in SUBCOMMAND_MODULES}
+
+
+@pytest.mark.parametrize(("argv", "status"), [
+    (["--help"], 0),
+    (["--version"], 0),
+    (["subdivide", "--help"], 0),
+    (["grade", "--help"], 0),
+    (["bogus"], 2),
+    (["simplify", "in.obj", "out.obj"], 2),  # --faces or --ratio missing: a usage error
+])
+def test_help_and_usage_errors_load_neither_numpy_nor_the_library(argv, status):
+    result, modules = loaded_by(*argv)
+    assert result.returncode == status, result.stderr
+    assert "halfedge_edu.cli.parser" in modules
+    assert library_in(modules) == []
+    assert not modules & {f"halfedge_edu.cli.{name}" for name in SUBCOMMAND_MODULES}
+
+
+def test_a_subcommand_loads_its_own_module_and_no_other(tetra):
+    result, modules = loaded_by("info", tetra)
+    assert result.returncode == 0, result.stderr
+    assert {"numpy", "halfedge_edu.cli.inspect", "halfedge_edu.cli.files"} <= modules
+    assert not modules & {"halfedge_edu.cli.transform", "halfedge_edu.cli.grade", "halfedge_edu.cli.course"}
 
 
 # ---------------------------------------------------------------- commands that write a file

@@ -65,6 +65,37 @@ def test_course_command_copies_every_chapter_without_outputs(tmp_path, capsys):
     assert f"jupyter lab {destination}" in out
 
 
+def test_the_course_command_loads_neither_numpy_nor_the_library(tmp_path):
+    """Copying notebooks is the standard library's work: ``course`` imports nothing more."""
+    code = ("import sys\nfrom halfedge_edu.cli import main\nstatus = main(sys.argv[1:])\n"
+            "print(' '.join(sorted(m for m in sys.modules if m.startswith(('numpy', 'halfedge_edu')))))\n"
+            "sys.exit(status)")
+    result = subprocess.run([sys.executable, "-c", code, "course", str(tmp_path / "c")],
+                            capture_output=True, text=True, cwd=ROOT, timeout=120)
+    assert result.returncode == cli.EXIT_OK, result.stderr
+    loaded = set(result.stdout.splitlines()[-1].split())
+    assert {"halfedge_edu.cli.course", "halfedge_edu.course"} <= loaded
+    assert not {"numpy", "halfedge_edu.core", "halfedge_edu.io", "halfedge_edu.algorithms"} & loaded
+    assert sorted(p.name for p in (tmp_path / "c").iterdir()) == CHAPTERS
+
+
+def test_setup_py_strips_the_chapters_without_the_package(tmp_path):
+    """setup.py's build step (``_course_module().write_chapters``), in an interpreter where
+    ``halfedge_edu`` cannot be imported: course.py must need the standard library only."""
+    code = (
+        "import importlib.util, sys\nfrom pathlib import Path\n"
+        "sys.modules['halfedge_edu'] = None\n"
+        f"spec = importlib.util.spec_from_file_location('halfedge_edu_setup', {str(ROOT / 'setup.py')!r})\n"
+        "setup_py = importlib.util.module_from_spec(spec)\nspec.loader.exec_module(setup_py)\n"
+        f"print(len(setup_py._course_module().write_chapters(Path({str(STUDENT)!r}), Path({str(tmp_path)!r}))))"
+    )
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, timeout=120)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == str(len(CHAPTERS))
+    for path in tmp_path.glob(course.CHAPTER_GLOB):
+        assert_is_a_clean_chapter(path)
+
+
 def students_work(path: Path) -> bytes:
     """Write a valid notebook at ``path``, as JupyterLab saves a student's edited chapter; return its bytes."""
     notebook = json.loads((STUDENT / path.name).read_text(encoding="utf-8")) if (STUDENT / path.name).exists() \
