@@ -2,23 +2,27 @@
 
     python benchmarks/bench_build.py            # ~10k, ~100k, ~1.3M faces
     python benchmarks/bench_build.py --quick    # the two smaller sizes only
+    python benchmarks/bench_build.py --rounds 9 # rounds of turns (default 5)
 
-Every row builds the same faces three ways and prints the median of 5 runs (one run
-for trimesh at 1.3M faces, which takes tens of seconds there), our build and openmesh's
-taking turns within each run, so that both see the same load:
+Every size builds the same faces three ways, in two orders:
 * halfedge_edu: ``HalfedgeMesh.from_faces`` (checks included: manifold, orientation,
   fans);
 * openmesh: ``openmesh.TriMesh(points, faces)`` (its C++ add_face loop);
 * trimesh: what it takes to answer the same adjacency questions
   (``edges_unique`` + ``face_adjacency`` + ``vertex_neighbors``) on a fresh Trimesh.
-Ratios are halfedge_edu's time over the peer's: below 1.0 means we are faster. The
-machine is shared and noisy, so read the ratios, not the seconds.
-
 "as generated" is trimesh's icosphere in the order it makes it; "random order" shuffles
 the faces and renumbers the vertices at random, which is what a mesh from a scanner or an
-exporter looks like to the cache. "validate/build" is ``mesh.validate()`` over our build
-(medians of 5, validate taking its turn in the same rounds as the two builds), in wall
-time and in CPU time (``time.process_time``: the time this process ran, which other
+exporter looks like to the cache. Our build, openmesh's and ``validate()`` over our build
+take turns, both orders in the same rounds (``--rounds`` of them, medians), so that a
+busy spell of the shared machine lands on every contender and both orders alike;
+trimesh is timed after them (one run at 1.3M faces, which takes tens of seconds there).
+Ratios are halfedge_edu's time over the peer's: below 1.0 means we are faster. Read
+the ratios, not the seconds, and the load printed before and after: openmesh's
+add_face loop gains most from the as-generated order's locality, so a busy machine
+(other jobs evicting the cache) flatters our ratio there.
+
+"validate/build" is ``mesh.validate()`` over our build (medians of the same rounds), in
+wall time and in CPU time (``time.process_time``: the time this process ran, which other
 processes on a busy machine change less than the wall time), "validate/around"
 ``validate()`` over ``validate_around`` after one flip.
 """
@@ -34,6 +38,7 @@ import tracemalloc
 import numpy as np
 
 import halfedge_edu as hx
+from _common import fit_for_the_docs, load_average, machine_report
 from halfedge_edu.core.validate import validate_around
 
 
@@ -132,8 +137,11 @@ def import_time_and_pyvista() -> tuple[float, bool]:
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="skip the 1.3M-face mesh")
+    parser.add_argument("--rounds", type=int, default=5, help="rounds of turns (medians over them)")
     args = parser.parse_args(argv)
 
+    print(machine_report(), flush=True)
+    load_before = load_average()[0]
     levels = [5, 6] if args.quick else [5, 6, 8]       # 20,480 / 81,920 / 1,310,720 faces
     header = (
         f"{'mesh':<34}{'faces':>10}{'ours s':>9}{'openmesh s':>12}{'trimesh s':>11}"
@@ -144,26 +152,32 @@ def main(argv: list[str] | None = None) -> None:
     print("-" * len(header))
     for level in levels:
         ordered = icosphere(level)
-        for name, (vertices, faces) in (
-            (f"icosphere({level}), as generated", ordered),
-            (f"icosphere({level}), random order", shuffled(*ordered)),
-        ):
+        inputs = {f"icosphere({level}), as generated": ordered,
+                  f"icosphere({level}), random order": shuffled(*ordered)}
+        meshes = {name: build_ours(vertices, faces) for name, (vertices, faces) in inputs.items()}
+        turns = {}                                     # (order, contender) -> its call, all in each round
+        for name, (vertices, faces) in inputs.items():
+            turns[name, "ours"] = lambda v=vertices, f=faces: build_ours(v, f)
+            turns[name, "openmesh"] = lambda v=vertices, f=faces: build_openmesh(v, f)
+            turns[name, "validate"] = meshes[name].validate
+        wall, cpu = interleaved_wall_and_cpu_medians(
+            args.rounds, **{f"{name}|{who}": call for (name, who), call in turns.items()})
+        for name, (vertices, faces) in inputs.items():
+            ours, peer_openmesh = wall[f"{name}|ours"], wall[f"{name}|openmesh"]
+            validate = wall[f"{name}|validate"]
             big = len(faces) > 500_000
-            mesh = build_ours(vertices, faces)
-            rounds, cpu = interleaved_wall_and_cpu_medians(5, ours=lambda: build_ours(vertices, faces),
-                                                           openmesh=lambda: build_openmesh(vertices, faces),
-                                                           validate=mesh.validate)
-            ours, peer_openmesh, validate = rounds["ours"], rounds["openmesh"], rounds["validate"]
             peer_trimesh = median_time(lambda: build_trimesh_adjacency(vertices, faces), 1 if big else 5)
+            mesh = meshes[name]
             flipped = mesh.flip(len(faces) // 3)
             around = median_time(lambda: validate_around(mesh, edges=[flipped]), 50)
             print(
                 f"{name:<34}{len(faces):>10,}{ours:>9.3f}{peer_openmesh:>12.3f}{peer_trimesh:>11.3f}"
                 f"{ours / peer_openmesh:>12.2f}x{ours / peer_trimesh:>11.3f}x{validate / ours:>15.0%}"
-                f"{cpu['validate'] / cpu['ours']:>7.0%}"
+                f"{cpu[f'{name}|validate'] / cpu[f'{name}|ours']:>7.0%}"
                 f"{validate / around:>16.0f}x",
                 flush=True,
             )
+        del meshes
 
     vertices, faces = icosphere(levels[-1])
     print()
@@ -172,6 +186,9 @@ def main(argv: list[str] | None = None) -> None:
     print(f"import halfedge_edu: {seconds:.3f} s, pyvista imported: {pyvista}")
     print("goals: vs openmesh <= 1.0x, vs trimesh <= 0.1x, peak < 300 MiB, validate < 25% of build, "
           "validate / validate_around after one flip >= 100x at 1.3M faces, import < 0.3 s")
+    print()
+    print(machine_report())
+    print(fit_for_the_docs(load_before, load_average()[0])[1])
 
 
 if __name__ == "__main__":

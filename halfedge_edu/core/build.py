@@ -253,7 +253,7 @@ def drop_unreferenced(positions: np.ndarray, faces: np.ndarray, *, warn: bool = 
     vertices it drops (``hx.load(path, drop_unreferenced=True)`` asks for this).
     """
     used = np.zeros(len(positions), dtype=bool)
-    used[faces.ravel()] = True
+    used[faces.ravel().astype(np.intp)] = True                # (intp: numpy's own conversion is slower)
     if used.all():
         return positions, faces, np.arange(len(positions))
     if warn:
@@ -477,20 +477,31 @@ def build_arrays(
     halfedge[second_p] = halfedge[first_p] + 1
     del first_p, second_p
 
-    # Pass 3, the faces: each directed edge writes its halfedge's origin, face and next.
-    # Halfedges no face wrote keep face -1: they are the boundary.
-    # (numpy indexes with intp: converting the halfedges once saves a conversion per write.)
-    by_corner = halfedge.reshape(n_faces, 3)                  # (m, 3) halfedges of each face
-    write_at = halfedge.astype(np.intp).reshape(n_faces, 3)   # (m, 3) the same, as indices
+    # Pass 3, the faces: each directed edge writes its halfedge's origin, face, next and
+    # prev. Halfedges no face wrote keep face -1: they are the boundary.
+    # (numpy indexes with intp: converting the halfedges once saves a conversion per write.
+    # Every write below is one flat index array and one contiguous value array, numpy's
+    # fast path: a column-permuted copy such as ``by_corner[:, [1, 2, 0]]`` comes out in
+    # Fortran order, and scattering from it took twice as long at 1.3M faces.)
+    write_at = halfedge.astype(np.intp)                       # (3m,) the halfedges, as indices
     halfedge_vertex = np.empty(n_halfedges, dtype=INDEX)
-    halfedge_vertex[write_at] = corners
+    halfedge_vertex[write_at] = tail                          # a directed edge leaves its tail
     del corners, tail, head
     halfedge_face = np.full(n_halfedges, -1, dtype=INDEX)
-    halfedge_face[write_at] = np.arange(n_faces, dtype=INDEX)[:, None]
+    halfedge_face[write_at] = np.repeat(np.arange(n_faces, dtype=INDEX), 3)   # (3m,) face of each
+    # Around a face, the next of corner k is corner k + 1, and that of corner 2 is corner 0:
+    # shift the halfedges by one, then put each face's first one after its last.
+    neighbour = np.empty(n_corners, dtype=INDEX)              # (3m,) next, then prev, per corner
+    neighbour[:-1] = halfedge[1:]
+    neighbour[2::3] = halfedge[0::3]
     halfedge_next = np.empty(n_halfedges, dtype=INDEX)
-    halfedge_next[write_at] = by_corner[:, [1, 2, 0]]
-    face_halfedge = by_corner[:, 0].copy()
-    del halfedge, by_corner, write_at
+    halfedge_next[write_at] = neighbour
+    neighbour[1:] = halfedge[:-1]                             # the prev of corner k is corner k - 1,
+    neighbour[0::3] = halfedge[2::3]                          # and that of corner 0 is corner 2
+    halfedge_prev = np.empty(n_halfedges, dtype=INDEX)
+    halfedge_prev[write_at] = neighbour
+    face_halfedge = halfedge[0::3].copy()                     # (m,) the halfedge of corner 0
+    del halfedge, neighbour, write_at
 
     # Pass 4, the boundary. An edge sighted once has no face on its halfedge 2e + 1,
     # which runs the other way: it starts where its interior twin ends.
@@ -519,13 +530,13 @@ def build_arrays(
     # A boundary halfedge ends where its interior twin starts; the loop continues with
     # the boundary halfedge that leaves that vertex.
     halfedge_next[boundary] = outgoing_boundary[halfedge_vertex[interior_twin]]
+    # Each boundary vertex has as many boundary halfedges coming in as going out (one),
+    # so these loops are closed, and each boundary halfedge is the prev of its next.
+    halfedge_prev[halfedge_next[boundary]] = boundary
 
-    # Pass 5, prev and the vertices. next is now a permutation (one loop per face and per
-    # boundary), so prev is its inverse. A vertex's halfedge is its smallest outgoing
-    # index, overridden by its boundary halfedge.
+    # Pass 5, the vertices. A vertex's halfedge is its smallest outgoing index,
+    # overridden by its boundary halfedge.
     every_halfedge = np.arange(n_halfedges, dtype=INDEX)      # (2E,)
-    halfedge_prev = np.empty(n_halfedges, dtype=INDEX)
-    halfedge_prev[halfedge_next] = every_halfedge
     vertex_halfedge = np.full(n_vertices, np.iinfo(INDEX).max, dtype=INDEX)
     np.minimum.at(vertex_halfedge, halfedge_vertex, every_halfedge)
     vertex_halfedge[boundary_origin] = boundary
@@ -627,16 +638,22 @@ def ring_steps_total(start: np.ndarray, halfedge_prev: np.ndarray) -> int:
     Attention: as for ``ring_lengths``, only call it when the rotation is known to be a
     permutation that keeps each halfedge's origin; otherwise a walk might never come back.
     """
-    current = np.array(start, copy=True)                      # (k,) where each walk is
+    current = start.astype(np.intp)                           # (k,) where each walk is
     start = current.copy()
     going = np.ones(len(start), dtype=bool)
+    # Each step writes into these instead of new arrays, and take() with mode="clip" writes
+    # straight into ``out`` (mode="raise" would buffer it); every index is a halfedge here.
+    stepped = np.empty(len(start), dtype=halfedge_prev.dtype)  # (k,) prev(h) of each walk
+    differs = np.empty(len(start), dtype=bool)                 # (k,) not back at the start
     n_going = len(start)
     total = 0
     while n_going:
         total += n_going                                      # each walk still going meets one halfedge
-        current = halfedge_prev[current]
-        current ^= 1                                          # twin(prev(h)): the next one round the vertex
-        going &= current != start
+        k = len(current)
+        np.take(halfedge_prev, current, out=stepped[:k], mode="clip")
+        np.bitwise_xor(stepped[:k], 1, out=current)           # twin(prev(h)): the next one round the vertex
+        np.not_equal(current, start, out=differs[:k])
+        going &= differs[:k]
         n_going = int(np.count_nonzero(going))
         if n_going < 0.75 * len(going):
             current, start = current[going], start[going]
