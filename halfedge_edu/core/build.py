@@ -498,10 +498,11 @@ def build_arrays(
     halfedge_next[write_at] = neighbour
     neighbour[1:] = halfedge[:-1]                             # the prev of corner k is corner k - 1,
     neighbour[0::3] = halfedge[2::3]                          # and that of corner 0 is corner 2
+    face_halfedge = halfedge[0::3].copy()                     # (m,) the halfedge of corner 0
+    del halfedge
     halfedge_prev = np.empty(n_halfedges, dtype=INDEX)
     halfedge_prev[write_at] = neighbour
-    face_halfedge = halfedge[0::3].copy()                     # (m,) the halfedge of corner 0
-    del halfedge, neighbour, write_at
+    del neighbour, write_at
 
     # Pass 4, the boundary. An edge sighted once has no face on its halfedge 2e + 1,
     # which runs the other way: it starts where its interior twin ends.
