@@ -49,7 +49,7 @@ import numpy as np
 import halfedge_edu as hx
 from _common import hundred_k_inputs as inputs, median_of, surface_distance
 from halfedge_edu.algorithms.remesh import COLLAPSE_BELOW, SPLIT_ABOVE, quality_report, remesh
-from halfedge_edu.core.arrays import edge_table
+from halfedge_edu.core.corner_table import edge_table
 
 ITERATIONS = 5
 #: Creases sharper than this (degrees) are kept: PyMeshLab's ``featuredeg`` default.

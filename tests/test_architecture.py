@@ -312,3 +312,14 @@ def test_dir_lists_every_public_name_without_loading_it():
 def test_an_unknown_name_is_an_attribute_error():
     with pytest.raises(AttributeError, match="'halfedge_edu' has no attribute 'HalfEdgeMesh'"):
         halfedge_edu.HalfEdgeMesh
+
+
+#: The longest a module of the package may be (issue 28): past it, a file holds more
+#: than one concern, and a course can no longer cite it as one reading.
+MAX_MODULE_LINES = 800
+
+
+def test_no_module_is_longer_than_a_reading():
+    long = {str(path.relative_to(PACKAGE_DIR)): n for path in PACKAGE_DIR.rglob("*.py")
+            if (n := len(path.read_text(encoding="utf-8").splitlines())) > MAX_MODULE_LINES}
+    assert not long, f"modules over {MAX_MODULE_LINES} lines (split them by concern): {long}"

@@ -32,7 +32,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..core.arrays import EdgeTable, csr, edge_table, face_cross
+from ..core.arrays import csr, face_cross
+from ..core.corner_table import EdgeTable, edge_table
 from ..core.mesh import HalfedgeMesh
 from .arguments import check_mesh, real_number
 
@@ -171,7 +172,7 @@ def feature_arrays(vertices: np.ndarray, faces: np.ndarray, feature_angle: float
     Feature edges: every boundary edge, and every interior edge whose two face normals
     differ by more than ``feature_angle`` degrees. An edge beside a face of no area is
     not a crease (such a face has no normal to compare); it can still be a boundary edge.
-    ``table``: the :func:`~halfedge_edu.core.arrays.edge_table` of ``faces``, if the
+    ``table``: the :func:`~halfedge_edu.core.corner_table.edge_table` of ``faces``, if the
     caller has it already.
     """
     n = len(vertices)

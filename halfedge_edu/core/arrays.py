@@ -13,8 +13,8 @@ the same few ideas, kept here once:
   boundary edge, a run of two an interior edge, longer runs are non-manifold.
 * **Edge tables.** The distinct edges of a face array, with how many faces use each
   (:func:`unique_edges`). Which halfedges use each edge, their twins and the rings
-  around each vertex are the corner table (:mod:`.corner_table`); its per-edge view
-  ``EdgeTable`` and ``edge_table`` can still be imported from here.
+  around each vertex are the corner table (:mod:`.corner_table`), with its per-edge view
+  ``EdgeTable`` and ``edge_table``.
 * **CSR adjacency.** "The neighbours of vertex v" as one flat array plus offsets
   (compressed sparse rows): row v is ``values[offsets[v]:offsets[v + 1]]``
   (:func:`vertex_neighbours`, :func:`vertex_faces`), and :func:`expand` gathers many
@@ -37,16 +37,6 @@ __all__ = [
     "compact", "cross_rows", "csr", "expand", "face_cross", "face_halfedges", "grouping_order", "key_ends",
     "merge_vertices", "sort_undirected", "undirected_keys", "unique_edges", "vertex_faces", "vertex_neighbours",
 ]
-
-
-def __getattr__(name: str):
-    """``EdgeTable`` and ``edge_table``, which live in :mod:`.corner_table` (imported on first
-    use: that module builds on this one)."""
-    if name in ("EdgeTable", "edge_table"):
-        from . import corner_table
-
-        return getattr(corner_table, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 # ----------------------------------------------------------------------------------------

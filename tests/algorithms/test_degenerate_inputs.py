@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import halfedge_edu as hx
-from halfedge_edu import cli
+from halfedge_edu.cli import transform
 from halfedge_edu.algorithms import (
     arguments, bezier_curve, bezier_surface, corner_angles, de_casteljau, face_areas, grid_triangles,
     loop_positions, loop_subdivide_by_operations, remesh_history, remesh_step_by_step, simplify_with_report,
@@ -267,8 +267,8 @@ def test_the_offending_vertex_is_named_wherever_it_is(value):
 
 
 def test_the_command_line_and_the_library_share_one_coordinate_limit():
-    assert cli.MAX_COORDINATE == arguments.MAX_COORDINATE
-    assert cli.MIN_EXTENT == arguments.MIN_EXTENT
+    assert transform.MAX_COORDINATE == arguments.MAX_COORDINATE
+    assert transform.MIN_EXTENT == arguments.MIN_EXTENT
 
 
 # ---- hostile arguments ------------------------------------------------------------------------

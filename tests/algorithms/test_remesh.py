@@ -11,7 +11,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import halfedge_edu as hx
-from halfedge_edu.core.arrays import edge_table
+from halfedge_edu.core.corner_table import edge_table
 from tests import strategies as shapes
 
 remesh_module = importlib.import_module("halfedge_edu.algorithms.remesh")

@@ -14,7 +14,7 @@ import halfedge_edu as hx
 from halfedge_edu.algorithms.features import (DEFAULT_FEATURE_ANGLE, Features, detect_features, feature_arrays,
                                               number_lines)
 from halfedge_edu.cli import main
-from halfedge_edu.core.arrays import edge_table
+from halfedge_edu.core.corner_table import edge_table
 from tests import strategies as shapes
 from tests.algorithms.test_remesh import creased, distance_to_segments, mean_edge_length, smallest_relative_area
 

@@ -25,7 +25,7 @@ import pytest
 import halfedge_edu as hx
 from halfedge_edu.algorithms import collapse_rounds
 from halfedge_edu.algorithms.features import feature_arrays
-from halfedge_edu.core.arrays import edge_table
+from halfedge_edu.core.corner_table import edge_table
 from tests import strategies as shapes
 from tests.algorithms.test_remesh import mean_edge_length
 from tests.algorithms.test_remesh_features import folded_sheet

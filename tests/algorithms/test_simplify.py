@@ -395,7 +395,7 @@ def test_a_nearly_flat_mesh_keeps_its_shape():
 
 def _largest_fold(mesh: hx.HalfedgeMesh) -> float:
     """The largest angle, in degrees, between the normals of two faces that share an edge."""
-    from halfedge_edu.core.arrays import edge_table
+    from halfedge_edu.core.corner_table import edge_table
 
     vertices, faces = mesh.to_arrays()
     table = edge_table(faces, len(vertices))

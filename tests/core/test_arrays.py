@@ -6,9 +6,10 @@ import numpy as np
 from hypothesis import given
 
 from halfedge_edu.core.arrays import (
-    compact, csr, edge_table, expand, face_cross, face_halfedges, key_ends, merge_vertices, sort_undirected,
+    compact, csr, expand, face_cross, face_halfedges, key_ends, merge_vertices, sort_undirected,
     undirected_keys, unique_edges, vertex_faces, vertex_neighbours,
 )
+from halfedge_edu.core.corner_table import edge_table
 from tests import strategies as shapes
 
 

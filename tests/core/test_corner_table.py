@@ -13,8 +13,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import halfedge_edu as hx
-from halfedge_edu.core.arrays import edge_table as edge_table_from_arrays
-from halfedge_edu.core.corner_table import CornerTable, edge_table, next_halfedge, prev_halfedge
+from halfedge_edu.core.corner_table import CornerTable, next_halfedge, prev_halfedge
 from tests import strategies as shapes
 
 
@@ -184,7 +183,4 @@ def test_edge_table_is_a_view_of_the_corner_tables_arrays(drawn):
     columns = table.edge_columns()
     assert columns.first is table.first and columns.keys is table.keys
     assert np.shares_memory(columns.corner_edge, table.edge)
-    old = edge_table_from_arrays(faces, len(vertices))                # the name core.arrays still answers to
-    for field in old._fields:
-        assert np.array_equal(getattr(old, field), getattr(edge_table(faces, len(vertices)), field))
     assert np.array_equal(table.boundary_vertices(), columns.boundary_vertices(len(vertices)))

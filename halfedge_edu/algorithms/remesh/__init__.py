@@ -47,7 +47,8 @@ from typing import Iterator, NamedTuple
 
 import numpy as np
 
-from ...core.arrays import compact, edge_table
+from ...core.arrays import compact
+from ...core.corner_table import edge_table
 from ...core.mesh import HalfedgeMesh
 from .._progress import progress_range
 from ..arguments import check_remesh, real_number

@@ -18,7 +18,8 @@ import math
 
 import numpy as np
 
-from ...core.arrays import EdgeTable, cross_rows
+from ...core.arrays import cross_rows
+from ...core.corner_table import EdgeTable
 from ...core.corner_table import CornerTable
 from ..features import Features
 
@@ -53,7 +54,7 @@ def flip_to_regular_degrees(vertices: np.ndarray, faces: np.ndarray, rng: np.ran
 
     Returns:
         ``(faces, table)``: the flipped faces (m, 3), and their
-        :class:`~halfedge_edu.core.arrays.EdgeTable`, which the passes kept up to date
+        :class:`~halfedge_edu.core.corner_table.EdgeTable`, which the passes kept up to date
         (smoothing and projection use it).
     """
     max_crease_cos = math.cos(math.radians(MAX_FLIP_DIHEDRAL))

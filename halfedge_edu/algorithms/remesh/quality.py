@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...core.arrays import edge_table
+from ...core.corner_table import edge_table
 from ...core.errors import MeshInputError
 from ...core.mesh import HalfedgeMesh
 from ..arguments import check_mesh, whole_number

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...core.arrays import EdgeTable, edge_table
+from ...core.corner_table import EdgeTable, edge_table
 from ..features import Features
 from ..normals import area_weighted_vertex_normals
 
@@ -35,7 +35,7 @@ def tangential_smoothing(vertices: np.ndarray, faces: np.ndarray, features: Feat
         faces: (m, 3) int triangles.
         features: the feature lines to keep (None: only the boundary stays).
         fraction: how much of each step is taken, from 0 to 1 (1: all the way).
-        table: the :func:`~halfedge_edu.core.arrays.edge_table` of ``faces``, if the
+        table: the :func:`~halfedge_edu.core.corner_table.edge_table` of ``faces``, if the
             caller has it already.
 
     Returns:

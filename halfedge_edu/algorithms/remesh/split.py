@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...core.arrays import EdgeTable, edge_table
+from ...core.corner_table import EdgeTable, edge_table
 from ..features import Features
 from .lengths import SPLIT_ABOVE, edge_lengths
 
@@ -38,7 +38,7 @@ def split_long_edges(vertices: np.ndarray, faces: np.ndarray, target_length: flo
         faces: (m, 3) int triangles, oriented.
         target_length: ``L``.
         features: the feature edges to carry along (None: none are tracked).
-        table: the :func:`~halfedge_edu.core.arrays.edge_table` of ``faces``, if the caller
+        table: the :func:`~halfedge_edu.core.corner_table.edge_table` of ``faces``, if the caller
             has it (for the first pass).
 
     Returns:
@@ -62,7 +62,7 @@ def _split_pass(vertices: np.ndarray, faces: np.ndarray, max_length: float, feat
     for its number of split edges; rotating the face first puts the split edges in
     front, so one template per count covers all cases. Orientation is kept. A split
     feature edge leaves two feature halves (``features`` None: none are tracked).
-    ``table``: the :func:`~halfedge_edu.core.arrays.edge_table` of ``faces``, if the
+    ``table``: the :func:`~halfedge_edu.core.corner_table.edge_table` of ``faces``, if the
     caller has it already.
     """
     n = len(vertices)
