@@ -261,5 +261,10 @@ class CollapseAtlas:
             stepper.view.shown()
         bundle = self.widget._repr_mimebundle_(include=include, exclude=exclude)
         bundle["text/plain"] = self.describe()
-        bundle["image/png"] = base64.b64encode(self.screenshot()).decode("ascii")
+        # Client-side live views (HALFEDGE_EDU_LIVE_BACKEND=client) render in the browser
+        # only: their plotters have no picture for the fallback (asking raised, and a hub
+        # student saw a traceback under chapter 07's atlas).
+        if not any(getattr(stepper.scene.plotter, "suppress_rendering", False)
+                   for stepper in self.steppers + self.refused):
+            bundle["image/png"] = base64.b64encode(self.screenshot()).decode("ascii")
         return bundle

@@ -57,3 +57,17 @@ def test_a_move_that_cannot_move_says_why(atlas):
     atlas.buttons["phase"].click()
     assert "is the last one" in atlas._status.value and atlas.go(0) == 0
     assert "is the last one" not in atlas._status.value
+
+
+def test_a_client_side_atlas_displays_without_a_kernel_picture(atlas, monkeypatch):
+    """With HALFEDGE_EDU_LIVE_BACKEND=client every stepper's plotter has rendering
+    suppressed (vtk.js draws in the browser) and cannot give a screenshot: displaying
+    the atlas must not ask for one (it raised under chapter 07's atlas on a hub)."""
+    def no_picture(*_args, **_kwargs):
+        raise AttributeError("This plotter has not yet been set up and rendered with ``show()``.")
+
+    for stepper in atlas.steppers + atlas.refused:
+        monkeypatch.setattr(stepper.scene.plotter, "suppress_rendering", True, raising=False)
+        monkeypatch.setattr(stepper, "screenshot", no_picture)
+    bundle = atlas._repr_mimebundle_()
+    assert "image/png" not in bundle and bundle["text/plain"] == atlas.describe()
