@@ -39,6 +39,11 @@ CHAPTERS = EDITIONS[EDITION]
 
 # napoleon: the docstrings' Google-style "Args:", "Returns:", "Raises:" sections.
 extensions = ["myst_nb", "sphinx.ext.autodoc", "sphinx.ext.napoleon", "sphinx.ext.viewcode", "sphinxarg.ext"]
+# A source page links each object back to where it is documented. An object documented
+# under a package that imports it (``halfedge_edu.viz.Stepper``) and a module documented
+# on its own (``halfedge_edu.viz.steps``) would make one source page under two module
+# names, linking to anchors that exist under the other; only real modules get pages.
+viewcode_follow_imported_members = False
 source_suffix = {".md": "myst-nb", ".ipynb": "myst-nb"}
 # Only the chosen edition's chapter notebooks: not their Jupytext sources, checkpoints or
 # scratch files, and never the other edition.

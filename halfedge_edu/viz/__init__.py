@@ -83,7 +83,7 @@ from .renderer import choose_mode, show
 from .scene import HalfedgeScene, scene_picture
 from .smoothing_viewer import SmoothingViewer
 from .steppers import CollapseStepper, FlipStepper, SplitStepper, created_roles, gathered_roles, named_picture
-from .steps import Stepper
+from .steps import Painter, Stepper, Steps
 from .widgets import HalfedgeExplorer, OneRingViewer
 
 __all__ = [
@@ -92,4 +92,5 @@ __all__ = [
     "QEMStepper", "RemeshStepper", "DeCasteljauViewer", "BezierSurfaceEditor", "side_by_side", "grid",
     "plotter_png", "surface_png", "scene_picture", "MeshEditor", "on_main_thread", "Stepper", "SmoothingViewer",
     "LinkViewer", "LINK_VIEWS", "draw_link", "link_png", "named_picture", "gathered_roles", "created_roles",
+    "Steps", "Painter",
 ]
