@@ -1183,3 +1183,22 @@ def test_the_temporary_file_of_a_write_killed_with_sigkill_is_removed_by_a_later
     status, _, err = run(capsys, "convert", cube, tmp_path / "out.obj")
     assert status == 0, err
     assert_only(tmp_path, "cube.obj", "out.obj")
+
+
+def test_ctrl_c_interrupts_a_run_even_when_the_parent_ignored_it():
+    """A grader started by a parent that ignores SIGINT (a CI runner, a test worker,
+    ``nohup``) must still stop on Ctrl-C with status 130: Python only installs its
+    handler when SIGINT was not ignored at start, so the command line installs it."""
+    import signal
+
+    from halfedge_edu.cli import _sigterm_unwinds
+
+    before = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        with _sigterm_unwinds():
+            assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+            with pytest.raises(KeyboardInterrupt):
+                signal.raise_signal(signal.SIGINT)
+        assert signal.getsignal(signal.SIGINT) == signal.SIG_IGN
+    finally:
+        signal.signal(signal.SIGINT, before)

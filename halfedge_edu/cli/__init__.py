@@ -82,15 +82,25 @@ def _raise_terminated(signum: int, frame: FrameType | None) -> NoReturn:
 
 @contextmanager
 def _sigterm_unwinds() -> Iterator[None]:
-    """In the body, SIGTERM raises ``Terminated`` (signal handlers exist only in the main thread)."""
+    """In the body, SIGTERM raises ``Terminated`` and SIGINT (Ctrl-C) ``KeyboardInterrupt``
+    (signal handlers exist only in the main thread).
+
+    SIGINT too, because Python installs its Ctrl-C handler only when SIGINT was not
+    ignored at start: a grader started by a parent that ignores it (a CI runner, a test
+    worker, ``nohup``) kept on grading after ``kill -INT`` and wrote no 130. (Before the
+    package loaded its names lazily, something its eager import loaded had put the handler
+    back by chance.)
+    """
     if threading.current_thread() is not threading.main_thread():
         yield
         return
     previous = signal.signal(signal.SIGTERM, _raise_terminated)
+    previous_int = signal.signal(signal.SIGINT, signal.default_int_handler)
     try:
         yield
     finally:
         signal.signal(signal.SIGTERM, previous)
+        signal.signal(signal.SIGINT, previous_int)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
