@@ -19,6 +19,7 @@ import numpy as np
 from .keys import KeyArea
 from .palette import panel_css, preset as _preset
 from .pictures import grid_png, legend_png
+from .renderer import widget_bundle
 from .screen import unit
 from .steppers import CHANGED, NEW, OLD, CollapseStepper
 from .widgets import legend_html, panel_button
@@ -255,16 +256,8 @@ class CollapseAtlas:
             stepper.close()
 
     def _repr_mimebundle_(self, include=None, exclude=None):
-        import base64
-
-        for stepper in self.steppers + self.refused:   # their pictures are part of this widget
+        steppers = self.steppers + self.refused
+        for stepper in steppers:                       # their pictures are part of this widget
             stepper.view.shown()
-        bundle = self.widget._repr_mimebundle_(include=include, exclude=exclude)
-        bundle["text/plain"] = self.describe()
-        # Client-side live views (HALFEDGE_EDU_LIVE_BACKEND=client) render in the browser
-        # only: their plotters have no picture for the fallback (asking raised, and a hub
-        # student saw a traceback under chapter 07's atlas).
-        if not any(getattr(stepper.scene.plotter, "suppress_rendering", False)
-                   for stepper in self.steppers + self.refused):
-            bundle["image/png"] = base64.b64encode(self.screenshot()).decode("ascii")
-        return bundle
+        return widget_bundle(self.widget, self.describe(), [stepper.scene.plotter for stepper in steppers],
+                             self.screenshot, include, exclude)

@@ -18,14 +18,13 @@ by :func:`~halfedge_edu.viz.renderer.choose_mode` as for every widget.
 
 from __future__ import annotations
 
-import base64
 import html
 
 import numpy as np
 
 from .main_thread import on_main_thread
 from .palette import ROLES
-from .renderer import View, choose_mode, make_plotter
+from .renderer import View, choose_mode, make_plotter, widget_bundle
 from .screen import beside
 
 #: Where to look from, per sample (None: along the normal of the edge's faces).
@@ -239,8 +238,4 @@ class LinkViewer:
 
     def _repr_mimebundle_(self, include=None, exclude=None):
         self.view.shown()
-        bundle = self.widget._repr_mimebundle_(include=include, exclude=exclude)
-        bundle["text/plain"] = self.describe()
-        if not getattr(self.scene.plotter, "suppress_rendering", False):
-            bundle["image/png"] = base64.b64encode(self.screenshot()).decode("ascii")
-        return bundle
+        return widget_bundle(self.widget, self.describe(), [self.scene.plotter], self.screenshot, include, exclude)

@@ -187,6 +187,25 @@ def show(plotter):
         return plotter.show(jupyter_kwargs={"collapse_menu": True, "mode": live_backend.trame_mode()})
 
 
+def widget_bundle(widget, text: str, plotters, screenshot, include=None, exclude=None) -> dict:
+    """The MIME bundle of a widget whose pictures ``plotters`` draw: what Jupyter displays.
+
+    ``widget`` (an ipywidget) is shown where widgets run, ``text`` in a plain console,
+    and ``screenshot()`` (PNG bytes) wherever there is no widget manager (nbviewer, the
+    website, a notebook opened without its kernel). A client-side live view
+    (``HALFEDGE_EDU_LIVE_BACKEND=client``) renders in the browser only: its kernel
+    plotter has no picture to give, so then the PNG is left out (asking raised, and a hub
+    student saw a traceback under chapter 07's atlas).
+    """
+    import base64
+
+    bundle = widget._repr_mimebundle_(include=include, exclude=exclude) or {}
+    bundle["text/plain"] = text
+    if not any(getattr(plotter, "suppress_rendering", False) for plotter in plotters):
+        bundle["image/png"] = base64.b64encode(screenshot()).decode("ascii")
+    return bundle
+
+
 @contextlib.contextmanager
 def without_wasm_notice():
     """Leave out the line "Using wasm_dir: <folder>" that trame-vtklocal prints each time a

@@ -24,7 +24,6 @@ cell's output); messages go to the panel's status line.
 
 from __future__ import annotations
 
-import base64
 import html
 import re
 from collections.abc import Callable
@@ -32,7 +31,7 @@ from collections.abc import Callable
 from .keys import KeyArea
 from .main_thread import on_main_thread
 from .palette import ROLES, Preset, panel_css, preset as _preset
-from .renderer import View, choose_mode, make_plotter
+from .renderer import View, choose_mode, make_plotter, widget_bundle
 from .scene import HalfedgeScene
 
 
@@ -256,13 +255,7 @@ class SceneWidget:
 
     def _repr_mimebundle_(self, include=None, exclude=None):
         self.view.shown()
-        bundle = self.widget._repr_mimebundle_(include=include, exclude=exclude)
-        bundle["text/plain"] = self.describe()
-        # A client-side live view (HALFEDGE_EDU_LIVE_BACKEND=client) renders in the
-        # browser only: the kernel's plotter has no picture to give for the fallback.
-        if not getattr(self.scene.plotter, "suppress_rendering", False):
-            bundle["image/png"] = base64.b64encode(self.screenshot()).decode("ascii")
-        return bundle
+        return widget_bundle(self.widget, self.describe(), [self.scene.plotter], self.screenshot, include, exclude)
 
 
 class HalfedgeExplorer(SceneWidget):

@@ -11,7 +11,7 @@ from PIL import Image
 
 from halfedge_edu.core.ops import OperationLog, collapse, flip
 from halfedge_edu.data import sample
-from halfedge_edu.viz import LinkViewer, SmoothingViewer, created_roles, draw_link, gathered_roles, link_png
+from halfedge_edu.viz import HalfedgeExplorer, LinkViewer, SmoothingViewer, created_roles, draw_link, gathered_roles, link_png
 from halfedge_edu.viz import named_picture
 from halfedge_edu.viz.palette import ROLES, rgb
 from halfedge_edu.viz.smoothing_viewer import enclosed_volume
@@ -148,3 +148,25 @@ def test_named_picture_joins_the_names_of_an_element_named_twice(monkeypatch):
                         lambda mesh, show, **options: original(mesh, lambda s: (show(s), spy(s)), **options))
     named_picture(cube, log, size=(200, 150))
     assert captured[twice[0]] == "/".join(log.names_of(*twice[0]))
+
+
+@pytest.mark.parametrize("make", [lambda: LinkViewer("cube", 1, mode="static"),
+                                  lambda: HalfedgeExplorer(sample("tetrahedron"), mode="static")],
+                         ids=["link viewer", "explorer"])
+def test_a_client_side_view_displays_without_asking_the_kernel_for_a_picture(make, monkeypatch):
+    """A client-side live view (vtk.js draws) has no kernel picture: the bundle leaves the
+    PNG out instead of asking for one; any other view gives it, for viewers without widgets."""
+    viewer = make()
+    try:
+        bundle = viewer._repr_mimebundle_()
+        assert bundle["image/png"] and bundle["text/plain"] == viewer.describe()
+
+        def no_picture(*_args, **_kwargs):
+            raise AttributeError("This plotter has not yet been set up and rendered with ``show()``.")
+
+        monkeypatch.setattr(viewer.scene.plotter, "suppress_rendering", True, raising=False)
+        monkeypatch.setattr(viewer, "screenshot", no_picture)
+        bundle = viewer._repr_mimebundle_()
+        assert "image/png" not in bundle and bundle["text/plain"] == viewer.describe()
+    finally:
+        viewer.close()
