@@ -68,7 +68,7 @@ help:
 	@echo "make test-lowest  the library tests and one chapter with the lowest versions pyproject.toml allows"
 	@echo "make dist       build the sdist and the wheel into dist/ and check their metadata"
 	@echo "make figures    rebuild the pictures in figures/"
-	@echo "make bench      compare against OpenMesh, fast-simplification and PyMeshLab"
+	@echo "make bench      compare against OpenMesh, fast-simplification and PyMeshLab; a quiet run writes docs/benchmark-run.md"
 	@echo "make book       build the website (student edition: no answers) in build/book"
 	@echo "                make book EDITION=solutions: with the answers, for instructors, in build/book-solutions"
 	@echo "make lock       write the installed versions to constraints/\$$SEMESTER.txt"
@@ -152,7 +152,7 @@ figures: $(DEV_STAMP)
 	$(HEADLESS_ENV) $(PY) -m halfedge_edu.figures
 
 bench: $(BENCH_STAMP)
-	$(PY) benchmarks/run_all.py
+	$(PY) benchmarks/run_all.py --docs
 
 # Sphinx + myst-nb over the executed notebooks (never re-executed: their stored outputs
 # are the pictures) and the docstrings; offline, nothing is downloaded. Not -W: docstrings

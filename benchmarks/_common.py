@@ -9,11 +9,6 @@ import numpy as np
 import halfedge_edu as hx
 
 
-#: A run is fit for the docs' tables only if the 1-minute load average stayed below this
-#: share of the logical cores before and after it (these machines are shared and noisy).
-QUIET_LOAD_SHARE = 0.25
-
-
 def cpu_model() -> str:
     """The CPU's model name as Linux reports it, else the platform's processor string."""
     import platform
@@ -48,18 +43,114 @@ def machine_report() -> str:
             f"(1 / 5 / 15 min); Python {platform.python_version()}, numpy {np.__version__}")
 
 
-def fit_for_the_docs(load_before: float, load_after: float, cores: int | None = None) -> tuple[bool, str]:
-    """Whether a run whose 1-minute load was ``load_before`` and ``load_after`` may feed
-    the docs' tables, and the sentence that says so."""
+#: A benchmark's figures may go into the docs only if other processes used less than this
+#: share of the machine's CPU time while it ran (these machines are shared and noisy).
+QUIET_OTHER_SHARE = 0.10
+
+
+def busy_cpu_seconds() -> float | None:
+    """CPU seconds the whole machine has spent busy since boot, all cores, from ``/proc/stat``.
+
+    Busy is user, nice, system, irq, softirq and steal time (steal: time a virtual
+    machine's cores waited for the host, which slows a benchmark as much as a neighbour
+    does); idle and I/O wait are not busy. ``None`` where there is no ``/proc/stat``.
+    """
+    import os
+
+    try:
+        with open("/proc/stat", encoding="ascii") as stat:
+            fields = stat.readline().split()
+    except OSError:
+        return None
+    if not fields or fields[0] != "cpu":
+        return None
+    ticks = [int(value) for value in fields[1:9]]  # user nice system idle iowait irq softirq steal
+    busy = ticks[0] + ticks[1] + ticks[2] + ticks[5] + ticks[6] + ticks[7]
+    return busy / os.sysconf("SC_CLK_TCK")
+
+
+def own_cpu_seconds() -> float:
+    """CPU seconds of this process and of every child it has waited for (theirs, recursively)."""
+    import os
+
+    times = os.times()
+    return times.user + times.system + times.children_user + times.children_system
+
+
+class OtherWork:
+    """How much of the machine other processes used while a ``with`` block ran.
+
+    The load average cannot say it: a benchmark's own work raises it (a one-core script
+    running for a minute lifts the 1-minute load to about 0.6), so a run that follows
+    another, or one that starts a Lab, a hub and a browser, always looks busy by it.
+    This counts the machine's busy CPU time over the block (:func:`busy_cpu_seconds`)
+    minus this process's and its children's (:func:`own_cpu_seconds`): what is left is
+    the work of everything else, the noise in the figures. A child that is not waited
+    for (a daemon it leaves behind) counts as other work, so the verdict errs towards busy.
+    """
+
+    def __init__(self) -> None:
+        self.seconds = 0.0
+        self.other_cpu_seconds: float | None = None
+        self.load_before = self.load_after = 0.0
+
+    def start(self) -> OtherWork:
+        """Begin counting; returns self (``with OtherWork() as other:`` does the same)."""
+        self.load_before = load_average()[0]
+        self._busy, self._own, self._start = busy_cpu_seconds(), own_cpu_seconds(), time.perf_counter()
+        return self
+
+    def stop(self) -> OtherWork:
+        """Stop counting: ``seconds``, ``other_cpu_seconds`` and ``load_after`` are then set."""
+        self.seconds = time.perf_counter() - self._start
+        busy = busy_cpu_seconds()
+        if busy is not None and self._busy is not None:
+            self.other_cpu_seconds = max(0.0, (busy - self._busy) - (own_cpu_seconds() - self._own))
+        self.load_after = load_average()[0]
+        return self
+
+    __enter__ = start
+
+    def __exit__(self, *exc_info) -> None:
+        self.stop()
+
+    def share(self, cores: int | None = None) -> float | None:
+        """Other processes' CPU time as a share of the machine's over the block (None if unknown)."""
+        import os
+
+        if self.other_cpu_seconds is None:
+            return None
+        cores = cores or os.cpu_count() or 1
+        return self.other_cpu_seconds / max(self.seconds * cores, 1e-9)
+
+    def verdict(self, cores: int | None = None) -> tuple[bool, str]:
+        """Whether the block's figures may feed the docs' tables, and the sentence that says so."""
+        import os
+
+        cores = cores or os.cpu_count() or 1
+        return fit_for_the_docs(self.share(cores), self.load_before, self.load_after, self.seconds, cores)
+
+
+def fit_for_the_docs(other_share: float | None, load_before: float, load_after: float, seconds: float,
+                     cores: int | None = None) -> tuple[bool, str]:
+    """Whether a run in which other processes used ``other_share`` of the machine may feed
+    the docs' tables, and the sentence that says so (with the load averages, for the record).
+
+    ``None`` (no ``/proc/stat`` to measure with) is never fit: a figure nobody could
+    check the machine for does not go into the docs.
+    """
     import os
 
     cores = cores or os.cpu_count() or 1
-    limit = QUIET_LOAD_SHARE * cores
-    worst = max(load_before, load_after)
-    if worst < limit:
-        return True, f"load {load_before:.2f} before, {load_after:.2f} after (< {limit:.2f}): fit for the docs' tables"
-    return False, (f"load {load_before:.2f} before, {load_after:.2f} after (limit {limit:.2f} on {cores} cores): "
-                   f"the machine was busy; these figures are NOT fit for the docs' tables, run again when it is idle")
+    loads = f"load {load_before:.2f} before, {load_after:.2f} after, {seconds:.0f} s"
+    if other_share is None:
+        return False, (f"{loads}; other processes' CPU time could not be measured (no /proc/stat): "
+                       f"these figures are NOT fit for the docs' tables")
+    said = f"other processes used {100 * other_share:.1f}% of the {cores} cores' time ({loads})"
+    if other_share < QUIET_OTHER_SHARE:
+        return True, f"{said} < {100 * QUIET_OTHER_SHARE:.0f}%: fit for the docs' tables"
+    return False, (f"{said}, limit {100 * QUIET_OTHER_SHARE:.0f}%: the machine was busy; these figures "
+                   f"are NOT fit for the docs' tables, run again when it is idle")
 
 
 def timed(function, *args):

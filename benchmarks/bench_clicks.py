@@ -49,8 +49,9 @@ encode; with the client view the scene's serialisation). Browser-side latency mi
 the kernel's ``go`` is the rest: messages, trame's delivery and the browser.
 
 The machine line (CPU, cores, load) is printed before and after, with whether the
-figures may go into the docs (_common.fit_for_the_docs). Exits 0 with one line when
-Chromium or the playwright package is missing.
+figures may go into the docs (``_common.OtherWork``: the share of the CPU other
+processes used meanwhile). Exits 0 with one line when Chromium or the playwright
+package is missing.
 """
 
 from __future__ import annotations
@@ -70,7 +71,7 @@ ROOT = HERE.parent
 sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(ROOT))
 
-from _common import fit_for_the_docs, load_average, machine_report  # noqa: E402 - after the path
+from _common import OtherWork, machine_report  # noqa: E402 - after the path
 
 QUIET = 1.0              # seconds without a new picture after which a click has settled
 CLICK_TIMEOUT = 20.0     # seconds a click may take to settle before it counts as lost
@@ -360,7 +361,7 @@ def main() -> int:
     parser.add_argument("--quick", action="store_true", help="6 clicks per widget instead of 20")
     parser.add_argument("--clicks", type=int, default=None, help="clicks per widget and backend (default 20)")
     parser.add_argument("--backends", default="server,client", help="comma-separated: server, client")
-    parser.add_argument("--widgets", default="explorer,qem", help=f"comma-separated: {', '.join(WIDGETS)}")
+    parser.add_argument("--widgets", default="explorer,qem,loop", help=f"comma-separated: {', '.join(WIDGETS)}")
     parser.add_argument("--per-click", action="store_true", help="also print each click's times")
     parser.add_argument("--trame-stale-retry", action="store_true",
                         help="server backend: put trame-vtk's own retry back (a picture whose JPEG was "
@@ -389,7 +390,7 @@ def main() -> int:
     from tests.browser.lab_server import LabStartError, launch_chromium, start_lab, stop_lab
 
     print(machine_report(), flush=True)
-    load_before = load_average()[0]
+    other_work = OtherWork().start()            # other processes' CPU time while this runs
     print(f"{clicks} clicks per widget and backend, each after the last settled ({QUIET:.1f} s without a new picture)"
           + ("; server view with trame-vtk's own 0.5 s stale-picture retry" if args.trame_stale_retry else ""))
     print(f"{'backend':7s} {'widget':24s} {'click-to-text ms':>16s}  {'click-to-picture ms':>16s}  "
@@ -425,7 +426,7 @@ def main() -> int:
                     context.close()
                     stop_lab(server)
     print(machine_report())
-    print(fit_for_the_docs(load_before, load_average()[0])[1])
+    print(other_work.stop().verdict()[1])
     return 1 if failures else 0
 
 
