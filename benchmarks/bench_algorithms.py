@@ -45,15 +45,20 @@ def sphere(faces_wanted: int, seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
     return shuffled, relabel[faces][rng.permutation(len(faces))]
 
 
-def median_time(function, repeats: int, prepare=lambda: None) -> float:
-    """Median wall time of ``repeats`` calls of ``function(prepare())``; prepare is untimed."""
-    times = []
+def interleaved_times(repeats: int, contenders: dict) -> dict[str, float]:
+    """``{name: median wall seconds}`` of ``function(prepare())`` for each ``name: (function, prepare)``.
+
+    ``prepare`` is untimed. Every round runs each contender once, in turn, so a spell of
+    other work on the machine falls on ours and the peers' alike.
+    """
+    times: dict[str, list[float]] = {name: [] for name in contenders}
     for _ in range(repeats):
-        argument = prepare()
-        start = time.perf_counter()
-        function(argument)
-        times.append(time.perf_counter() - start)
-    return float(np.median(times))
+        for name, (function, prepare) in contenders.items():
+            argument = prepare()
+            start = time.perf_counter()
+            function(argument)
+            times[name].append(time.perf_counter() - start)
+    return {name: float(np.median(seconds)) for name, seconds in times.items()}
 
 
 def row(name: str, faces: int, ours: float, peers: dict[str, float]) -> str:
@@ -70,10 +75,12 @@ def bench_loop(faces_wanted: int, repeats: int) -> str:
     vertices, faces = sphere(faces_wanted)
     mesh = hx.HalfedgeMesh.from_faces(vertices, faces)
     polydata = pyvista.PolyData.from_regular_faces(vertices, faces)
-    ours = median_time(lambda m: loop_subdivide(m), repeats, lambda: mesh)
-    theirs = median_time(lambda _: trimesh.remesh.subdivide_loop(vertices, faces), repeats)
-    vtk = median_time(lambda p: p.subdivide(1, "loop"), repeats, lambda: polydata)
-    return row("Loop x1", len(faces), ours, {"trimesh": theirs, "VTK": vtk})
+    seconds = interleaved_times(repeats, {
+        "ours": (loop_subdivide, lambda: mesh),
+        "trimesh": (lambda _: trimesh.remesh.subdivide_loop(vertices, faces), lambda: None),
+        "VTK": (lambda p: p.subdivide(1, "loop"), lambda: polydata),
+    })
+    return row("Loop x1", len(faces), seconds.pop("ours"), seconds)
 
 
 def bench_laplacian(faces_wanted: int, repeats: int, iterations: int = 10) -> str:
@@ -90,9 +97,11 @@ def bench_laplacian(faces_wanted: int, repeats: int, iterations: int = 10) -> st
 
     check = trimesh_smooth(fresh_trimesh())
     assert np.allclose(smooth(mesh, iterations).positions, check.vertices, atol=1e-12), "results differ"
-    ours = median_time(lambda m: smooth(m, iterations), repeats, mesh.copy)
-    theirs = median_time(trimesh_smooth, repeats, fresh_trimesh)
-    return row(f"Laplacian x{iterations}", len(faces), ours, {"trimesh": theirs})
+    seconds = interleaved_times(repeats, {
+        "ours": (lambda m: smooth(m, iterations), mesh.copy),
+        "trimesh": (trimesh_smooth, fresh_trimesh),
+    })
+    return row(f"Laplacian x{iterations}", len(faces), seconds.pop("ours"), seconds)
 
 
 def main() -> None:

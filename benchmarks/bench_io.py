@@ -15,7 +15,7 @@ from pathlib import Path
 import trimesh
 
 import halfedge_edu as hx
-from _common import median_of
+from _common import interleaved_medians
 
 DATA = Path(hx.__file__).resolve().parent / "data"
 
@@ -27,13 +27,16 @@ def main() -> None:
     options = parser.parse_args()
     repeat = 3 if options.quick else options.repeat
 
-    print(f"OBJ reading, median of {repeat} runs (ratio = ours / trimesh.load)")
+    print(f"OBJ reading, median of {repeat} interleaved rounds (ratio = ours / trimesh.load)")
     print(f"{'mesh':<22}{'faces':>8}{'read_obj':>11}{'hx.load':>11}{'trimesh':>11}{'read ratio':>12}")
     for path in sorted(DATA.glob("*.obj")):
         faces = len(hx.read_obj(path).faces)
-        ours, _ = median_of(repeat, hx.read_obj, path)
-        loaded, _ = median_of(repeat, hx.load, path)
-        peer, _ = median_of(repeat, lambda: trimesh.load(path, process=False, force="mesh"))
+        timings = interleaved_medians(repeat, {                  # one of each in turn, per round
+            "read_obj": lambda: hx.read_obj(path),
+            "load": lambda: hx.load(path),
+            "trimesh": lambda: trimesh.load(path, process=False, force="mesh"),
+        })
+        ours, loaded, peer = (timings[name][0] for name in ("read_obj", "load", "trimesh"))
         print(f"{path.name:<22}{faces:>8}{ours:>10.3f}s{loaded:>10.3f}s{peer:>10.3f}s{ours / peer:>11.2f}x")
 
 

@@ -6,7 +6,7 @@
 
 Each input is remeshed by three methods in the same process, with the same target
 length L (the input's mean edge length) and 5 iterations; each time is the median of
-``--repeats`` runs:
+``--repeats`` rounds, each running every method once in turn:
 * halfedge_edu: ``remesh`` with ``feature_angle=30`` (creases sharper than 30 degrees and
   the boundary kept; PyMeshLab's default angle, so both keep the same creases), once
   with the full tangential smoothing step (the default: the most even triangles) and
@@ -47,7 +47,7 @@ import argparse
 import numpy as np
 
 import halfedge_edu as hx
-from _common import hundred_k_inputs as inputs, median_of, surface_distance
+from _common import hundred_k_inputs as inputs, interleaved_medians, surface_distance
 from halfedge_edu.algorithms.remesh import COLLAPSE_BELOW, SPLIT_ABOVE, quality_report, remesh
 from halfedge_edu.core.corner_table import edge_table
 
@@ -162,12 +162,12 @@ def main(argv: list[str] | None = None) -> None:
               f"{'':>10}{'':>9}{'':>10}{'':>9}{before.edge_length_spread:>7.3f}"
               f"{share_in_band(vertices, faces, length):>6.0%}{before.degree_deviation:>8.3f}"
               f"{before.min_angle_mean:>8.1f}")
-        results = {
-            "halfedge_edu": median_of(args.repeats, run_ours, mesh, length),
-            f"halfedge_edu {SHORT_STEP:g}": median_of(args.repeats, run_ours, mesh, length, SHORT_STEP),
-            "pymeshlab": median_of(args.repeats, run_pymeshlab, vertices, faces, length),
-            "gpytoolbox": median_of(args.repeats, run_gpytoolbox, vertices, faces, length),
-        }
+        results = interleaved_medians(args.repeats, {        # one run of each in turn, per round
+            "halfedge_edu": lambda: run_ours(mesh, length),
+            f"halfedge_edu {SHORT_STEP:g}": lambda: run_ours(mesh, length, SHORT_STEP),
+            "pymeshlab": lambda: run_pymeshlab(vertices, faces, length),
+            "gpytoolbox": lambda: run_gpytoolbox(vertices, faces, length),
+        })
         reference = (vertices, faces, mesh)
         quality = {label: measure(*result, reference, length) for label, (_, result) in results.items()}
         peer = quality["pymeshlab"]
