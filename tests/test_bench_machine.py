@@ -115,3 +115,40 @@ def test_run_all_refuses_a_partial_run_and_uncommitted_code():
     assert "not a full run" in run_all.reasons_not_fit(quiet, False, "abc1234", [])[0]
     assert "uncommitted changes to the code measured: halfedge_edu/core/build.py" in \
         run_all.reasons_not_fit(quiet, True, "abc1234", ["halfedge_edu/core/build.py"])[0]
+
+
+ORPHAN_SPINNER = """
+import os, time
+if os.fork() == 0:                # the child leaves a grandchild behind and exits at once
+    if os.fork() == 0:
+        while time.process_time() < 0.6:
+            pass                  # the orphan's CPU time: the benchmark's own work
+    os._exit(0)
+os.wait()
+time.sleep(1.5)                   # the script outlives its orphan, as a grader outlives a sandbox
+"""
+
+
+def test_run_all_counts_a_benchmarks_orphaned_descendants_as_its_own_work(tmp_path):
+    """A grandchild whose parent exited (bubblewrap's sandbox does this) is reaped by
+    run_all, not init, so its CPU time is the benchmark's, not other work. In a process
+    of its own: a subreaper changes how every later orphan of the process is reaped."""
+    script = tmp_path / "bench_orphan.py"
+    script.write_text(ORPHAN_SPINNER)
+    measure = ("import sys; from pathlib import Path; import run_all, _common\n"
+               "sys.stdout = open('/dev/null', 'w')\n"
+               "if SUBREAPER: assert run_all.become_subreaper()\n"
+               "before = _common.own_cpu_seconds()\n"
+               "run = run_all.run_script(Path(SCRIPT), [])\n"
+               "sys.stderr.write(f'{_common.own_cpu_seconds() - before} {run.other.other_cpu_seconds}')\n")
+    measure = measure.replace("SCRIPT", repr(str(script)))
+    benchmarks = Path(run_all.__file__).parent
+    for subreaper in (True, False):
+        done = subprocess.run([sys.executable, "-c", measure.replace("SUBREAPER", str(subreaper))], cwd=benchmarks,
+                              capture_output=True, text=True, timeout=60)
+        assert done.returncode == 0, done.stderr
+        own, other = (float(value) for value in done.stderr.split()[-2:])
+        if subreaper:
+            assert own >= 0.55, (own, other)        # the orphan's 0.6 s came back to us
+        else:
+            assert own < 0.5 and other >= 0.5, (own, other)   # without: init reaped it, a "neighbour"
