@@ -390,7 +390,7 @@ def main() -> int:
     from tests.browser.lab_server import LabStartError, launch_chromium, start_lab, stop_lab
 
     print(machine_report(), flush=True)
-    other_work = OtherWork().start()            # other processes' CPU time while this runs
+    other_work = OtherWork(adopt_orphans=True).start()  # other processes' CPU time while this runs
     print(f"{clicks} clicks per widget and backend, each after the last settled ({QUIET:.1f} s without a new picture)"
           + ("; server view with trame-vtk's own 0.5 s stale-picture retry" if args.trame_stale_retry else ""))
     print(f"{'backend':7s} {'widget':24s} {'click-to-text ms':>16s}  {'click-to-picture ms':>16s}  "

@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import argparse
 import datetime
-import os
 import subprocess
 import sys
 from dataclasses import dataclass
@@ -63,50 +62,14 @@ def benchmark_scripts() -> list[Path]:
     return sorted(HERE.glob("bench_*.py"))
 
 
-def become_subreaper() -> bool:
-    """Make this process the one its orphaned descendants are handed to (Linux), not init.
-
-    A benchmark's grandchildren may outlive their parents: bubblewrap's sandbox process
-    exits after its parent has, and init reaps it. Their CPU time then never reaches
-    this process's children's times (:func:`_common.own_cpu_seconds`), and
-    ``OtherWork`` would count the grader's own work as a neighbour's. Handed to this
-    process instead, they are reaped by :func:`reap_orphans`, and their time is ours.
-    False where the system has no such setting.
-    """
-    import ctypes
-
-    try:
-        libc = ctypes.CDLL(None, use_errno=True)
-        return libc.prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0) == 0
-    except (OSError, AttributeError):
-        return False
-
-
-#: prctl's option number for "adopt orphaned descendants" (linux/prctl.h).
-PR_SET_CHILD_SUBREAPER = 36
-
-
-def reap_orphans() -> int:
-    """Reap every descendant that has exited and was handed to this process; how many."""
-    reaped = 0
-    while True:
-        try:
-            pid, _ = os.waitpid(-1, os.WNOHANG)
-        except ChildProcessError:
-            return reaped
-        if pid == 0:
-            return reaped
-        reaped += 1
-
-
 def run_script(script: Path, extra: list[str]) -> ScriptRun:
     """Run ``script`` in its own process, echo its output as it comes, and keep it.
 
     Its orphaned descendants that have exited are reaped before the count stops (see
-    :func:`become_subreaper`); one still running then counts as other work.
+    :func:`_common.adopt_orphans`); one still running then counts as other work.
     """
     lines: list[str] = []
-    with OtherWork() as other:
+    with OtherWork(adopt_orphans=True) as other:
         process = subprocess.Popen([sys.executable, "-u", str(script), *extra], stdout=subprocess.PIPE,
                                    stderr=subprocess.STDOUT, text=True, errors="replace")
         assert process.stdout is not None
@@ -115,7 +78,6 @@ def run_script(script: Path, extra: list[str]) -> ScriptRun:
             sys.stdout.flush()
             lines.append(line)
         returncode = process.wait()              # waited for: its CPU time counts as ours, not other work
-        reap_orphans()
     return ScriptRun(script.name, "".join(lines), returncode, other)
 
 
@@ -184,7 +146,6 @@ def main(argv: list[str] | None = None) -> int:
     only = {name.strip().removesuffix(".py") for name in args.only.split(",") if name.strip()}
 
     started = datetime.datetime.now(datetime.timezone.utc)
-    become_subreaper()
     machine_before = machine_report()
     print(machine_before, flush=True)
     runs = []
