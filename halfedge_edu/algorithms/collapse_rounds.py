@@ -373,7 +373,7 @@ def no_turned_faces(
         row, neighbour = expand(*faces_around, w)
         row, neighbour = _keep_where(_holds_any(tuple(faces[neighbour].T), u[row]), row, neighbour)
     else:
-        neighbour = np.take(face_across.reshape(-1), 3 * moved.face + (position + 1) % 3)   # across u -> w
+        neighbour = np.take(face_across.reshape(-1), 3 * moved.face + np.take(_NEXT_CORNER, position))   # across u -> w
         row, neighbour = _keep_where(neighbour >= 0, np.arange(len(owner)), neighbour)
     b0, b1, b2 = (np.take(flat, 3 * neighbour + i) for i in range(3))
     row_owner = np.take(owner, row)

@@ -670,7 +670,8 @@ def _simplify(mesh: HalfedgeMesh, target_faces: int, boundary_weight: float, max
         changed[remove_c] = True
         faces_left = len(faces)
         faces = merge_vertices(faces, remove_c, keep_c, n)
-        this_round = round_tables(faces, n)
+        if len(faces) > target_faces:          # the next round's tables; none after the last round
+            this_round = round_tables(faces, n)
         if bar is not None:
             bar.update(faces_left - len(faces))
 
