@@ -152,3 +152,27 @@ def test_run_all_counts_a_benchmarks_orphaned_descendants_as_its_own_work(tmp_pa
             assert own >= 0.55, (own, other)        # the orphan's 0.6 s came back to us
         else:
             assert own < 0.5 and other >= 0.5, (own, other)   # without: init reaped it, a "neighbour"
+
+
+def test_the_docs_benchmark_page_is_one_quiet_full_run_of_code_in_this_history():
+    """docs/benchmark-run.md is written by run_all, never by hand: every script of this
+    folder, each one judged quiet, from a commit this checkout descends from; and the
+    performance page quotes that run."""
+    page = run_all.DOCS_PAGE.read_text(encoding="utf-8")
+    assert page.startswith("# The benchmark run\n") and f"- command: `{run_all.COMMAND}`" in page
+    rows = {line.split(" | ")[0].removeprefix("| "): line for line in page.splitlines()
+            if line.startswith("| bench_")}
+    assert set(rows) == {script.name for script in run_all.benchmark_scripts()}
+    assert all(line.endswith("| fit |") for line in rows.values()), rows
+    for name in rows:
+        assert f"\n## {name}\n\n```text\n" in page, name
+    started = page.split("- started: ", 1)[1].split(" UTC, commit `", 1)
+    commit = started[1].split("`", 1)[0]
+    assert len(commit) >= 7 and all(c in "0123456789abcdef" for c in commit), commit
+    shallow = subprocess.run(["git", "rev-parse", "--is-shallow-repository"], cwd=run_all.ROOT,
+                             capture_output=True, text=True)
+    if shallow.returncode == 0 and shallow.stdout.strip() == "false":   # a checkout with its whole history
+        ancestor = subprocess.run(["git", "merge-base", "--is-ancestor", commit, "HEAD"], cwd=run_all.ROOT)
+        assert ancestor.returncode == 0, f"{commit} is not in this checkout's history"
+    performance = (run_all.ROOT / "docs" / "performance.md").read_text(encoding="utf-8")
+    assert f"[the benchmark run](benchmark-run.md) of {started[0]} UTC" in performance
